@@ -1,0 +1,98 @@
+//! Seed 000's scene: a blue cube, a magenta sphere, a green cylinder and a red torus, with
+//! specular strength 2 and shininess 50, lit by a directional light along -X, a red point
+//! light at (-3, 3, 0) and a blue one at (3, 3, 0). The sphere shows all three highlights.
+//! As in the seed, whose highlight is an uncolored `2.0 * pow(eyeCos, 50.0)`, every light's
+//! specular intensity is white.
+//!
+//! ```sh
+//! cargo run --example showcase                       # a window, where a display exists
+//! cargo run --example showcase -- --headless out.png # a PNG, and exit
+//! ```
+
+mod support;
+
+use bevy::prelude::*;
+use bevy_phong::prelude::*;
+
+fn main() {
+    support::example_app("showcase")
+        .add_plugins(PhongPlugin)
+        // Seed 000's default ambient light.
+        .insert_resource(PhongAmbientLight {
+            color: Color::linear_rgb(0.5, 0.5, 0.5),
+        })
+        .add_systems(Startup, setup)
+        .run();
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<PhongMaterial>>,
+) {
+    let seed_material = |hex: &str| PhongMaterial {
+        base_color: Srgba::hex(hex).expect("valid hex color").into(),
+        specular_strength: 2.0,
+        shininess: 50.0,
+        ..default()
+    };
+    let objects: [(Mesh, &str, Vec3); 4] = [
+        (
+            Cuboid::new(1.6, 1.6, 1.6).into(),
+            "#0000ff",
+            Vec3::new(-4.5, 0.0, 0.0),
+        ),
+        (
+            Sphere::new(1.0).mesh().uv(64, 48),
+            "#ff00ff",
+            Vec3::new(-1.5, 0.0, 0.0),
+        ),
+        (
+            Cylinder::new(0.9, 1.8).into(),
+            "#008000",
+            Vec3::new(1.5, 0.0, 0.0),
+        ),
+        (
+            Torus::new(0.45, 1.0).into(),
+            "#ff0000",
+            Vec3::new(4.5, 0.0, 0.0),
+        ),
+    ];
+    for (mesh, color, position) in objects {
+        commands.spawn((
+            Mesh3d(meshes.add(mesh)),
+            MeshMaterial3d(materials.add(seed_material(color))),
+            Transform::from_translation(position).with_rotation(Quat::from_euler(
+                EulerRot::XYZ,
+                0.5,
+                0.6,
+                0.0,
+            )),
+        ));
+    }
+
+    commands.spawn((
+        PhongDirectionalLight::default(),
+        Transform::default().looking_to(Vec3::NEG_X, Vec3::Y),
+    ));
+    commands.spawn((
+        PhongPointLight {
+            color: Color::linear_rgb(1.0, 0.0, 0.0),
+            specular: Some(Color::WHITE),
+            ..default()
+        },
+        Transform::from_xyz(-3.0, 3.0, 0.0),
+    ));
+    commands.spawn((
+        PhongPointLight {
+            color: Color::linear_rgb(0.0, 0.0, 1.0),
+            specular: Some(Color::WHITE),
+            ..default()
+        },
+        Transform::from_xyz(3.0, 3.0, 0.0),
+    ));
+
+    commands.spawn(support::example_camera(
+        Transform::from_xyz(0.0, 1.0, 8.5).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+}

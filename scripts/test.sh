@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Runs every test: unit tests, the headless render tests (on the Vulkan device; Mesa's
+# lavapipe where there is no GPU) and the doc tests. Installs a Vulkan driver first if
+# there is none. The render tests compare against the reference model with tolerances set
+# on lavapipe, so they always run on it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/ensure-vulkan.sh
+export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
+cargo test --all-targets "$@"
+cargo test --doc "$@"

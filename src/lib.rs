@@ -1,0 +1,83 @@
+//! # bevy_phong
+//!
+//! A Phong / Blinn-Phong material for Bevy, lit by its own light entities.
+//!
+//! Add [`PhongPlugin`], spawn lights as entities, and give meshes a [`PhongMaterial`]:
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_phong::prelude::*;
+//!
+//! fn main() {
+//!     App::new()
+//!         .add_plugins((DefaultPlugins, PhongPlugin))
+//!         .add_systems(Startup, setup)
+//!         .run();
+//! }
+//!
+//! fn setup(
+//!     mut commands: Commands,
+//!     mut meshes: ResMut<Assets<Mesh>>,
+//!     mut materials: ResMut<Assets<PhongMaterial>>,
+//! ) {
+//!     commands.spawn((
+//!         PhongPointLight {
+//!             color: Color::srgb(1.0, 0.0, 0.0),
+//!             decay: Decay::quadratic(0.02),
+//!             ..default()
+//!         },
+//!         Transform::from_xyz(-3.0, 3.0, 0.0),
+//!     ));
+//!     commands.spawn((
+//!         Mesh3d(meshes.add(Sphere::new(1.0))),
+//!         MeshMaterial3d(materials.add(PhongMaterial {
+//!             base_color: Color::srgb(1.0, 0.0, 1.0),
+//!             specular_strength: 2.0,
+//!             shininess: 50.0,
+//!             ..default()
+//!         })),
+//!     ));
+//!     commands.spawn((Camera3d::default(), Transform::from_xyz(0.0, 0.0, 6.0)));
+//! }
+//! ```
+//!
+//! ## Concepts
+//!
+//! - **The lighting model** is SPEC.md's equation: ambient, plus for each light a Lambert
+//!   diffuse term and a Phong or Blinn-Phong highlight, scaled by distance fall-off
+//!   ([`Decay`]) and a spot cone. [`reference`](mod@reference) evaluates it in `f64`; it is the
+//!   specification in code, and the tests compare the shader with it pixel by pixel.
+//! - **Lights** are components: [`PhongDirectionalLight`], [`PhongPointLight`],
+//!   [`PhongSpotLight`]; the ambient light is the resource [`PhongAmbientLight`]. They
+//!   light only [`PhongMaterial`]s (Bevy's own `PointLight` & co. light only Bevy's
+//!   materials). There is no fixed maximum count.
+//! - **The light buffer** ([`render`]) is a storage buffer that the gather system rewrites
+//!   in the frames where a light changed; see that module for how it stays bound.
+//! - **Shaders** are embedded: `bevy_phong::types`, `bevy_phong::lighting` (one function per
+//!   term of the equation, for other shaders to import), `bevy_phong::bindings` and
+//!   `bevy_phong::shading`. No file from `assets/` is needed.
+//! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
+//!   with, for checking a render against [`reference`](mod@reference).
+
+mod lights;
+mod material;
+mod plugin;
+pub mod reference;
+pub mod render;
+mod surface_inputs;
+
+pub use lights::{
+    Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
+};
+pub use material::{PhongMaterial, PhongMaterialUniform, SpecularModel};
+pub use plugin::{PhongMaterialAppExt, PhongPlugin, PhongSystems};
+pub use render::PHONG_LIGHT_BUFFER;
+pub use surface_inputs::{SurfaceInput, SurfaceInputUniform, SurfaceInputsMaterial};
+
+/// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
+pub mod prelude {
+    pub use crate::{
+        Decay, PhongAmbientLight, PhongDirectionalLight, PhongMaterial, PhongMaterialAppExt,
+        PhongPlugin, PhongPointLight, PhongSpotLight, SpecularModel,
+    };
+}

@@ -1,0 +1,36 @@
+//! Directional lights: parallel rays from infinitely far away.
+
+use bevy::{
+    camera::visibility::Visibility,
+    color::Color,
+    ecs::component::Component,
+    prelude::{ReflectComponent, ReflectDefault},
+    reflect::Reflect,
+    transform::components::Transform,
+};
+use serde::{Deserialize, Serialize};
+
+/// A light whose rays are all parallel, like the sun: no position, no fall-off.
+///
+/// The rays travel along the entity's local -Z axis (Bevy's forward, so
+/// `Transform::looking_to(direction, Vec3::Y)` aims it); translation and scale are ignored.
+/// A hidden entity ([`Visibility::Hidden`]) gives no light.
+#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Component, Default, Debug, Clone)]
+#[require(Transform, Visibility)]
+#[serde(default)]
+pub struct PhongDirectionalLight {
+    /// Diffuse intensity, converted to linear RGB; components may exceed 1. Default white.
+    pub color: Color,
+    /// Specular intensity; `None` (the default) uses [`color`](Self::color).
+    pub specular: Option<Color>,
+}
+
+impl Default for PhongDirectionalLight {
+    fn default() -> Self {
+        Self {
+            color: Color::WHITE,
+            specular: None,
+        }
+    }
+}

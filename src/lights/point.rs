@@ -1,0 +1,43 @@
+//! Point lights: light from one position in every direction.
+
+use super::Decay;
+use bevy::{
+    camera::visibility::Visibility,
+    color::Color,
+    ecs::component::Component,
+    prelude::{ReflectComponent, ReflectDefault},
+    reflect::Reflect,
+    transform::components::Transform,
+};
+use serde::{Deserialize, Serialize};
+
+/// A light that shines from the entity's position in every direction, fading with distance
+/// by its [`Decay`] and cut off at `range`.
+///
+/// Rotation and scale of the entity are ignored. A hidden entity gives no light.
+#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Component, Default, Debug, Clone)]
+#[require(Transform, Visibility)]
+#[serde(default)]
+pub struct PhongPointLight {
+    /// Diffuse intensity, converted to linear RGB; components may exceed 1. Default white.
+    pub color: Color,
+    /// Specular intensity; `None` (the default) uses [`color`](Self::color).
+    pub specular: Option<Color>,
+    /// Fall-off with distance. Default [`Decay::NONE`].
+    pub decay: Decay,
+    /// Distance (world units, `> 0`) past which the light contributes nothing;
+    /// `None` (the default) means unlimited.
+    pub range: Option<f32>,
+}
+
+impl Default for PhongPointLight {
+    fn default() -> Self {
+        Self {
+            color: Color::WHITE,
+            specular: None,
+            decay: Decay::NONE,
+            range: None,
+        }
+    }
+}

@@ -1,0 +1,58 @@
+//! Spot lights: a point light limited to a cone.
+
+use super::Decay;
+use bevy::{
+    camera::visibility::Visibility,
+    color::Color,
+    ecs::component::Component,
+    prelude::{ReflectComponent, ReflectDefault},
+    reflect::Reflect,
+    transform::components::Transform,
+};
+use serde::{Deserialize, Serialize};
+
+/// A light that shines from the entity's position into a cone around its local -Z axis.
+///
+/// With `θ` the angle between the cone's axis and the ray to a surface point, the light is
+/// full inside `inner_angle`, fades smoothly (linearly in `cos θ`) to zero at `outer_angle`
+/// and is zero beyond; `inner_angle == outer_angle` gives a hard edge. On top of that,
+/// `cos(θ)^exponent` darkens the cone towards its rim. Distance fall-off is as for
+/// [`PhongPointLight`](crate::PhongPointLight). Scale is ignored; a hidden entity gives no
+/// light.
+#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Component, Default, Debug, Clone)]
+#[require(Transform, Visibility)]
+#[serde(default)]
+pub struct PhongSpotLight {
+    /// Diffuse intensity, converted to linear RGB; components may exceed 1. Default white.
+    pub color: Color,
+    /// Specular intensity; `None` (the default) uses [`color`](Self::color).
+    pub specular: Option<Color>,
+    /// Fall-off with distance. Default [`Decay::NONE`].
+    pub decay: Decay,
+    /// Distance (world units, `> 0`) past which the light contributes nothing;
+    /// `None` (the default) means unlimited.
+    pub range: Option<f32>,
+    /// Half-angle of the fully lit core, in radians, `0 ≤ inner ≤ outer`.
+    /// Default 12.5° (seed 004).
+    pub inner_angle: f32,
+    /// Half-angle where the light reaches zero, in radians, `inner ≤ outer < π/2`.
+    /// Default 17.5° (seed 004).
+    pub outer_angle: f32,
+    /// Exponent of the `cos(θ)^exponent` rim darkening, `≥ 0`. Default `0` (none).
+    pub exponent: f32,
+}
+
+impl Default for PhongSpotLight {
+    fn default() -> Self {
+        Self {
+            color: Color::WHITE,
+            specular: None,
+            decay: Decay::NONE,
+            range: None,
+            inner_angle: 12.5_f32.to_radians(),
+            outer_angle: 17.5_f32.to_radians(),
+            exponent: 0.0,
+        }
+    }
+}

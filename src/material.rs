@@ -1,0 +1,154 @@
+//! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
+
+use crate::render::PHONG_LIGHT_BUFFER;
+use bevy::{
+    asset::{Asset, Handle},
+    color::{Color, ColorToComponents, LinearRgba},
+    math::{Vec3, Vec4},
+    pbr::Material,
+    prelude::{AlphaMode, ReflectDefault},
+    reflect::Reflect,
+    render::{
+        render_asset::RenderAssets,
+        render_resource::{AsBindGroup, AsBindGroupShaderType, ShaderType},
+        storage::ShaderBuffer,
+        texture::GpuImage,
+    },
+    shader::ShaderRef,
+};
+use serde::{Deserialize, Serialize};
+
+/// Path of the material's fragment shader among the crate's embedded assets.
+pub(crate) const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wgsl";
+
+/// How the highlight of a light is shaped (SPEC.md's `H`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
+#[reflect(Default, Debug, PartialEq, Clone)]
+pub enum SpecularModel {
+    /// `max(R·V, 0)^α` with `R` the light reflected about the normal (seeds 000–002).
+    #[default]
+    Phong,
+    /// `max(N·H, 0)^α` with `H = normalize(L + V)`, the half vector (seed 003). For the same
+    /// look as Phong, use about four times the shininess.
+    BlinnPhong,
+}
+
+impl SpecularModel {
+    /// The value the shader's `SPECULAR_MODEL_*` constants give this model.
+    pub(crate) fn shader_flag(self) -> u32 {
+        match self {
+            SpecularModel::Phong => 0,
+            SpecularModel::BlinnPhong => 1,
+        }
+    }
+}
+
+/// A surface lit by the Phong reflection model with this crate's light entities.
+///
+/// Per SPEC.md, a surface point receives
+///
+/// ```text
+/// emissive + ambient ⊙ k_a ⊙ k_d
+///   + Σ_lights A · S · [color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · strength · H]
+/// ```
+///
+/// with `k_d = base_color`, `k_a = ambient_factor`, `k_s = specular_color`,
+/// `strength = specular_strength`, and `H` the highlight of [`specular_model`] with exponent
+/// [`shininess`]. All colors are taken in linear RGB.
+///
+/// [`specular_model`]: Self::specular_model
+/// [`shininess`]: Self::shininess
+#[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
+#[reflect(Default, Debug, Clone)]
+#[uniform(0, PhongMaterialUniform)]
+pub struct PhongMaterial {
+    /// Diffuse reflectance `k_d`; its alpha is the output alpha (see
+    /// [`alpha_mode`](Self::alpha_mode)). Default white.
+    pub base_color: Color,
+    /// Scalar `k_a` on the ambient term, `≥ 0`. Default `1`.
+    pub ambient_factor: f32,
+    /// Specular reflectance `k_s`. Default white.
+    pub specular_color: Color,
+    /// Scalar multiplier on `k_s`, `≥ 0` (seed 000's `specularFactor`; `0` turns the
+    /// highlight off). Default `1`.
+    pub specular_strength: f32,
+    /// Highlight exponent `α`, `≥ 0`: higher is a smaller, sharper highlight. Default `32`.
+    pub shininess: f32,
+    /// Reflection-vector (Phong) or half-vector (Blinn-Phong) highlight. Default Phong.
+    pub specular_model: SpecularModel,
+    /// Color added without lighting, linear RGB. Default black.
+    pub emissive: LinearRgba,
+    /// How the output alpha is used. Default [`AlphaMode::Opaque`].
+    pub alpha_mode: AlphaMode,
+    /// The scene's light buffer, which the plugin fills every frame. Leave it at its
+    /// default, [`PHONG_LIGHT_BUFFER`].
+    #[storage(1, read_only)]
+    pub lights: Handle<ShaderBuffer>,
+}
+
+impl Default for PhongMaterial {
+    fn default() -> Self {
+        Self {
+            base_color: Color::WHITE,
+            ambient_factor: 1.0,
+            specular_color: Color::WHITE,
+            specular_strength: 1.0,
+            shininess: 32.0,
+            specular_model: SpecularModel::Phong,
+            emissive: LinearRgba::BLACK,
+            alpha_mode: AlphaMode::Opaque,
+            lights: PHONG_LIGHT_BUFFER,
+        }
+    }
+}
+
+impl From<Color> for PhongMaterial {
+    fn from(base_color: Color) -> Self {
+        Self {
+            base_color,
+            ..Self::default()
+        }
+    }
+}
+
+/// [`PhongMaterial`] as the shader reads it (`PhongMaterialUniform` in
+/// `bevy_phong::types`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, ShaderType)]
+pub struct PhongMaterialUniform {
+    /// `k_d`, linear RGB, with the output alpha.
+    pub base_color: Vec4,
+    /// `k_s · specular_strength`, linear RGB.
+    pub specular: Vec3,
+    /// `α`.
+    pub shininess: f32,
+    /// Emissive color, linear RGB.
+    pub emissive: Vec3,
+    /// `k_a`.
+    pub ambient_factor: f32,
+    /// The specular model in bits 0..1.
+    pub flags: u32,
+}
+
+impl AsBindGroupShaderType<PhongMaterialUniform> for PhongMaterial {
+    fn as_bind_group_shader_type(&self, _images: &RenderAssets<GpuImage>) -> PhongMaterialUniform {
+        let specular = self.specular_color.to_linear().to_vec3() * self.specular_strength;
+        PhongMaterialUniform {
+            base_color: self.base_color.to_linear().to_vec4(),
+            specular,
+            shininess: self.shininess,
+            emissive: self.emissive.to_vec3(),
+            ambient_factor: self.ambient_factor,
+            flags: self.specular_model.shader_flag(),
+        }
+    }
+}
+
+impl Material for PhongMaterial {
+    fn fragment_shader() -> ShaderRef {
+        PHONG_MATERIAL_SHADER.into()
+    }
+
+    fn alpha_mode(&self) -> AlphaMode {
+        self.alpha_mode
+    }
+}

@@ -1,0 +1,109 @@
+//! [`PhongPlugin`] and the system sets it runs in.
+
+use crate::{
+    lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    material::{PhongMaterial, SpecularModel},
+    render::{LightBufferResized, PhongLightBuffer, gather_lights, refresh_material_bind_groups},
+    surface_inputs::SurfaceInputsMaterial,
+};
+use bevy::{
+    app::{App, Plugin, PostUpdate},
+    asset::{AssetApp, AssetEventSystems, embedded_asset},
+    camera::visibility::VisibilitySystems,
+    ecs::schedule::{IntoScheduleConfigs, SystemSet},
+    pbr::{Material, MaterialPlugin},
+    render::{RenderApp, storage::ShaderBuffer},
+    shader::load_shader_library,
+    transform::TransformSystems,
+};
+use core::hash::Hash;
+
+/// Adds Phong lighting to an app: the light components and [`PhongAmbientLight`], the
+/// gather system that writes them into the light buffer each frame, and [`PhongMaterial`].
+///
+/// Add it after Bevy's `DefaultPlugins` (it needs the render plugin to draw; without a
+/// render app, as under `MinimalPlugins`, it still gathers lights, which is what ECS-only
+/// tests use).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PhongPlugin;
+
+/// The crate's systems in `PostUpdate`, in this order, after transform and visibility
+/// propagation and before Bevy sends the frame's asset events.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PhongSystems {
+    /// After this set, the light buffer holds every visible light of this frame.
+    GatherLights,
+    /// After this set, every material whose light buffer was reallocated this frame is
+    /// marked modified, so its bind group is rebuilt before it is drawn.
+    RefreshMaterials,
+}
+
+impl Plugin for PhongPlugin {
+    fn build(&self, app: &mut App) {
+        if !app
+            .world()
+            .contains_resource::<bevy::asset::Assets<ShaderBuffer>>()
+        {
+            app.init_asset::<ShaderBuffer>();
+        }
+        app.init_resource::<PhongAmbientLight>()
+            .init_resource::<PhongLightBuffer>()
+            .add_message::<LightBufferResized>()
+            .register_type::<PhongAmbientLight>()
+            .register_type::<PhongDirectionalLight>()
+            .register_type::<PhongPointLight>()
+            .register_type::<PhongSpotLight>()
+            .register_type::<Decay>()
+            .register_type::<SpecularModel>()
+            .configure_sets(
+                PostUpdate,
+                (PhongSystems::GatherLights, PhongSystems::RefreshMaterials)
+                    .chain()
+                    .after(TransformSystems::Propagate)
+                    .after(VisibilitySystems::VisibilityPropagate)
+                    .before(AssetEventSystems),
+            )
+            .add_systems(PostUpdate, gather_lights.in_set(PhongSystems::GatherLights));
+
+        if app.get_sub_app(RenderApp).is_none() {
+            app.init_asset::<PhongMaterial>();
+            return;
+        }
+        load_shader_library!(app, "shaders/types.wgsl");
+        load_shader_library!(app, "shaders/lighting.wgsl");
+        load_shader_library!(app, "shaders/bindings.wgsl");
+        load_shader_library!(app, "shaders/shading.wgsl");
+        embedded_asset!(app, "shaders/phong_material.wgsl");
+        embedded_asset!(app, "shaders/surface_inputs.wgsl");
+        app.add_phong_material::<PhongMaterial>()
+            .add_plugins(MaterialPlugin::<SurfaceInputsMaterial>::default());
+    }
+}
+
+/// Registers a material that binds a light buffer, such as [`PhongMaterial`] or an
+/// `ExtendedMaterial<PhongMaterial, _>`.
+pub trait PhongMaterialAppExt {
+    /// Adds `MaterialPlugin::<M>` and keeps `M`'s bind groups on the current light buffers:
+    /// when a buffer is reallocated, every `M` is rebuilt in the same frame, after the new
+    /// buffer is uploaded.
+    fn add_phong_material<M: Material>(&mut self) -> &mut Self
+    where
+        M::Data: PartialEq + Eq + Hash + Clone;
+}
+
+impl PhongMaterialAppExt for App {
+    fn add_phong_material<M: Material>(&mut self) -> &mut Self
+    where
+        M::Data: PartialEq + Eq + Hash + Clone,
+    {
+        self.add_plugins(MaterialPlugin::<M>::default())
+            .add_systems(
+                PostUpdate,
+                refresh_material_bind_groups::<M>.in_set(PhongSystems::RefreshMaterials),
+            );
+        if let Some(render_app) = self.get_sub_app_mut(RenderApp) {
+            crate::render::schedule_light_buffers_before::<M>(render_app);
+        }
+        self
+    }
+}

@@ -1,0 +1,548 @@
+//! The lighting model of SPEC.md in `f64`, for one surface point: the specification in
+//! code.
+//!
+//! The shader computes the same equation in `f32`; the tests render a scene, read back each
+//! pixel's color together with the world position and normal it was lit with (see
+//! [`SurfaceInputsMaterial`](crate::SurfaceInputsMaterial)), and compare the color with
+//! [`shade`] evaluated on those inputs.
+//!
+//! Every function follows the shader's rules for degenerate input, so that the two can be
+//! compared anywhere:
+//! - a zero, NaN or infinite normal, view or light direction counts as zero: such a light
+//!   gives no diffuse or specular light;
+//! - a point or spot light exactly at the surface point (`d = 0`) lights nothing;
+//! - `power(0, 0) = 1`;
+//! - an attenuation denominator at or below 1 (a `Decay` of all zeros included) gives 1.
+
+use crate::{
+    lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    material::{PhongMaterial, SpecularModel},
+    render::light_direction,
+};
+use bevy::{
+    color::{Color, ColorToComponents},
+    transform::components::GlobalTransform,
+};
+use glam::DVec3;
+
+/// A surface point and where it is seen from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// `P`, world space.
+    pub position: DVec3,
+    /// The surface normal; any length (it is normalized here, like the interpolated mesh
+    /// normal in the shader).
+    pub normal: DVec3,
+    /// The camera position; `V = normalize(camera - P)`.
+    pub camera: DVec3,
+}
+
+/// The material terms of the equation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// `k_d`, linear RGB.
+    pub diffuse: DVec3,
+    /// `k_a`.
+    pub ambient_factor: f64,
+    /// `k_s`, linear RGB.
+    pub specular: DVec3,
+    /// Multiplier on `k_s`.
+    pub specular_strength: f64,
+    /// `α`.
+    pub shininess: f64,
+    /// Phong or Blinn-Phong highlight.
+    pub specular_model: SpecularModel,
+    /// Added unlit color, linear RGB.
+    pub emissive: DVec3,
+}
+
+/// One light, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// Parallel rays along `direction` (any length; normalized here).
+    Directional {
+        /// Direction the light travels.
+        direction: DVec3,
+        /// Diffuse intensity.
+        color: DVec3,
+        /// Specular intensity.
+        specular: DVec3,
+    },
+    /// Light from `position` in every direction.
+    Point {
+        /// Position.
+        position: DVec3,
+        /// Diffuse intensity.
+        color: DVec3,
+        /// Specular intensity.
+        specular: DVec3,
+        /// `[constant, linear, quadratic]`.
+        decay: [f64; 3],
+        /// Cut-off distance.
+        range: Option<f64>,
+    },
+    /// Light from `position` into a cone around `direction`.
+    Spot {
+        /// Position.
+        position: DVec3,
+        /// Axis of the cone, the direction the light travels (any length).
+        direction: DVec3,
+        /// Diffuse intensity.
+        color: DVec3,
+        /// Specular intensity.
+        specular: DVec3,
+        /// `[constant, linear, quadratic]`.
+        decay: [f64; 3],
+        /// Cut-off distance.
+        range: Option<f64>,
+        /// Half-angle of the full-intensity core, radians.
+        inner_angle: f64,
+        /// Half-angle where the light reaches zero, radians.
+        outer_angle: f64,
+        /// Exponent of the `cos(θ)^exponent` rim darkening.
+        exponent: f64,
+    },
+}
+
+/// Everything that lights a point: the ambient light and the other lights.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Lights {
+    /// The ambient light, linear RGB.
+    pub ambient: DVec3,
+    /// Directional, point and spot lights.
+    pub lights: Vec<Light>,
+}
+
+/// The color of `surface` made of `material` under `lights` (SPEC.md's equation):
+/// `emissive + ambient ⊙ k_a ⊙ k_d + Σ light_contribution`.
+pub fn shade(surface: &SurfacePoint, material: &Material, lights: &Lights) -> DVec3 {
+    let ambient = lights.ambient * material.ambient_factor * material.diffuse;
+    lights
+        .lights
+        .iter()
+        .map(|light| light_contribution(surface, material, light))
+        .fold(material.emissive + ambient, |sum, term| sum + term)
+}
+
+/// One light's `A · S · [diffuse + specular]` at `surface`.
+pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &Light) -> DVec3 {
+    match *light {
+        Light::Directional {
+            direction,
+            color,
+            specular,
+        } => phong_light(
+            surface,
+            material,
+            -direction.normalize_or_zero(),
+            color,
+            specular,
+        ),
+        Light::Point {
+            position,
+            color,
+            specular,
+            decay,
+            range,
+        } => {
+            let Some((to_light, attenuation)) = toward(surface, position, decay, range) else {
+                return DVec3::ZERO;
+            };
+            attenuation * phong_light(surface, material, to_light, color, specular)
+        }
+        Light::Spot {
+            position,
+            direction,
+            color,
+            specular,
+            decay,
+            range,
+            inner_angle,
+            outer_angle,
+            exponent,
+        } => {
+            let Some((to_light, attenuation)) = toward(surface, position, decay, range) else {
+                return DVec3::ZERO;
+            };
+            let cos_theta = (-to_light).dot(direction.normalize_or_zero());
+            let cone = spot_cone(cos_theta, inner_angle.cos(), outer_angle.cos(), exponent);
+            attenuation * cone * phong_light(surface, material, to_light, color, specular)
+        }
+    }
+}
+
+/// The unit vector from `surface` toward a light at `position` and the light's attenuation
+/// there; `None` where the light is exactly at the point or out of range.
+fn toward(
+    surface: &SurfacePoint,
+    position: DVec3,
+    decay: [f64; 3],
+    range: Option<f64>,
+) -> Option<(DVec3, f64)> {
+    let offset = position - surface.position;
+    let distance = offset.length();
+    let attenuation = attenuation(distance, decay, range);
+    (attenuation > 0.0 && distance > 0.0).then(|| (offset / distance, attenuation))
+}
+
+/// `color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · strength · H(N, L, V)` for a unit
+/// `to_light` (`L`); zero where `N·L ≤ 0`.
+pub fn phong_light(
+    surface: &SurfacePoint,
+    material: &Material,
+    to_light: DVec3,
+    color: DVec3,
+    specular: DVec3,
+) -> DVec3 {
+    let normal = surface.normal.normalize_or_zero();
+    let n_dot_l = normal.dot(to_light);
+    // Also true for a NaN `n_dot_l`.
+    if n_dot_l.is_nan() || n_dot_l <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let view = (surface.camera - surface.position).normalize_or_zero();
+    let highlight = highlight(
+        material.specular_model,
+        normal,
+        to_light,
+        view,
+        material.shininess,
+    );
+    color * material.diffuse * n_dot_l
+        + specular * material.specular * material.specular_strength * highlight
+}
+
+/// `H(N, L, V)` for unit `N`, `L` and `V` with `N·L > 0`:
+/// Phong `max(R·V, 0)^α` with `R = 2(N·L)N - L` (seed 002), Blinn-Phong `max(N·H, 0)^α` with
+/// `H = normalize(L + V)` (seed 003).
+pub fn highlight(
+    model: SpecularModel,
+    normal: DVec3,
+    to_light: DVec3,
+    view: DVec3,
+    shininess: f64,
+) -> f64 {
+    let cosine = match model {
+        SpecularModel::Phong => reflect(-to_light, normal).dot(view),
+        SpecularModel::BlinnPhong => normal.dot((to_light + view).normalize_or_zero()),
+    };
+    power(cosine.max(0.0), shininess)
+}
+
+/// GLSL's `reflect(incident, normal) = incident - 2(N·I)N`; with `incident = -L` it is
+/// `R = 2(N·L)N - L`.
+pub fn reflect(incident: DVec3, normal: DVec3) -> DVec3 {
+    incident - 2.0 * normal.dot(incident) * normal
+}
+
+/// `base^exponent` for `base ≥ 0`, with `0^0 = 1` and `0^exponent = 0` for `exponent > 0`.
+pub fn power(base: f64, exponent: f64) -> f64 {
+    if exponent == 0.0 {
+        1.0
+    } else if base <= 0.0 {
+        0.0
+    } else {
+        base.powf(exponent)
+    }
+}
+
+/// `A(d) = min(1, 1 / (c + l·d + q·d²))`, and 0 past `range` (seeds 000 and 001).
+pub fn attenuation(
+    distance: f64,
+    [constant, linear, quadratic]: [f64; 3],
+    range: Option<f64>,
+) -> f64 {
+    if range.is_some_and(|range| distance > range) {
+        return 0.0;
+    }
+    let denominator = constant + linear * distance + quadratic * distance * distance;
+    if denominator <= 1.0 {
+        1.0
+    } else {
+        1.0 / denominator
+    }
+}
+
+/// `S_cone = edge · max(cosθ, 0)^exponent`, where `edge` is
+/// `clamp((cosθ - cos_outer) / (cos_inner - cos_outer), 0, 1)` (seed 004's soft edge) or,
+/// when the inner cone is not narrower than the outer one, `step(cos_outer, cosθ)` (seed
+/// 000's hard edge).
+pub fn spot_cone(cos_theta: f64, cos_inner: f64, cos_outer: f64, exponent: f64) -> f64 {
+    let edge = if cos_inner > cos_outer {
+        ((cos_theta - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0)
+    } else if cos_theta >= cos_outer {
+        1.0
+    } else {
+        0.0
+    };
+    if edge == 0.0 {
+        return 0.0;
+    }
+    edge * power(cos_theta.max(0.0), exponent)
+}
+
+/// A color's linear RGB components in `f64`.
+pub fn linear_rgb(color: Color) -> DVec3 {
+    let linear = color.to_linear();
+    DVec3::new(linear.red.into(), linear.green.into(), linear.blue.into())
+}
+
+fn position(transform: &GlobalTransform) -> DVec3 {
+    transform.translation().as_dvec3()
+}
+
+impl From<&PhongMaterial> for Material {
+    fn from(material: &PhongMaterial) -> Self {
+        Self {
+            diffuse: linear_rgb(material.base_color),
+            ambient_factor: material.ambient_factor.into(),
+            specular: linear_rgb(material.specular_color),
+            specular_strength: material.specular_strength.into(),
+            shininess: material.shininess.into(),
+            specular_model: material.specular_model,
+            emissive: material.emissive.to_vec3().as_dvec3(),
+        }
+    }
+}
+
+impl From<&PhongAmbientLight> for DVec3 {
+    fn from(ambient: &PhongAmbientLight) -> Self {
+        linear_rgb(ambient.color)
+    }
+}
+
+fn decay_of(decay: crate::Decay) -> [f64; 3] {
+    decay.to_array().map(f64::from)
+}
+
+impl Light {
+    /// The reference form of a directional light entity.
+    pub fn directional(light: &PhongDirectionalLight, transform: &GlobalTransform) -> Self {
+        Light::Directional {
+            direction: light_direction(transform).as_dvec3(),
+            color: linear_rgb(light.color),
+            specular: linear_rgb(light.specular.unwrap_or(light.color)),
+        }
+    }
+
+    /// The reference form of a point light entity.
+    pub fn point(light: &PhongPointLight, transform: &GlobalTransform) -> Self {
+        Light::Point {
+            position: position(transform),
+            color: linear_rgb(light.color),
+            specular: linear_rgb(light.specular.unwrap_or(light.color)),
+            decay: decay_of(light.decay),
+            range: light.range.map(f64::from),
+        }
+    }
+
+    /// The reference form of a spot light entity.
+    pub fn spot(light: &PhongSpotLight, transform: &GlobalTransform) -> Self {
+        Light::Spot {
+            position: position(transform),
+            direction: light_direction(transform).as_dvec3(),
+            color: linear_rgb(light.color),
+            specular: linear_rgb(light.specular.unwrap_or(light.color)),
+            decay: decay_of(light.decay),
+            range: light.range.map(f64::from),
+            inner_angle: light.inner_angle.into(),
+            outer_angle: light.outer_angle.into(),
+            exponent: light.exponent.into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EPSILON: f64 = 1e-12;
+
+    fn close(actual: f64, expected: f64) -> bool {
+        (actual - expected).abs() <= EPSILON * expected.abs().max(1.0)
+    }
+
+    fn matte(diffuse: DVec3) -> Material {
+        Material {
+            diffuse,
+            ambient_factor: 1.0,
+            specular: DVec3::ONE,
+            specular_strength: 0.0,
+            shininess: 1.0,
+            specular_model: SpecularModel::Phong,
+            emissive: DVec3::ZERO,
+        }
+    }
+
+    #[test]
+    fn reflection_is_two_n_dot_l_n_minus_l_as_seed_002_derives() {
+        // N = +Y, L at 45° in the XY plane: R mirrors L's x component.
+        let normal = DVec3::Y;
+        let to_light = DVec3::new(1.0, 1.0, 0.0).normalize();
+        let reflected = reflect(-to_light, normal);
+        let by_hand = DVec3::new(-1.0, 1.0, 0.0) / 2f64.sqrt();
+        assert!((reflected - by_hand).length() < EPSILON);
+        assert!((reflected - (2.0 * normal.dot(to_light) * normal - to_light)).length() < EPSILON);
+    }
+
+    #[test]
+    fn phong_highlight_is_one_when_looking_down_the_reflection() {
+        let to_light = DVec3::new(1.0, 1.0, 0.0).normalize();
+        let view = DVec3::new(-1.0, 1.0, 0.0).normalize();
+        let h = highlight(SpecularModel::Phong, DVec3::Y, to_light, view, 50.0);
+        assert!(close(h, 1.0));
+        // And Blinn-Phong agrees there: H = N.
+        let h = highlight(SpecularModel::BlinnPhong, DVec3::Y, to_light, view, 50.0);
+        assert!(close(h, 1.0));
+    }
+
+    #[test]
+    fn seed_000_demo_highlight_is_two_times_cos_to_the_fiftieth() {
+        // specular = 2.0 * pow(eyeCos, 50.0), eyeCos = cos(10°) between R and V.
+        let to_light = DVec3::Y;
+        let angle = 10f64.to_radians();
+        let view = DVec3::new(angle.sin(), angle.cos(), 0.0);
+        let surface = SurfacePoint {
+            position: DVec3::ZERO,
+            normal: DVec3::Y,
+            camera: view * 5.0,
+        };
+        let material = Material {
+            diffuse: DVec3::ZERO,
+            specular_strength: 2.0,
+            shininess: 50.0,
+            ..matte(DVec3::ZERO)
+        };
+        let color = phong_light(&surface, &material, to_light, DVec3::ZERO, DVec3::ONE);
+        let by_hand = 2.0 * 0.984_807_753_012_208_f64.powf(50.0); // = 0.9323…
+        assert!(close(color.x, by_hand), "{color} vs {by_hand}");
+    }
+
+    #[test]
+    fn seed_004_attenuation_constants_give_one_over_five_point_one_at_ten_units() {
+        // 1 / (1.0 + 0.09·10 + 0.032·100) = 1 / 5.1
+        assert!(close(
+            attenuation(10.0, [1.0, 0.09, 0.032], None),
+            1.0 / 5.1
+        ));
+        assert!(close(attenuation(0.0, [1.0, 0.09, 0.032], None), 1.0));
+    }
+
+    #[test]
+    fn seed_000_caps_attenuation_at_one_near_the_light() {
+        // decay x·d² + y·d + z with (x, y, z) = (1, 0, 0): 1/d² would be 4 at d = 0.5.
+        assert!(close(attenuation(0.5, [0.0, 0.0, 1.0], None), 1.0));
+        assert!(close(attenuation(2.0, [0.0, 0.0, 1.0], None), 0.25));
+        // A zero decay is no fall-off rather than a division by zero.
+        assert!(close(attenuation(3.0, [0.0, 0.0, 0.0], None), 1.0));
+    }
+
+    #[test]
+    fn attenuation_is_zero_past_the_range_as_seed_001_cuts_it() {
+        assert!(close(attenuation(4.99, [1.0, 0.0, 0.0], Some(5.0)), 1.0));
+        assert_eq!(attenuation(5.01, [1.0, 0.0, 0.0], Some(5.0)), 0.0);
+    }
+
+    #[test]
+    fn seed_004_soft_cone_is_full_inside_12_5_degrees_and_dark_past_17_5() {
+        let (inner, outer) = (12.5f64.to_radians().cos(), 17.5f64.to_radians().cos());
+        assert!(close(
+            spot_cone(10f64.to_radians().cos(), inner, outer, 0.0),
+            1.0
+        ));
+        assert_eq!(spot_cone(18f64.to_radians().cos(), inner, outer, 0.0), 0.0);
+        // At 15°: (cos 15° - cos 17.5°) / (cos 12.5° - cos 17.5°), worked by hand
+        // (0.965925826 - 0.953716951) / (0.976296007 - 0.953716951) = 0.540717…
+        let by_hand = (0.965_925_826_289_068 - 0.953_716_950_748_227)
+            / (0.976_296_007_119_933_4 - 0.953_716_950_748_227);
+        assert!(close(
+            spot_cone(15f64.to_radians().cos(), inner, outer, 0.0),
+            by_hand
+        ));
+    }
+
+    #[test]
+    fn seed_000_hard_cone_is_a_step_at_the_angle() {
+        let edge = 20f64.to_radians().cos();
+        assert_eq!(spot_cone(19f64.to_radians().cos(), edge, edge, 0.0), 1.0);
+        assert_eq!(spot_cone(21f64.to_radians().cos(), edge, edge, 0.0), 0.0);
+    }
+
+    #[test]
+    fn seed_001_spot_exponent_darkens_by_cos_theta_to_the_exponent() {
+        let cos_theta = 5f64.to_radians().cos();
+        let cone = spot_cone(cos_theta, 1.0_f64.cos(), 1.2_f64.cos(), 8.0);
+        assert!(close(cone, cos_theta.powi(8)));
+    }
+
+    #[test]
+    fn unlit_side_gets_neither_diffuse_nor_highlight() {
+        let surface = SurfacePoint {
+            position: DVec3::ZERO,
+            normal: DVec3::Y,
+            camera: DVec3::new(0.0, -1.0, 1.0),
+        };
+        let material = Material {
+            specular_strength: 1.0,
+            shininess: 0.0,
+            ..matte(DVec3::ONE)
+        };
+        let color = phong_light(&surface, &material, -DVec3::Y, DVec3::ONE, DVec3::ONE);
+        assert_eq!(color, DVec3::ZERO);
+    }
+
+    #[test]
+    fn shade_adds_emissive_ambient_and_lights() {
+        let surface = SurfacePoint {
+            position: DVec3::ZERO,
+            normal: DVec3::Y * 3.0,
+            camera: DVec3::new(0.0, 4.0, 0.0),
+        };
+        let material = Material {
+            emissive: DVec3::new(0.1, 0.0, 0.0),
+            ambient_factor: 0.5,
+            ..matte(DVec3::new(0.5, 0.25, 1.0))
+        };
+        let lights = Lights {
+            ambient: DVec3::splat(0.2),
+            lights: vec![Light::Directional {
+                direction: DVec3::new(0.0, -1.0, -1.0),
+                color: DVec3::ONE,
+                specular: DVec3::ONE,
+            }],
+        };
+        let n_dot_l = 1.0 / 2f64.sqrt();
+        let by_hand = DVec3::new(0.1, 0.0, 0.0)
+            + DVec3::splat(0.2 * 0.5) * material.diffuse
+            + material.diffuse * n_dot_l;
+        assert!((shade(&surface, &material, &lights) - by_hand).length() < EPSILON);
+    }
+
+    #[test]
+    fn degenerate_inputs_give_finite_colors() {
+        let material = Material {
+            specular_strength: 1.0,
+            shininess: 0.0,
+            ..matte(DVec3::ONE)
+        };
+        let light_at_origin = Light::Point {
+            position: DVec3::ZERO,
+            color: DVec3::ONE,
+            specular: DVec3::ONE,
+            decay: [0.0; 3],
+            range: None,
+        };
+        let lights = Lights {
+            ambient: DVec3::ONE,
+            lights: vec![light_at_origin],
+        };
+        for normal in [DVec3::ZERO, DVec3::NAN, DVec3::Y] {
+            let surface = SurfacePoint {
+                position: DVec3::ZERO,
+                normal,
+                camera: DVec3::ZERO,
+            };
+            assert!(shade(&surface, &material, &lights).is_finite());
+        }
+    }
+}

@@ -1,0 +1,66 @@
+//! The GPU layout of the light buffer, as the shader reads it (`bevy_phong::types`).
+//!
+//! The Rust structs here are `#[repr(C)]` plain data, written into the buffer byte for byte;
+//! a test compares their sizes and field offsets with the layout naga reflects from
+//! `shaders/types.wgsl`.
+
+use bytemuck::{Pod, Zeroable};
+
+/// One light as the shader reads it (`PhongLight` in WGSL): 80 bytes.
+///
+/// Every kind uses the same record; the fields a kind does not use are zero. Colors are
+/// linear RGB, positions world-space, angles stored as cosines.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    /// World-space position (point, spot).
+    pub position: [f32; 3],
+    /// Distance past which the light is cut off; `f32::MAX` when unlimited (point, spot).
+    pub range: f32,
+    /// Unit vector along which the light travels (directional, spot).
+    pub direction: [f32; 3],
+    /// `cos(outer_angle)` (spot).
+    pub cos_outer: f32,
+    /// Diffuse intensity, linear RGB.
+    pub color: [f32; 3],
+    /// `1 / (cos(inner) - cos(outer))`, or `0` for a hard edge (spot).
+    pub cone_scale: f32,
+    /// Specular intensity, linear RGB.
+    pub specular: [f32; 3],
+    /// Exponent of the `cos(θ)^exponent` rim darkening (spot).
+    pub spot_exponent: f32,
+    /// `[constant, linear, quadratic]` distance fall-off (point, spot).
+    pub decay: [f32; 3],
+    /// Unused; keeps the record a multiple of 16 bytes.
+    pub padding: f32,
+}
+
+/// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its
+/// `lights` array): 32 bytes.
+///
+/// The array that follows holds `directional_count` directional lights, then `point_count`
+/// point lights, then `spot_count` spot lights.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLightsHeader {
+    /// The ambient light, linear RGB.
+    pub ambient: [f32; 3],
+    /// Number of directional lights at the start of the array.
+    pub directional_count: u32,
+    /// Number of point lights after the directional ones.
+    pub point_count: u32,
+    /// Number of spot lights after the point lights.
+    pub spot_count: u32,
+    /// Unused; the array that follows starts at a 16-byte boundary.
+    pub padding: [u32; 2],
+}
+
+impl GpuLightsHeader {
+    /// Total number of lights in the array.
+    pub fn light_count(&self) -> usize {
+        (self.directional_count + self.point_count + self.spot_count) as usize
+    }
+}
+
+const _: () = assert!(size_of::<GpuLight>() == 80);
+const _: () = assert!(size_of::<GpuLightsHeader>() == 32);

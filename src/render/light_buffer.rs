@@ -1,0 +1,130 @@
+//! A growable GPU storage buffer made of a fixed header and an array of records, kept in a
+//! [`ShaderBuffer`] asset that materials bind.
+
+use bevy::{
+    asset::{Assets, Handle},
+    ecs::message::Message,
+    render::storage::ShaderBuffer,
+};
+use bytemuck::Pod;
+
+/// Sent when a light buffer's byte size changed, so that the render world made a new GPU
+/// buffer for it: every material bind group that holds the old one must be rebuilt.
+#[derive(Message, Clone, Debug)]
+pub struct LightBufferResized {
+    /// The buffer that was resized.
+    pub buffer: Handle<ShaderBuffer>,
+}
+
+/// Smallest number of records a buffer holds room for. A runtime-sized WGSL array needs at
+/// least one element to bind; a few more spare the first resizes.
+pub const MIN_CAPACITY: usize = 16;
+
+/// A [`ShaderBuffer`] asset laid out as `header, records[capacity]`.
+///
+/// The capacity grows to the next power of two when the records outgrow it and shrinks when
+/// fewer than a quarter of it is used, so a scene whose light count wobbles does not
+/// reallocate every frame. Writing reuses the asset's byte vector: no allocation once the
+/// capacity is reached.
+#[derive(Debug)]
+pub struct LightBuffer {
+    handle: Handle<ShaderBuffer>,
+    capacity: usize,
+}
+
+impl LightBuffer {
+    /// A buffer that writes into the asset behind `handle` (created on first write).
+    pub fn new(handle: Handle<ShaderBuffer>) -> Self {
+        Self {
+            handle,
+            capacity: 0,
+        }
+    }
+
+    /// The asset the buffer writes into, for a material's `#[storage]` binding.
+    pub fn handle(&self) -> &Handle<ShaderBuffer> {
+        &self.handle
+    }
+
+    /// Number of records the buffer holds room for.
+    pub fn capacity(&self) -> usize {
+        self.capacity
+    }
+
+    /// Capacity for `len` records: unchanged while `len` fits and uses more than a quarter
+    /// of it, else the next power of two (at least [`MIN_CAPACITY`]).
+    fn capacity_for(&self, len: usize) -> usize {
+        let fits = len <= self.capacity && len * 4 >= self.capacity;
+        if fits && self.capacity >= MIN_CAPACITY {
+            self.capacity
+        } else {
+            len.next_power_of_two().max(MIN_CAPACITY)
+        }
+    }
+
+    /// Writes `header` then `records` (zero-filled up to the capacity) into the asset.
+    ///
+    /// Returns `true` when the byte size changed (or the asset was created), which gives the
+    /// buffer a new GPU buffer: the caller must then send [`LightBufferResized`].
+    pub fn write<H: Pod, R: Pod>(
+        &mut self,
+        buffers: &mut Assets<ShaderBuffer>,
+        header: &H,
+        records: &[R],
+    ) -> bool {
+        debug_assert_eq!(size_of::<H>() % align_of::<R>().max(16), 0);
+        let capacity = self.capacity_for(records.len());
+        let resized = capacity != self.capacity;
+        self.capacity = capacity;
+        let size = size_of::<H>() + capacity * size_of::<R>();
+
+        match buffers.get_or_insert_with(&self.handle, ShaderBuffer::default) {
+            Ok(mut asset) => fill(&mut asset, header, records, size),
+            // Only a stale `Handle::Index` can fail; the buffer keeps its last contents.
+            Err(error) => bevy::log::error!("cannot write light buffer {:?}: {error}", self.handle),
+        }
+        resized
+    }
+}
+
+/// Replaces the bytes of `asset` with `header, records`, zero-padded to `size`.
+fn fill<H: Pod, R: Pod>(asset: &mut ShaderBuffer, header: &H, records: &[R], size: usize) {
+    let data = asset.data.get_or_insert_with(Vec::new);
+    data.clear();
+    data.extend_from_slice(bytemuck::bytes_of(header));
+    data.extend_from_slice(bytemuck::cast_slice(records));
+    data.resize(size, 0);
+    asset.buffer_description.size = size as u64;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn buffer_with_capacity(capacity: usize) -> LightBuffer {
+        LightBuffer {
+            handle: Handle::default(),
+            capacity,
+        }
+    }
+
+    #[test]
+    fn capacity_starts_at_the_minimum() {
+        assert_eq!(buffer_with_capacity(0).capacity_for(0), MIN_CAPACITY);
+        assert_eq!(buffer_with_capacity(0).capacity_for(3), MIN_CAPACITY);
+    }
+
+    #[test]
+    fn capacity_grows_to_the_next_power_of_two() {
+        assert_eq!(buffer_with_capacity(16).capacity_for(17), 32);
+        assert_eq!(buffer_with_capacity(16).capacity_for(5000), 8192);
+    }
+
+    #[test]
+    fn capacity_holds_while_a_quarter_is_used_and_then_shrinks() {
+        assert_eq!(buffer_with_capacity(8192).capacity_for(2048), 8192);
+        assert_eq!(buffer_with_capacity(8192).capacity_for(2047), 2048);
+        assert_eq!(buffer_with_capacity(8192).capacity_for(1), MIN_CAPACITY);
+        assert_eq!(buffer_with_capacity(16).capacity_for(0), MIN_CAPACITY);
+    }
+}

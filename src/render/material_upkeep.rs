@@ -1,0 +1,49 @@
+//! Keeping material bind groups on the current light buffer after it is reallocated.
+
+use super::light_buffer::LightBufferResized;
+use bevy::{
+    asset::Assets,
+    ecs::message::MessageReader,
+    pbr::{Material, MeshMaterial3d},
+    render::{
+        erased_render_asset::prepare_erased_assets, render_asset::prepare_assets,
+        storage::GpuShaderBuffer,
+    },
+};
+
+/// Marks every material of type `M` as modified when a light buffer was resized this frame,
+/// so that the render world rebuilds their bind groups around the new GPU buffer.
+///
+/// Runs in [`PhongSystems::RefreshMaterials`](crate::PhongSystems::RefreshMaterials).
+pub fn refresh_material_bind_groups<M: Material>(
+    mut resized: MessageReader<LightBufferResized>,
+    mut materials: ResMut<Assets<M>>,
+) {
+    if resized.read().count() == 0 {
+        return;
+    }
+    // `iter_mut` reports every asset it yields as modified.
+    for _ in materials.iter_mut() {}
+}
+
+/// Does nothing; it exists for its place in the render schedule: after the light buffers
+/// are uploaded (`prepare_assets::<GpuShaderBuffer>`) and before the bind groups of `M` are
+/// built (`prepare_erased_assets::<MeshMaterial3d<M>>`), which Bevy otherwise leaves
+/// unordered. Without it a material rebuilt in the frame its buffer was reallocated could
+/// bind the old GPU buffer.
+pub fn order_after_light_buffers<M: Material>() {}
+
+/// Adds [`order_after_light_buffers::<M>`] to the render app's schedule.
+pub(crate) fn schedule_light_buffers_before<M: Material>(render_app: &mut bevy::app::SubApp)
+where
+    M::Data: PartialEq + Eq + core::hash::Hash + Clone,
+{
+    render_app.add_systems(
+        bevy::render::Render,
+        order_after_light_buffers::<M>
+            .after(prepare_assets::<GpuShaderBuffer>)
+            .before(prepare_erased_assets::<MeshMaterial3d<M>>),
+    );
+}
+
+use bevy::ecs::{schedule::IntoScheduleConfigs, system::ResMut};

@@ -1,0 +1,49 @@
+// Lights a surface point with every light in the light buffer.
+#define_import_path bevy_phong::shading
+
+#import bevy_phong::bindings::{lights, material}
+#import bevy_phong::lighting::{directional_light, normalize_or_zero, point_light, spot_light}
+#import bevy_phong::types::{PhongSurface, SPECULAR_MODEL_BLINN_PHONG}
+
+// The surface point `position` with the interpolated mesh normal, seen from `camera`,
+// made of the bound material.
+fn material_surface(position: vec3<f32>, normal: vec3<f32>, camera: vec3<f32>) -> PhongSurface {
+    var surface: PhongSurface;
+    surface.position = position;
+    surface.normal = normalize_or_zero(normal);
+    surface.view = normalize_or_zero(camera - position);
+    surface.diffuse = material.base_color.rgb;
+    surface.specular = material.specular;
+    surface.shininess = material.shininess;
+    surface.specular_model = material.flags & 3u;
+    return surface;
+}
+
+// ambient ⊙ k_a ⊙ k_d
+fn ambient_light(surface: PhongSurface) -> vec3<f32> {
+    return lights.ambient * material.ambient_factor * surface.diffuse;
+}
+
+// Σ over every directional, point and spot light in the buffer.
+fn direct_lights(surface: PhongSurface) -> vec3<f32> {
+    var color = vec3<f32>(0.0);
+    var index = 0u;
+    let directional_end = lights.directional_count;
+    for (; index < directional_end; index += 1u) {
+        color += directional_light(surface, lights.lights[index]);
+    }
+    let point_end = directional_end + lights.point_count;
+    for (; index < point_end; index += 1u) {
+        color += point_light(surface, lights.lights[index]);
+    }
+    let spot_end = point_end + lights.spot_count;
+    for (; index < spot_end; index += 1u) {
+        color += spot_light(surface, lights.lights[index]);
+    }
+    return color;
+}
+
+// SPEC.md's whole equation: emissive + ambient + Σ lights.
+fn phong_shade(surface: PhongSurface) -> vec3<f32> {
+    return material.emissive + ambient_light(surface) + direct_lights(surface);
+}

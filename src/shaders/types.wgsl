@@ -1,0 +1,75 @@
+// The data the Phong shaders read: the light buffer, the material uniform and the surface
+// point being shaded. The Rust side of each buffer layout is in `src/render/gpu_types.rs`
+// and `src/material.rs`; a test checks that both agree.
+#define_import_path bevy_phong::types
+
+// One light of any kind (80 bytes). Fields a kind does not use are zero.
+struct PhongLight {
+    // World-space position (point, spot).
+    position: vec3<f32>,
+    // Cut-off distance; f32 max when unlimited (point, spot).
+    range: f32,
+    // Unit vector along which the light travels (directional, spot).
+    direction: vec3<f32>,
+    // cos(outer_angle) (spot).
+    cos_outer: f32,
+    // Diffuse intensity, linear RGB.
+    color: vec3<f32>,
+    // 1 / (cos(inner) - cos(outer)), or 0 for a hard cone edge (spot).
+    cone_scale: f32,
+    // Specular intensity, linear RGB.
+    specular: vec3<f32>,
+    // Exponent of the cos(θ)^exponent rim darkening (spot).
+    spot_exponent: f32,
+    // (constant, linear, quadratic) distance fall-off (point, spot).
+    decay: vec3<f32>,
+    padding: f32,
+}
+
+// The light buffer: the ambient light, then `directional_count` directional lights,
+// `point_count` point lights and `spot_count` spot lights, in that order.
+struct PhongLights {
+    ambient: vec3<f32>,
+    directional_count: u32,
+    point_count: u32,
+    spot_count: u32,
+    lights: array<PhongLight>,
+}
+
+// `PhongMaterial` as the shader reads it.
+struct PhongMaterialUniform {
+    // k_d, linear RGB, and the alpha of the output.
+    base_color: vec4<f32>,
+    // k_s · specular_strength, linear RGB.
+    specular: vec3<f32>,
+    // The highlight exponent α (≥ 0).
+    shininess: f32,
+    // Added unlit color, linear RGB.
+    emissive: vec3<f32>,
+    // k_a.
+    ambient_factor: f32,
+    // SPECULAR_MODEL_* in bits 0..1.
+    flags: u32,
+}
+
+// A surface point, ready to be lit.
+struct PhongSurface {
+    // P, world space.
+    position: vec3<f32>,
+    // N: unit normal, or zero where the mesh's normal is degenerate (then only ambient and
+    // emissive light remain).
+    normal: vec3<f32>,
+    // V: unit vector toward the camera, or zero when the camera is at P.
+    view: vec3<f32>,
+    // k_d, linear RGB.
+    diffuse: vec3<f32>,
+    // k_s · specular_strength, linear RGB.
+    specular: vec3<f32>,
+    // α.
+    shininess: f32,
+    // SPECULAR_MODEL_PHONG or SPECULAR_MODEL_BLINN_PHONG.
+    specular_model: u32,
+}
+
+const SPECULAR_MODEL_PHONG: u32 = 0u;
+const SPECULAR_MODEL_BLINN_PHONG: u32 = 1u;

@@ -1,0 +1,91 @@
+//! The Rust structs the crate writes for the GPU have the layout the WGSL declares: sizes and
+//! field offsets as naga reflects them from `src/shaders/types.wgsl`.
+
+use bevy::render::render_resource::ShaderType;
+use bevy_phong::{
+    PhongMaterialUniform,
+    render::{GpuLight, GpuLightsHeader},
+};
+use std::mem::offset_of;
+
+/// The WGSL module `bevy_phong::types`, without its preprocessor directives.
+fn types_module() -> naga::Module {
+    let source: String = include_str!("../src/shaders/types.wgsl")
+        .lines()
+        .filter(|line| !line.trim_start().starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n");
+    naga::front::wgsl::parse_str(&source).expect("types.wgsl parses")
+}
+
+/// `(size, [(member, offset)])` of the WGSL struct `name`, as naga's front end lays it out.
+fn wgsl_struct(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, ty)| ty.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("struct {name} in types.wgsl"));
+    let naga::TypeInner::Struct { members, span } = &ty.inner else {
+        panic!("{name} is a struct");
+    };
+    let members = members
+        .iter()
+        .map(|member| (member.name.clone().unwrap_or_default(), member.offset))
+        .collect();
+    (*span, members)
+}
+
+#[test]
+fn gpu_light_matches_wgsl_phong_light() {
+    let (size, members) = wgsl_struct(&types_module(), "PhongLight");
+    assert_eq!(size as usize, size_of::<GpuLight>());
+    let rust = [
+        ("position", offset_of!(GpuLight, position)),
+        ("range", offset_of!(GpuLight, range)),
+        ("direction", offset_of!(GpuLight, direction)),
+        ("cos_outer", offset_of!(GpuLight, cos_outer)),
+        ("color", offset_of!(GpuLight, color)),
+        ("cone_scale", offset_of!(GpuLight, cone_scale)),
+        ("specular", offset_of!(GpuLight, specular)),
+        ("spot_exponent", offset_of!(GpuLight, spot_exponent)),
+        ("decay", offset_of!(GpuLight, decay)),
+        ("padding", offset_of!(GpuLight, padding)),
+    ];
+    let rust: Vec<(String, u32)> = rust
+        .iter()
+        .map(|(name, offset)| (name.to_string(), *offset as u32))
+        .collect();
+    assert_eq!(members, rust);
+}
+
+#[test]
+fn light_buffer_header_matches_wgsl_phong_lights() {
+    let (_, members) = wgsl_struct(&types_module(), "PhongLights");
+    let offset = |name: &str| {
+        members
+            .iter()
+            .find(|(member, _)| member == name)
+            .map(|(_, offset)| *offset as usize)
+            .unwrap_or_else(|| panic!("member {name}"))
+    };
+    assert_eq!(offset("ambient"), offset_of!(GpuLightsHeader, ambient));
+    assert_eq!(
+        offset("directional_count"),
+        offset_of!(GpuLightsHeader, directional_count)
+    );
+    assert_eq!(
+        offset("point_count"),
+        offset_of!(GpuLightsHeader, point_count)
+    );
+    assert_eq!(
+        offset("spot_count"),
+        offset_of!(GpuLightsHeader, spot_count)
+    );
+    assert_eq!(offset("lights"), size_of::<GpuLightsHeader>());
+}
+
+#[test]
+fn material_uniform_matches_wgsl_phong_material_uniform() {
+    let (size, _) = wgsl_struct(&types_module(), "PhongMaterialUniform");
+    assert_eq!(u64::from(size), PhongMaterialUniform::min_size().get());
+}

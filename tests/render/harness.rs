@@ -1,0 +1,421 @@
+//! Renders scenes headless into a linear `Rgba32Float` image, reads the pixels back with the
+//! inputs each pixel was lit with, and compares them with the f64 reference model.
+
+use bevy::{
+    app::PluginsState,
+    camera::RenderTarget,
+    core_pipeline::tonemapping::{DebandDither, Tonemapping},
+    image::Image,
+    log::LogPlugin,
+    prelude::*,
+    render::{
+        RenderApp,
+        gpu_readback::{Readback, ReadbackComplete},
+        pipelined_rendering::PipelinedRenderingPlugin,
+        render_resource::{PipelineCache, TextureFormat, TextureUsages},
+        view::Msaa,
+    },
+    window::ExitCondition,
+    winit::WinitPlugin,
+};
+use bevy_phong::{
+    SurfaceInput, SurfaceInputsMaterial,
+    prelude::*,
+    reference::{self, SurfacePoint},
+};
+use glam::DVec3;
+use std::{
+    collections::HashMap,
+    path::PathBuf,
+    sync::{Arc, Mutex},
+};
+
+/// The camera every scene is seen from.
+pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
+
+/// Frames to wait for pipelines to compile before giving up.
+const MAX_SETTLE_FRAMES: u32 = 600;
+/// Frames to wait for a readback to arrive before giving up.
+const MAX_READBACK_FRAMES: u32 = 60;
+
+/// An RGBA32F image read back from the GPU.
+#[derive(Clone)]
+pub struct FloatImage {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[f32; 4]>,
+}
+
+impl FloatImage {
+    fn from_readback(width: u32, height: u32, bytes: &[u8]) -> Self {
+        let row_bytes = bytes.len() / height as usize;
+        let pixels = (0..height as usize)
+            .flat_map(|row| {
+                let start = row * row_bytes;
+                bytemuck::cast_slice::<u8, [f32; 4]>(&bytes[start..start + width as usize * 16])
+                    .to_vec()
+            })
+            .collect();
+        Self {
+            width,
+            height,
+            pixels,
+        }
+    }
+}
+
+/// Per-pixel inputs of the lighting equation: world position and normal, and in alpha the
+/// tag of the material that covers the pixel (0 for background).
+pub struct SurfaceInputs {
+    pub positions: FloatImage,
+    pub normals: FloatImage,
+    pub materials: HashMap<u32, Handle<PhongMaterial>>,
+}
+
+#[derive(Resource, Clone, Default)]
+struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
+
+/// A headless app with a float render target, the Phong plugin and a camera.
+pub struct Harness {
+    pub app: App,
+    target: Handle<Image>,
+    width: u32,
+    height: u32,
+}
+
+impl Harness {
+    /// A `width`×`height` harness; `width` a multiple of 16 keeps rows unpadded.
+    pub fn new(width: u32, height: u32) -> Self {
+        let mut app = App::new();
+        app.add_plugins(
+            DefaultPlugins
+                .set(WindowPlugin {
+                    primary_window: None,
+                    exit_condition: ExitCondition::DontExit,
+                    ..default()
+                })
+                .disable::<WinitPlugin>()
+                .disable::<LogPlugin>()
+                .disable::<PipelinedRenderingPlugin>(),
+        )
+        .add_plugins(PhongPlugin);
+        while app.plugins_state() == PluginsState::Adding {
+            bevy::tasks::tick_global_task_pools_on_main_thread();
+        }
+        app.finish();
+        app.cleanup();
+        assert!(
+            app.get_sub_app(RenderApp).is_some(),
+            "no render app: is a Vulkan driver installed? On Debian: \
+             apt-get install mesa-vulkan-drivers, then WGPU_ADAPTER_NAME=llvmpipe"
+        );
+
+        let received = Received::default();
+        let sink = received.clone();
+        app.insert_resource(received);
+        app.add_observer(move |readback: On<ReadbackComplete>| {
+            sink.0
+                .lock()
+                .unwrap()
+                .insert(readback.entity, readback.data.clone());
+        });
+
+        let mut target = Image::new_target_texture(width, height, TextureFormat::Rgba32Float, None);
+        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let target = app.world_mut().resource_mut::<Assets<Image>>().add(target);
+        app.world_mut().spawn((
+            Camera3d::default(),
+            Camera {
+                clear_color: ClearColorConfig::Custom(Color::NONE),
+                ..default()
+            },
+            RenderTarget::Image(target.clone().into()),
+            Msaa::Off,
+            Tonemapping::None,
+            DebandDither::Disabled,
+            Transform::from_translation(CAMERA_POSITION).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
+        Self {
+            app,
+            target,
+            width,
+            height,
+        }
+    }
+
+    pub fn world_mut(&mut self) -> &mut World {
+        self.app.world_mut()
+    }
+
+    /// Runs frames until every pipeline has compiled and two more frames were drawn.
+    pub fn settle(&mut self) {
+        let mut ready_frames = 0;
+        for _ in 0..MAX_SETTLE_FRAMES {
+            self.app.update();
+            let render_world = self.app.sub_app(RenderApp).world();
+            let waiting = render_world
+                .resource::<PipelineCache>()
+                .waiting_pipelines()
+                .count();
+            ready_frames = if waiting == 0 { ready_frames + 1 } else { 0 };
+            if ready_frames >= 3 {
+                return;
+            }
+        }
+        panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
+    }
+
+    /// Runs exactly one frame and returns what it rendered.
+    pub fn render_next_frame(&mut self) -> FloatImage {
+        let entity = self
+            .app
+            .world_mut()
+            .spawn(Readback::texture(self.target.clone()))
+            .id();
+        self.app.update();
+        self.app.world_mut().despawn(entity);
+        let received = self.app.world().resource::<Received>().clone();
+        for _ in 0..MAX_READBACK_FRAMES {
+            if let Some(bytes) = received.0.lock().unwrap().remove(&entity) {
+                return FloatImage::from_readback(self.width, self.height, &bytes);
+            }
+            self.app.update();
+        }
+        panic!("readback did not arrive within {MAX_READBACK_FRAMES} frames");
+    }
+
+    /// Renders every Phong mesh's world position and normal instead of its color.
+    pub fn capture_inputs(&mut self) -> SurfaceInputs {
+        let world = self.app.world_mut();
+        let meshes: Vec<(Entity, Handle<PhongMaterial>)> = world
+            .query::<(Entity, &MeshMaterial3d<PhongMaterial>)>()
+            .iter(world)
+            .map(|(entity, material)| (entity, material.0.clone()))
+            .collect();
+        let mut tags: HashMap<Handle<PhongMaterial>, u32> = HashMap::new();
+        for (_, handle) in &meshes {
+            let next = tags.len() as u32 + 1;
+            tags.entry(handle.clone()).or_insert(next);
+        }
+
+        let mut images = Vec::new();
+        for input in [SurfaceInput::WorldPosition, SurfaceInput::WorldNormal] {
+            let world = self.app.world_mut();
+            for (entity, handle) in &meshes {
+                let material = world
+                    .resource_mut::<Assets<SurfaceInputsMaterial>>()
+                    .add(SurfaceInputsMaterial::new(input, tags[handle]));
+                world
+                    .entity_mut(*entity)
+                    .remove::<MeshMaterial3d<PhongMaterial>>()
+                    .insert(MeshMaterial3d(material));
+            }
+            self.settle();
+            images.push(self.render_next_frame());
+        }
+        let world = self.app.world_mut();
+        for (entity, handle) in &meshes {
+            world
+                .entity_mut(*entity)
+                .remove::<MeshMaterial3d<SurfaceInputsMaterial>>()
+                .insert(MeshMaterial3d(handle.clone()));
+        }
+        self.settle();
+        let normals = images.pop().unwrap();
+        let positions = images.pop().unwrap();
+        SurfaceInputs {
+            positions,
+            normals,
+            materials: tags
+                .into_iter()
+                .map(|(handle, tag)| (tag, handle))
+                .collect(),
+        }
+    }
+
+    /// The scene's lights as the reference model takes them.
+    pub fn reference_lights(&mut self) -> reference::Lights {
+        let world = self.app.world_mut();
+        let ambient = world.resource::<PhongAmbientLight>().into();
+        let mut lights = Vec::new();
+        let mut visible = world.query::<(
+            &GlobalTransform,
+            &InheritedVisibility,
+            AnyOf<(&PhongDirectionalLight, &PhongPointLight, &PhongSpotLight)>,
+        )>();
+        for (transform, visibility, (directional, point, spot)) in visible.iter(world) {
+            if !visibility.get() {
+                continue;
+            }
+            lights.extend(directional.map(|l| reference::Light::directional(l, transform)));
+            lights.extend(point.map(|l| reference::Light::point(l, transform)));
+            lights.extend(spot.map(|l| reference::Light::spot(l, transform)));
+        }
+        reference::Lights { ambient, lights }
+    }
+
+    /// Compares `rendered` with the reference model on `inputs`, pixel by pixel.
+    pub fn compare(&mut self, rendered: &FloatImage, inputs: &SurfaceInputs) -> Comparison {
+        let lights = self.reference_lights();
+        let world = self.app.world();
+        let camera = world
+            .iter_entities()
+            .find_map(|entity| {
+                entity
+                    .get::<Camera3d>()
+                    .and(entity.get::<GlobalTransform>())
+                    .map(|transform| transform.translation().as_dvec3())
+            })
+            .expect("the harness has a camera");
+        let assets = world.resource::<Assets<PhongMaterial>>();
+        let materials: HashMap<u32, reference::Material> = inputs
+            .materials
+            .iter()
+            .map(|(tag, handle)| (*tag, assets.get(handle).expect("material exists").into()))
+            .collect();
+
+        let mut comparison = Comparison::new(rendered.width, rendered.height);
+        for (index, ((color, position), normal)) in rendered
+            .pixels
+            .iter()
+            .zip(&inputs.positions.pixels)
+            .zip(&inputs.normals.pixels)
+            .enumerate()
+        {
+            let tag = position[3] as u32;
+            let Some(material) = materials.get(&tag) else {
+                comparison.record_background(index, *color);
+                continue;
+            };
+            let surface = SurfacePoint {
+                position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
+                normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
+                camera,
+            };
+            let expected = reference::shade(&surface, material, &lights);
+            comparison.record(index, *color, expected);
+        }
+        comparison
+    }
+}
+
+/// The result of comparing a rendered image with the reference model.
+pub struct Comparison {
+    width: u32,
+    height: u32,
+    pub lit_pixels: usize,
+    /// Largest `|actual - expected| / max(1, |expected|)` over all channels of lit pixels.
+    pub max_error: f64,
+    pub worst_pixel: Option<(u32, u32, [f32; 3], DVec3)>,
+    /// Pixels not covered by a mesh whose color is not the clear color.
+    pub stray_pixels: usize,
+    actual: Vec<[f32; 3]>,
+    expected: Vec<[f32; 3]>,
+}
+
+impl Comparison {
+    fn new(width: u32, height: u32) -> Self {
+        let count = (width * height) as usize;
+        Self {
+            width,
+            height,
+            lit_pixels: 0,
+            max_error: 0.0,
+            worst_pixel: None,
+            stray_pixels: 0,
+            actual: vec![[0.0; 3]; count],
+            expected: vec![[0.0; 3]; count],
+        }
+    }
+
+    fn record_background(&mut self, index: usize, color: [f32; 4]) {
+        if color != [0.0; 4] {
+            self.stray_pixels += 1;
+        }
+        self.actual[index] = [color[0], color[1], color[2]];
+    }
+
+    fn record(&mut self, index: usize, color: [f32; 4], expected: DVec3) {
+        let actual = [color[0], color[1], color[2]];
+        self.actual[index] = actual;
+        self.expected[index] = expected.as_vec3().to_array();
+        self.lit_pixels += 1;
+        let error = (0..3)
+            .map(|c| {
+                let difference = f64::from(actual[c]) - expected[c];
+                if difference.is_nan() {
+                    f64::INFINITY
+                } else {
+                    difference.abs() / expected[c].abs().max(1.0)
+                }
+            })
+            .fold(0.0, f64::max);
+        if error > self.max_error || self.worst_pixel.is_none() {
+            self.max_error = error;
+            let (x, y) = (index as u32 % self.width, index as u32 / self.width);
+            self.worst_pixel = Some((x, y, actual, expected));
+        }
+    }
+
+    /// Asserts that every lit pixel is within `tolerance` (relative to `max(1, |expected|)`)
+    /// and that some pixels were lit; writes actual, expected and difference PNGs under
+    /// `target/render-tests/` when it fails.
+    pub fn assert_within(&self, case: &str, tolerance: f64) {
+        println!(
+            "{case}: {} lit pixels, largest error {:.3e} (tolerance {tolerance:.1e}) at {:?}",
+            self.lit_pixels, self.max_error, self.worst_pixel
+        );
+        let failed = self.lit_pixels == 0 || self.stray_pixels > 0 || self.max_error > tolerance;
+        if failed {
+            let directory = self.write_pngs(case);
+            panic!(
+                "{case}: largest error {:.3e} exceeds {tolerance:.1e}, or no lit pixels ({}), \
+                 or {} pixels drawn outside every mesh; images in {}",
+                self.max_error,
+                self.lit_pixels,
+                self.stray_pixels,
+                directory.display()
+            );
+        }
+    }
+
+    fn write_pngs(&self, case: &str) -> PathBuf {
+        let directory = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+            .parent()
+            .map(|target| target.join("render-tests"))
+            .unwrap_or_else(|| PathBuf::from("target/render-tests"));
+        std::fs::create_dir_all(&directory).expect("create target/render-tests");
+        let difference: Vec<[f32; 3]> = self
+            .actual
+            .iter()
+            .zip(&self.expected)
+            .map(|(a, e)| {
+                let d = (0..3).map(|c| (a[c] - e[c]).abs()).fold(0.0, f32::max);
+                // Scaled so that the tolerance band shows: 1e-3 is full white.
+                [d * 1000.0; 3]
+            })
+            .collect();
+        for (suffix, pixels) in [
+            ("actual", &self.actual),
+            ("expected", &self.expected),
+            ("difference", &difference),
+        ] {
+            let path = directory.join(format!("{case}-{suffix}.png"));
+            save_srgb_png(&path, self.width, self.height, pixels);
+        }
+        directory
+    }
+}
+
+/// Writes linear RGB pixels as an 8-bit sRGB PNG.
+pub fn save_srgb_png(path: &std::path::Path, width: u32, height: u32, pixels: &[[f32; 3]]) {
+    let bytes: Vec<u8> = pixels
+        .iter()
+        .flat_map(|rgb| {
+            let srgb = Color::linear_rgb(rgb[0], rgb[1], rgb[2]).to_srgba();
+            [srgb.red, srgb.green, srgb.blue].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+        })
+        .collect();
+    image::save_buffer(path, &bytes, width, height, image::ExtendedColorType::Rgb8)
+        .expect("write PNG");
+}
