@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every test: unit tests, the headless render tests (on the Vulkan device; Mesa's
-# lavapipe where there is no GPU) and the doc tests. Installs a Vulkan driver first if
+# lavapipe where there is no GPU), the doc tests, and each example rendered headless. Installs a Vulkan driver first if
 # there is none. The render tests compare against the reference model with tolerances set
 # on lavapipe, so they always run on it.
 set -euo pipefail
@@ -9,3 +9,8 @@ scripts/ensure-vulkan.sh
 export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
 cargo test --all-targets "$@"
 cargo test --doc "$@"
+
+# Every example must still render: each writes its PNG headless and exits.
+for example in showcase searchlight; do
+    cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
+done

@@ -56,15 +56,20 @@
 //! - **Shaders** are embedded: `bevy_phong::types`, `bevy_phong::lighting` (one function per
 //!   term of the equation, for other shaders to import), `bevy_phong::bindings` and
 //!   `bevy_phong::shading`. No file from `assets/` is needed.
+//! - **New light kinds** plug in from outside the crate: [`extension`] is the guide, with a
+//!   searchlight as the worked example.
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
 
+pub mod extension;
 mod lights;
 mod material;
 mod plugin;
 pub mod reference;
 pub mod render;
 mod surface_inputs;
+#[cfg(test)]
+mod test_app;
 
 pub use lights::{
     Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,

@@ -11,6 +11,7 @@ use bevy::{
         gpu_readback::{Readback, ReadbackComplete},
         render_resource::{PipelineCache, TextureFormat, TextureUsages},
     },
+    time::TimeUpdateStrategy,
     window::ExitCondition,
     winit::WinitPlugin,
 };
@@ -92,7 +93,9 @@ pub fn example_app(name: &str) -> App {
                     .disable::<WinitPlugin>(),
                 ScheduleRunnerPlugin::run_loop(Duration::ZERO),
                 HeadlessCapturePlugin,
-            ));
+            ))
+            // Animations hold still at t = 0, so the picture is the same on every run.
+            .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::ZERO));
         }
     }
     app.insert_resource(mode);

@@ -98,10 +98,10 @@ pub type LightQuery<'w, 's, L> = Query<
 >;
 
 /// Appends the record of every visible light in `lights` to `records`; returns how many.
-pub fn push_visible<L: Component>(
+pub fn push_visible<L: Component, R>(
     lights: &LightQuery<L>,
-    records: &mut Vec<GpuLight>,
-    to_gpu: impl Fn(&L, &GlobalTransform) -> GpuLight,
+    records: &mut Vec<R>,
+    to_gpu: impl Fn(&L, &GlobalTransform) -> R,
 ) -> u32 {
     let start = records.len();
     records.extend(
@@ -161,5 +161,122 @@ pub fn gather_lights(
         resized.write(LightBufferResized {
             buffer: state.buffer.handle().clone(),
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame};
+    use bevy::prelude::{Transform, Vec3, Visibility};
+
+    #[test]
+    fn lights_are_uploaded_only_in_frames_where_they_change() {
+        let mut app = test_app(|_| {});
+        let light = app
+            .world_mut()
+            .spawn((
+                PhongPointLight::default(),
+                Transform::from_xyz(1.0, 2.0, 3.0),
+            ))
+            .id();
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            1,
+            "a new light is uploaded"
+        );
+        let state = app.world().resource::<PhongLightBuffer>();
+        assert_eq!(state.header().point_count, 1);
+        assert_eq!(state.records()[0].position, [1.0, 2.0, 3.0]);
+
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            0,
+            "nothing changed: no upload"
+        );
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            0,
+            "nothing changed: no upload"
+        );
+
+        app.world_mut()
+            .get_mut::<Transform>(light)
+            .unwrap()
+            .translation = Vec3::X;
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            1,
+            "a moved light is uploaded"
+        );
+        let state = app.world().resource::<PhongLightBuffer>();
+        assert_eq!(state.records()[0].position, [1.0, 0.0, 0.0]);
+
+        *app.world_mut().get_mut::<Visibility>(light).unwrap() = Visibility::Hidden;
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            1,
+            "a hidden light is removed"
+        );
+        assert_eq!(
+            app.world()
+                .resource::<PhongLightBuffer>()
+                .header()
+                .light_count(),
+            0
+        );
+
+        *app.world_mut().get_mut::<Visibility>(light).unwrap() = Visibility::Inherited;
+        assert_eq!(uploads_in_next_frame(&mut app), 1, "a shown light is back");
+        app.world_mut().despawn(light);
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            1,
+            "a despawned light is removed"
+        );
+        assert_eq!(
+            app.world()
+                .resource::<PhongLightBuffer>()
+                .header()
+                .light_count(),
+            0
+        );
+
+        app.world_mut().resource_mut::<PhongAmbientLight>().color = bevy::color::Color::BLACK;
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            1,
+            "a changed ambient light is uploaded"
+        );
+        assert_eq!(
+            app.world().resource::<PhongLightBuffer>().header().ambient,
+            [0.0; 3]
+        );
+        assert!(!built_in_buffer_bytes(&app).is_empty());
+    }
+
+    #[test]
+    fn lights_are_ordered_directional_point_spot() {
+        let mut app = test_app(|_| {});
+        let world = app.world_mut();
+        world.spawn(PhongSpotLight::default());
+        world.spawn(PhongPointLight::default());
+        world.spawn(PhongDirectionalLight::default());
+        world.spawn(PhongPointLight::default());
+        app.update();
+        let state = app.world().resource::<PhongLightBuffer>();
+        let header = state.header();
+        assert_eq!(
+            (
+                header.directional_count,
+                header.point_count,
+                header.spot_count
+            ),
+            (1, 2, 1)
+        );
+        // A directional light has no range; point and spot lights keep "unlimited".
+        assert_eq!(state.records()[0].range, 0.0);
+        assert_eq!(state.records()[1].range, f32::MAX);
+        assert!(state.records()[3].cone_scale > 0.0);
     }
 }

@@ -66,10 +66,10 @@ impl FloatImage {
 
 /// Per-pixel inputs of the lighting equation: world position and normal, and in alpha the
 /// tag of the material that covers the pixel (0 for background).
-pub struct SurfaceInputs {
+pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub positions: FloatImage,
     pub normals: FloatImage,
-    pub materials: HashMap<u32, Handle<PhongMaterial>>,
+    pub materials: HashMap<u32, Handle<M>>,
 }
 
 #[derive(Resource, Clone, Default)]
@@ -86,6 +86,11 @@ pub struct Harness {
 impl Harness {
     /// A `width`×`height` harness; `width` a multiple of 16 keeps rows unpadded.
     pub fn new(width: u32, height: u32) -> Self {
+        Self::with_plugins(width, height, |_| {})
+    }
+
+    /// A harness whose app also gets what `add_plugins` adds after `PhongPlugin`.
+    pub fn with_plugins(width: u32, height: u32, add_plugins: impl FnOnce(&mut App)) -> Self {
         let mut app = App::new();
         app.add_plugins(
             DefaultPlugins
@@ -99,6 +104,7 @@ impl Harness {
                 .disable::<PipelinedRenderingPlugin>(),
         )
         .add_plugins(PhongPlugin);
+        add_plugins(&mut app);
         while app.plugins_state() == PluginsState::Adding {
             bevy::tasks::tick_global_task_pools_on_main_thread();
         }
@@ -186,13 +192,18 @@ impl Harness {
 
     /// Renders every Phong mesh's world position and normal instead of its color.
     pub fn capture_inputs(&mut self) -> SurfaceInputs {
+        self.capture_inputs_of::<PhongMaterial>()
+    }
+
+    /// Renders the world position and normal of every mesh made of `M` instead of its color.
+    pub fn capture_inputs_of<M: Material>(&mut self) -> SurfaceInputs<M> {
         let world = self.app.world_mut();
-        let meshes: Vec<(Entity, Handle<PhongMaterial>)> = world
-            .query::<(Entity, &MeshMaterial3d<PhongMaterial>)>()
+        let meshes: Vec<(Entity, Handle<M>)> = world
+            .query::<(Entity, &MeshMaterial3d<M>)>()
             .iter(world)
             .map(|(entity, material)| (entity, material.0.clone()))
             .collect();
-        let mut tags: HashMap<Handle<PhongMaterial>, u32> = HashMap::new();
+        let mut tags: HashMap<Handle<M>, u32> = HashMap::new();
         for (_, handle) in &meshes {
             let next = tags.len() as u32 + 1;
             tags.entry(handle.clone()).or_insert(next);
@@ -207,7 +218,7 @@ impl Harness {
                     .add(SurfaceInputsMaterial::new(input, tags[handle]));
                 world
                     .entity_mut(*entity)
-                    .remove::<MeshMaterial3d<PhongMaterial>>()
+                    .remove::<MeshMaterial3d<M>>()
                     .insert(MeshMaterial3d(material));
             }
             self.settle();
@@ -254,26 +265,39 @@ impl Harness {
         reference::Lights { ambient, lights }
     }
 
+    /// The camera position, as the shader's view uniform holds it.
+    fn camera_position(&mut self) -> DVec3 {
+        let world = self.app.world_mut();
+        world
+            .query_filtered::<&GlobalTransform, With<Camera3d>>()
+            .single(world)
+            .expect("the harness has one camera")
+            .translation()
+            .as_dvec3()
+    }
+
     /// Compares `rendered` with the reference model on `inputs`, pixel by pixel.
     pub fn compare(&mut self, rendered: &FloatImage, inputs: &SurfaceInputs) -> Comparison {
         let lights = self.reference_lights();
-        let world = self.app.world();
-        let camera = world
-            .iter_entities()
-            .find_map(|entity| {
-                entity
-                    .get::<Camera3d>()
-                    .and(entity.get::<GlobalTransform>())
-                    .map(|transform| transform.translation().as_dvec3())
-            })
-            .expect("the harness has a camera");
-        let assets = world.resource::<Assets<PhongMaterial>>();
-        let materials: HashMap<u32, reference::Material> = inputs
-            .materials
-            .iter()
-            .map(|(tag, handle)| (*tag, assets.get(handle).expect("material exists").into()))
-            .collect();
+        self.compare_with(rendered, inputs, |material: &PhongMaterial, surface| {
+            Some(reference::shade(
+                surface,
+                &reference::Material::from(material),
+                &lights,
+            ))
+        })
+    }
 
+    /// Compares `rendered` with `expected(material, surface)` on `inputs`, pixel by pixel;
+    /// `expected` returns `None` for a pixel it cannot judge (one on a discontinuity).
+    pub fn compare_with<M: Material>(
+        &mut self,
+        rendered: &FloatImage,
+        inputs: &SurfaceInputs<M>,
+        expected: impl Fn(&M, &SurfacePoint) -> Option<DVec3>,
+    ) -> Comparison {
+        let camera = self.camera_position();
+        let assets = self.app.world().resource::<Assets<M>>();
         let mut comparison = Comparison::new(rendered.width, rendered.height);
         for (index, ((color, position), normal)) in rendered
             .pixels
@@ -282,8 +306,11 @@ impl Harness {
             .zip(&inputs.normals.pixels)
             .enumerate()
         {
-            let tag = position[3] as u32;
-            let Some(material) = materials.get(&tag) else {
+            let Some(material) = inputs
+                .materials
+                .get(&(position[3] as u32))
+                .map(|handle| assets.get(handle).expect("material exists"))
+            else {
                 comparison.record_background(index, *color);
                 continue;
             };
@@ -292,8 +319,10 @@ impl Harness {
                 normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
                 camera,
             };
-            let expected = reference::shade(&surface, material, &lights);
-            comparison.record(index, *color, expected);
+            match expected(material, &surface) {
+                Some(expected) => comparison.record(index, *color, expected),
+                None => comparison.skipped_pixels += 1,
+            }
         }
         comparison
     }
@@ -309,6 +338,8 @@ pub struct Comparison {
     pub worst_pixel: Option<(u32, u32, [f32; 3], DVec3)>,
     /// Pixels not covered by a mesh whose color is not the clear color.
     pub stray_pixels: usize,
+    /// Covered pixels the reference could not judge (on a discontinuity).
+    pub skipped_pixels: usize,
     actual: Vec<[f32; 3]>,
     expected: Vec<[f32; 3]>,
 }
@@ -323,6 +354,7 @@ impl Comparison {
             max_error: 0.0,
             worst_pixel: None,
             stray_pixels: 0,
+            skipped_pixels: 0,
             actual: vec![[0.0; 3]; count],
             expected: vec![[0.0; 3]; count],
         }
@@ -362,8 +394,8 @@ impl Comparison {
     /// `target/render-tests/` when it fails.
     pub fn assert_within(&self, case: &str, tolerance: f64) {
         println!(
-            "{case}: {} lit pixels, largest error {:.3e} (tolerance {tolerance:.1e}) at {:?}",
-            self.lit_pixels, self.max_error, self.worst_pixel
+            "{case}: {} lit pixels ({} skipped), largest error {:.3e} (tolerance {tolerance:.1e}) at {:?}",
+            self.lit_pixels, self.skipped_pixels, self.max_error, self.worst_pixel
         );
         let failed = self.lit_pixels == 0 || self.stray_pixels > 0 || self.max_error > tolerance;
         if failed {

@@ -12,6 +12,11 @@
 //! (a missing attenuation, a wrong reflection) produces.
 
 mod harness;
+#[path = "../../examples/searchlight/light.rs"]
+mod light;
+mod searchlight;
+#[path = "../../examples/searchlight/reference.rs"]
+mod searchlight_reference;
 
 use bevy::prelude::*;
 use bevy_phong::prelude::*;

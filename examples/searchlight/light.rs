@@ -1,0 +1,171 @@
+//! The searchlight: a beam of parallel light with a radius and a circular, triangular,
+//! diamond or square cross-section (seed 000's closing exercise), added to Phong lighting
+//! through `bevy_phong`'s public extension API only.
+//!
+//! Shared by the `searchlight` example and the render test that checks it against its f64
+//! reference (`reference.rs`).
+
+use bevy::{
+    pbr::{ExtendedMaterial, MaterialExtension},
+    prelude::*,
+    render::{render_resource::AsBindGroup, storage::ShaderBuffer},
+    shader::ShaderRef,
+};
+use bevy_phong::{
+    Decay, PhongMaterial,
+    extension::{PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin},
+    prelude::PhongMaterialAppExt,
+    render::{light_direction, linear_rgb},
+};
+use bytemuck::{Pod, Zeroable};
+use serde::{Deserialize, Serialize};
+
+/// The material of meshes that searchlights light: every `PhongMaterial` field, plus the
+/// searchlight buffer.
+pub type SearchlitMaterial = ExtendedMaterial<PhongMaterial, SearchlightExtension>;
+
+/// Adds searchlights: their gather system and [`SearchlitMaterial`].
+pub struct SearchlightPlugin;
+
+impl Plugin for SearchlightPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins(PhongLightKindPlugin::<Searchlight>::default())
+            .add_phong_material::<SearchlitMaterial>()
+            .register_type::<Searchlight>();
+    }
+}
+
+/// The cross-section of a beam, inscribed in its radius and oriented by the light's +Y.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect, Serialize, Deserialize)]
+pub enum BeamShape {
+    /// A disc of the beam's radius.
+    #[default]
+    Circle,
+    /// An equilateral triangle with a corner toward +Y.
+    Triangle,
+    /// A square standing on a corner, corners toward ±X and ±Y.
+    Diamond,
+    /// A square with sides parallel to X and Y.
+    Square,
+}
+
+impl BeamShape {
+    /// Every shape, in the order the example cycles through them.
+    pub const ALL: [BeamShape; 4] = [
+        BeamShape::Circle,
+        BeamShape::Triangle,
+        BeamShape::Diamond,
+        BeamShape::Square,
+    ];
+
+    /// The number the shader switches on.
+    pub fn shader_index(self) -> u32 {
+        match self {
+            BeamShape::Circle => 0,
+            BeamShape::Triangle => 1,
+            BeamShape::Diamond => 2,
+            BeamShape::Square => 3,
+        }
+    }
+}
+
+/// A beam of parallel light along the entity's -Z, filling the prism of `shape` and `radius`
+/// around the axis through its position, and only in front of it.
+#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Component, Default)]
+#[require(Transform, Visibility)]
+pub struct Searchlight {
+    /// Diffuse intensity, linear RGB. Default white.
+    pub color: Color,
+    /// Specular intensity; `None` uses `color`.
+    pub specular: Option<Color>,
+    /// Radius of the circle the cross-section is inscribed in, world units. Default 1.
+    pub radius: f32,
+    /// Cross-section. Default circle.
+    pub shape: BeamShape,
+    /// Width of the soft boundary outside the shape, world units; 0 (the default) is a hard
+    /// boundary.
+    pub edge: f32,
+    /// Fall-off with the distance along the beam. Default none.
+    pub decay: Decay,
+}
+
+impl Default for Searchlight {
+    fn default() -> Self {
+        Self {
+            color: Color::WHITE,
+            specular: None,
+            radius: 1.0,
+            shape: BeamShape::Circle,
+            edge: 0.0,
+            decay: Decay::NONE,
+        }
+    }
+}
+
+/// One searchlight as `searchlight.wgsl` reads it (96 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSearchlight {
+    pub position: [f32; 3],
+    pub radius: f32,
+    pub direction: [f32; 3],
+    pub edge: f32,
+    pub up: [f32; 3],
+    pub shape: u32,
+    pub color: [f32; 3],
+    pub padding0: f32,
+    pub specular: [f32; 3],
+    pub padding1: f32,
+    pub decay: [f32; 3],
+    pub padding2: f32,
+}
+
+/// The unit vector of the light's +Y, made perpendicular to its beam.
+pub fn beam_up(transform: &GlobalTransform, direction: Vec3) -> Vec3 {
+    let up = transform.affine().matrix3 * Vec3::Y;
+    (up - direction * up.dot(direction)).normalize_or_zero()
+}
+
+impl PhongLightKind for Searchlight {
+    type Gpu = GpuSearchlight;
+
+    fn to_gpu(&self, transform: &GlobalTransform) -> GpuSearchlight {
+        let direction = light_direction(transform);
+        GpuSearchlight {
+            position: transform.translation().to_array(),
+            radius: self.radius,
+            direction: direction.to_array(),
+            edge: self.edge,
+            up: beam_up(transform, direction).to_array(),
+            shape: self.shape.shader_index(),
+            color: linear_rgb(self.color),
+            specular: linear_rgb(self.specular.unwrap_or(self.color)),
+            decay: self.decay.to_array(),
+            ..default()
+        }
+    }
+}
+
+/// The searchlight buffer binding that [`SearchlitMaterial`] adds to `PhongMaterial`.
+#[derive(Asset, AsBindGroup, Reflect, Clone, Debug)]
+pub struct SearchlightExtension {
+    /// The buffer of [`PhongLightKindBuffer<Searchlight>`].
+    #[storage(100, read_only)]
+    pub searchlights: Handle<ShaderBuffer>,
+}
+
+impl SearchlightExtension {
+    /// The extension bound to the app's searchlight buffer.
+    pub fn new(buffer: &PhongLightKindBuffer<Searchlight>) -> Self {
+        Self {
+            searchlights: buffer.handle().clone(),
+        }
+    }
+}
+
+impl MaterialExtension for SearchlightExtension {
+    fn fragment_shader() -> ShaderRef {
+        "shaders/searchlight.wgsl".into()
+    }
+}

@@ -1,0 +1,376 @@
+//! # Adding a light kind
+//!
+//! A new kind of light plugs into Phong lighting without touching this crate: a component,
+//! a GPU record, a material extension and a few lines of WGSL. The crate's
+//! [`examples/searchlight`](https://github.com/) builds a searchlight (a beam of parallel
+//! light with a circular, triangular, diamond or square cross-section) this way; the steps
+//! below follow it.
+//!
+//! ## 1. The component and its GPU record
+//!
+//! The light is a component that requires `Transform` and `Visibility`, like the built-in
+//! ones. Its GPU record is a `#[repr(C)]` [`Pod`](bytemuck::Pod) struct whose size is a
+//! multiple of 16 bytes, laid out like the WGSL struct the shader reads (a `vec3<f32>` takes
+//! 16 bytes when an `f32` follows it, so pair each `[f32; 3]` with one `f32`).
+//! Implementing [`PhongLightKind`] says how an entity becomes a record:
+//!
+//! ```
+//! use bevy::prelude::*;
+//! use bevy_phong::{extension::PhongLightKind, render::linear_rgb};
+//!
+//! #[derive(Component, Clone)]
+//! #[require(Transform, Visibility)]
+//! struct Lamp {
+//!     color: Color,
+//! }
+//!
+//! #[repr(C)]
+//! #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+//! struct GpuLamp {
+//!     position: [f32; 3],
+//!     padding: f32,
+//!     color: [f32; 3],
+//!     padding2: f32,
+//! }
+//!
+//! impl PhongLightKind for Lamp {
+//!     type Gpu = GpuLamp;
+//!     fn to_gpu(&self, transform: &GlobalTransform) -> GpuLamp {
+//!         GpuLamp {
+//!             position: transform.translation().to_array(),
+//!             padding: 0.0,
+//!             color: linear_rgb(self.color),
+//!             padding2: 0.0,
+//!         }
+//!     }
+//! }
+//! ```
+//!
+//! ## 2. The buffer
+//!
+//! [`PhongLightKindPlugin::<Lamp>`](PhongLightKindPlugin) gathers every visible `Lamp` into
+//! a storage buffer of its own with the machinery the built-in lights use: it rewrites the
+//! buffer only in frames where a lamp was added, changed, moved, shown, hidden or removed;
+//! the buffer grows and shrinks with the count; bind groups follow it when it is
+//! reallocated. The buffer holds a 16-byte header, whose first `u32` is the number of
+//! records, then the records:
+//!
+//! ```wgsl
+//! struct Lamps {
+//!     count: u32,
+//!     lights: array<Lamp>,
+//! }
+//! ```
+//!
+//! [`PhongLightKindBuffer<Lamp>`](PhongLightKindBuffer) holds its handle, for the material.
+//!
+//! ## 3. The material
+//!
+//! The lamp lights meshes whose material binds its buffer: Bevy's `ExtendedMaterial` with
+//! [`PhongMaterial`](crate::PhongMaterial) as the base keeps every Phong field and adds the binding:
+//!
+//! ```
+//! # use bevy::prelude::*;
+//! # use bevy_phong::{extension::PhongLightKind, render::linear_rgb};
+//! # #[derive(Component, Clone)]
+//! # #[require(Transform, Visibility)]
+//! # struct Lamp { color: Color }
+//! # #[repr(C)]
+//! # #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+//! # struct GpuLamp { position: [f32; 3], padding: f32, color: [f32; 3], padding2: f32 }
+//! # impl PhongLightKind for Lamp {
+//! #     type Gpu = GpuLamp;
+//! #     fn to_gpu(&self, transform: &GlobalTransform) -> GpuLamp {
+//! #         GpuLamp { position: transform.translation().to_array(), padding: 0.0,
+//! #                   color: linear_rgb(self.color), padding2: 0.0 }
+//! #     }
+//! # }
+//! use bevy::{
+//!     pbr::{ExtendedMaterial, MaterialExtension},
+//!     render::{render_resource::AsBindGroup, storage::ShaderBuffer},
+//!     shader::ShaderRef,
+//! };
+//! use bevy_phong::{extension::PhongLightKindPlugin, prelude::*};
+//!
+//! #[derive(Asset, AsBindGroup, Reflect, Clone)]
+//! struct LampExtension {
+//!     #[storage(100, read_only)]
+//!     lamps: Handle<ShaderBuffer>,
+//! }
+//!
+//! impl MaterialExtension for LampExtension {
+//!     fn fragment_shader() -> ShaderRef {
+//!         "shaders/lamp.wgsl".into()
+//!     }
+//! }
+//!
+//! fn add_lamps(app: &mut App) {
+//!     app.add_plugins(PhongLightKindPlugin::<Lamp>::default())
+//!         .add_phong_material::<ExtendedMaterial<PhongMaterial, LampExtension>>();
+//! }
+//! ```
+//!
+//! Create the material with the buffer's handle, from
+//! `Res<PhongLightKindBuffer<Lamp>>`: `LampExtension { lamps: buffer.handle().clone() }`.
+//!
+//! Register the material with
+//! [`add_phong_material`](crate::PhongMaterialAppExt::add_phong_material) rather than
+//! `MaterialPlugin`: it also keeps the material's bind groups on the current buffers.
+//!
+//! ## 4. The shader
+//!
+//! The extension's fragment shader lights the surface as `PhongMaterial` does and adds the
+//! new term with the same per-light function, `phong_light` (diffuse plus highlight for a
+//! light direction `L`); attenuation and shape are the new kind's own:
+//!
+//! ```wgsl
+//! #import bevy_pbr::{forward_io::VertexOutput, mesh_view_bindings::view}
+//! #import bevy_phong::{
+//!     bindings::material,
+//!     lighting::{phong_light, normalize_or_zero},
+//!     shading::{material_surface, phong_shade},
+//! }
+//!
+//! @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> lamps: Lamps;
+//!
+//! @fragment
+//! fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
+//!     let surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
+//!     var color = phong_shade(surface);
+//!     for (var i = 0u; i < lamps.count; i += 1u) {
+//!         let lamp = lamps.lights[i];
+//!         let to_light = normalize_or_zero(lamp.position - surface.position);
+//!         color += phong_light(surface, to_light, lamp.color, lamp.color);
+//!     }
+//!     return vec4(color, material.base_color.a);
+//! }
+//! ```
+//!
+//! ## 5. The reference
+//!
+//! [`reference::phong_light`](crate::reference::phong_light) is the same term in `f64`:
+//! the searchlight example's reference model is built on it, and its render test compares
+//! the extended material with it pixel by pixel, as the crate's own tests do.
+//!
+//! ## What it costs the built-in lights
+//!
+//! Nothing per pixel: `PhongMaterial`'s shader is not changed by an extension; only meshes
+//! with the extended material run the new loop. Per frame, the extension's gather system
+//! checks its change queries and returns when nothing changed.
+
+use crate::{
+    plugin::PhongSystems,
+    render::{
+        LightBuffer, LightBufferResized, LightChanges, LightQuery, MIN_CAPACITY, push_visible,
+    },
+};
+use bevy::{
+    app::{App, Plugin, PostUpdate},
+    asset::{AssetApp, Assets, Handle},
+    ecs::{
+        component::Component, message::MessageWriter, resource::Resource,
+        schedule::IntoScheduleConfigs, system::ResMut,
+    },
+    render::storage::ShaderBuffer,
+    transform::components::GlobalTransform,
+};
+use bytemuck::{Pod, Zeroable};
+use core::marker::PhantomData;
+
+/// A light component that an extension adds, gathered into its own GPU buffer by
+/// [`PhongLightKindPlugin`].
+pub trait PhongLightKind: Component {
+    /// The record the shader reads for one light: `#[repr(C)]`, a multiple of 16 bytes.
+    type Gpu: Pod + Send + Sync;
+
+    /// The record of this light, placed by its entity's transform.
+    fn to_gpu(&self, transform: &GlobalTransform) -> Self::Gpu;
+}
+
+/// The 16-byte header of an extension's light buffer: the number of records that follow.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLightCount {
+    /// Number of records.
+    pub count: u32,
+    /// Unused; the records start at a 16-byte boundary.
+    pub padding: [u32; 3],
+}
+
+/// The buffer that holds every visible `L`, for a material's `#[storage]` binding.
+#[derive(Resource)]
+pub struct PhongLightKindBuffer<L: PhongLightKind> {
+    buffer: LightBuffer,
+    records: Vec<L::Gpu>,
+}
+
+impl<L: PhongLightKind> PhongLightKindBuffer<L> {
+    /// The buffer asset to bind.
+    pub fn handle(&self) -> &Handle<ShaderBuffer> {
+        self.buffer.handle()
+    }
+
+    /// The records last written.
+    pub fn records(&self) -> &[L::Gpu] {
+        &self.records
+    }
+}
+
+/// Gathers every visible `L` into [`PhongLightKindBuffer<L>`] in
+/// [`PhongSystems::GatherLights`], with the built-in lights' change tracking and growth.
+/// Add it after [`PhongPlugin`](crate::PhongPlugin).
+pub struct PhongLightKindPlugin<L: PhongLightKind>(PhantomData<fn() -> L>);
+
+impl<L: PhongLightKind> Default for PhongLightKindPlugin<L> {
+    fn default() -> Self {
+        Self(PhantomData)
+    }
+}
+
+impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
+    fn build(&self, app: &mut App) {
+        const {
+            assert!(
+                size_of::<L::Gpu>() % 16 == 0 && size_of::<L::Gpu>() > 0,
+                "PhongLightKind::Gpu must be a non-empty multiple of 16 bytes, as WGSL lays it out"
+            )
+        };
+        if !app.world().contains_resource::<Assets<ShaderBuffer>>() {
+            app.init_asset::<ShaderBuffer>();
+        }
+        let handle = app
+            .world_mut()
+            .resource_mut::<Assets<ShaderBuffer>>()
+            .reserve_handle();
+        app.insert_resource(PhongLightKindBuffer::<L> {
+            buffer: LightBuffer::new(handle),
+            records: Vec::with_capacity(MIN_CAPACITY),
+        })
+        .add_systems(
+            PostUpdate,
+            gather_light_kind::<L>.in_set(PhongSystems::GatherLights),
+        );
+    }
+}
+
+/// Writes every visible `L` into its buffer when any of them changed (and on the first run).
+pub fn gather_light_kind<L: PhongLightKind>(
+    lights: LightQuery<L>,
+    mut changes: LightChanges<L>,
+    mut state: ResMut<PhongLightKindBuffer<L>>,
+    mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut resized: MessageWriter<LightBufferResized>,
+) {
+    let changed = changes.any();
+    if !changed && state.buffer.capacity() > 0 {
+        return;
+    }
+    let state = &mut *state;
+    state.records.clear();
+    let count = push_visible(&lights, &mut state.records, L::to_gpu);
+    let header = GpuLightCount {
+        count,
+        padding: [0; 3],
+    };
+    if state.buffer.write(&mut buffers, &header, &state.records) {
+        resized.write(LightBufferResized {
+            buffer: state.buffer.handle().clone(),
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{
+        PhongPointLight,
+        test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame},
+    };
+    use bevy::prelude::{Transform, Visibility};
+
+    #[derive(Component, Clone)]
+    #[require(Transform, Visibility)]
+    struct Lamp;
+
+    #[repr(C)]
+    #[derive(Clone, Copy, Pod, Zeroable)]
+    struct GpuLamp {
+        position: [f32; 3],
+        padding: f32,
+    }
+
+    impl PhongLightKind for Lamp {
+        type Gpu = GpuLamp;
+        fn to_gpu(&self, transform: &GlobalTransform) -> GpuLamp {
+            GpuLamp {
+                position: transform.translation().to_array(),
+                padding: 0.0,
+            }
+        }
+    }
+
+    fn with_lamps(app: &mut App) {
+        app.add_plugins(PhongLightKindPlugin::<Lamp>::default());
+    }
+
+    #[test]
+    fn an_extension_without_lights_costs_the_built_in_lights_nothing() {
+        let mut plain = test_app(|_| {});
+        let mut extended = test_app(with_lamps);
+        for app in [&mut plain, &mut extended] {
+            app.world_mut().spawn((
+                PhongPointLight::default(),
+                Transform::from_xyz(0.0, 1.0, 0.0),
+            ));
+            assert_eq!(
+                uploads_in_next_frame(app),
+                1,
+                "only the built-in buffer changes"
+            );
+            assert_eq!(uploads_in_next_frame(app), 0, "then nothing is uploaded");
+        }
+        assert_eq!(
+            built_in_buffer_bytes(&plain),
+            built_in_buffer_bytes(&extended)
+        );
+        let lamps = extended.world().resource::<PhongLightKindBuffer<Lamp>>();
+        assert!(lamps.records().is_empty());
+    }
+
+    #[test]
+    fn extension_lights_get_their_own_buffer_with_the_same_change_tracking() {
+        let mut app = test_app(with_lamps);
+        let lamp = app
+            .world_mut()
+            .spawn((Lamp, Transform::from_xyz(4.0, 5.0, 6.0)))
+            .id();
+        assert_eq!(uploads_in_next_frame(&mut app), 1);
+        let buffers = app.world().resource::<Assets<ShaderBuffer>>();
+        let lamps = app.world().resource::<PhongLightKindBuffer<Lamp>>();
+        let bytes = buffers.get(lamps.handle()).unwrap().data.clone().unwrap();
+        let header: &GpuLightCount = bytemuck::from_bytes(&bytes[..16]);
+        assert_eq!(header.count, 1);
+        assert_eq!(
+            bytemuck::cast_slice::<u8, f32>(&bytes[16..28]),
+            [4.0, 5.0, 6.0]
+        );
+        assert_eq!(uploads_in_next_frame(&mut app), 0);
+
+        for i in 0..100 {
+            app.world_mut()
+                .spawn((Lamp, Transform::from_xyz(i as f32, 0.0, 0.0)));
+        }
+        app.update();
+        let lamps = app.world().resource::<PhongLightKindBuffer<Lamp>>();
+        assert_eq!(lamps.records().len(), 101);
+        app.world_mut().despawn(lamp);
+        app.update();
+        assert_eq!(
+            app.world()
+                .resource::<PhongLightKindBuffer<Lamp>>()
+                .records()
+                .len(),
+            100
+        );
+    }
+}

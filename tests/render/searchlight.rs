@@ -1,0 +1,205 @@
+//! The searchlight example's extension (`examples/searchlight/`), rendered and compared with
+//! its f64 reference on each pixel's own inputs: every shape, hard and soft edges, a beam
+//! that misses everything, and a beam with objects behind it.
+
+use crate::{
+    TOLERANCE,
+    harness::{FloatImage, Harness, SurfaceInputs},
+    light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
+    searchlight_reference::{ReferenceSearchlight, searchlight_term},
+};
+use bevy::prelude::*;
+use bevy_phong::{extension::PhongLightKindBuffer, prelude::*, reference};
+
+/// Pixels whose f64 distance from a hard beam boundary is below this many world units are
+/// not judged: the f32 shader computes that distance from coordinates of a few units with
+/// an error near 1e-6, so within 1e-4 of the boundary either side may be right.
+const HARD_EDGE_BAND: f64 = 1e-4;
+
+/// At most this share of the lit pixels may sit in that band (it is a thin line).
+const MAX_SKIPPED_SHARE: f64 = 0.02;
+
+fn searchlit_scene() -> (Harness, SurfaceInputs<SearchlitMaterial>) {
+    let mut harness = Harness::with_plugins(128, 128, |app| {
+        app.add_plugins(SearchlightPlugin);
+    });
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let extension =
+        SearchlightExtension::new(world.resource::<PhongLightKindBuffer<Searchlight>>());
+    let objects: [(Mesh, Transform, Color, f32); 3] = [
+        (
+            Plane3d::default().mesh().size(12.0, 12.0).into(),
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            Color::srgb(0.8, 0.8, 0.8),
+            10.0,
+        ),
+        (
+            Sphere::new(1.0).mesh().uv(48, 32),
+            Transform::default(),
+            Color::srgb(1.0, 0.3, 0.6),
+            60.0,
+        ),
+        (
+            Cuboid::new(1.2, 1.2, 1.2).into(),
+            Transform::from_xyz(2.2, -0.4, 0.3).with_rotation(Quat::from_rotation_y(0.5)),
+            Color::srgb(0.2, 0.4, 1.0),
+            40.0,
+        ),
+    ];
+    for (mesh, transform, base_color, shininess) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world
+            .resource_mut::<Assets<SearchlitMaterial>>()
+            .add(SearchlitMaterial {
+                base: PhongMaterial {
+                    base_color,
+                    shininess,
+                    ..default()
+                },
+                extension: extension.clone(),
+            });
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+    harness.settle();
+    let inputs = harness.capture_inputs_of::<SearchlitMaterial>();
+    (harness, inputs)
+}
+
+/// The searchlights of the scene, for the reference.
+fn reference_searchlights(harness: &mut Harness) -> Vec<ReferenceSearchlight> {
+    let world = harness.world_mut();
+    world
+        .query::<(&Searchlight, &GlobalTransform)>()
+        .iter(world)
+        .map(|(light, transform)| ReferenceSearchlight::new(light, transform))
+        .collect()
+}
+
+/// Renders the next frame and compares it with Phong lighting plus every searchlight term,
+/// leaving out pixels on a hard beam boundary.
+fn check_searchlit(
+    harness: &mut Harness,
+    inputs: &SurfaceInputs<SearchlitMaterial>,
+    case: &str,
+) -> FloatImage {
+    let rendered = harness.render_next_frame();
+    let lights = harness.reference_lights();
+    let searchlights = reference_searchlights(harness);
+    let comparison = harness.compare_with(&rendered, inputs, |material, surface| {
+        let on_hard_boundary = searchlights.iter().any(|light| {
+            let (along, boundary) = light.beam_coordinates(surface.position);
+            light.edge == 0.0 && along > 0.0 && boundary.abs() < HARD_EDGE_BAND
+        });
+        if on_hard_boundary {
+            return None;
+        }
+        let material = reference::Material::from(&material.base);
+        let beams = searchlights
+            .iter()
+            .map(|light| searchlight_term(surface, &material, light))
+            .sum::<glam::DVec3>();
+        Some(reference::shade(surface, &material, &lights) + beams)
+    });
+    comparison.assert_within(case, TOLERANCE);
+    let skipped_share = comparison.skipped_pixels as f64 / comparison.lit_pixels as f64;
+    assert!(
+        skipped_share <= MAX_SKIPPED_SHARE,
+        "{case}: {} pixels on a hard boundary is more than a thin line",
+        comparison.skipped_pixels
+    );
+    rendered
+}
+
+#[test]
+fn searchlight_matches_its_reference_for_every_shape_hard_and_soft() {
+    let (mut harness, inputs) = searchlit_scene();
+    let light = harness
+        .world_mut()
+        .spawn((
+            Searchlight {
+                color: Color::linear_rgb(1.5, 1.3, 1.0),
+                radius: 1.6,
+                decay: Decay::linear(0.05),
+                ..default()
+            },
+            Transform::from_xyz(0.6, 6.0, 2.5)
+                .looking_at(Vec3::new(0.4, -1.0, 0.2), Vec3::new(0.3, 0.0, 1.0)),
+        ))
+        .id();
+    for shape in BeamShape::ALL {
+        for edge in [0.0, 0.4] {
+            let mut searchlight = harness.world_mut().get_mut::<Searchlight>(light).unwrap();
+            searchlight.shape = shape;
+            searchlight.edge = edge;
+            check_searchlit(
+                &mut harness,
+                &inputs,
+                &format!("searchlight_{shape:?}_edge_{edge}"),
+            );
+        }
+    }
+}
+
+#[test]
+fn searchlight_that_misses_everything_adds_nothing() {
+    let (mut harness, inputs) = searchlit_scene();
+    harness.world_mut().spawn((
+        PhongPointLight {
+            color: Color::linear_rgb(0.6, 0.6, 0.6),
+            decay: Decay::TUTORIAL_50,
+            ..default()
+        },
+        Transform::from_xyz(-2.0, 3.0, 2.0),
+    ));
+    // Aimed at the floor well outside the view and the objects.
+    harness.world_mut().spawn((
+        Searchlight {
+            color: Color::linear_rgb(5.0, 5.0, 5.0),
+            radius: 1.0,
+            edge: 0.5,
+            ..default()
+        },
+        Transform::from_xyz(30.0, 5.0, 0.0).looking_at(Vec3::new(30.0, -1.0, 0.0), Vec3::Z),
+    ));
+    let rendered = harness.render_next_frame();
+    let lights = harness.reference_lights();
+    harness
+        .compare_with(
+            &rendered,
+            &inputs,
+            |material: &SearchlitMaterial, surface| {
+                // Phong lighting alone: the beam must not show anywhere.
+                Some(reference::shade(surface, &(&material.base).into(), &lights))
+            },
+        )
+        .assert_within("searchlight_missing_everything", TOLERANCE);
+}
+
+#[test]
+fn searchlight_does_not_light_what_is_behind_it() {
+    let (mut harness, inputs) = searchlit_scene();
+    // Above the sphere, shining straight up: the sphere, the cube and the floor all lie in the
+    // beam's prism, but behind the light.
+    harness.world_mut().spawn((
+        Searchlight {
+            color: Color::linear_rgb(5.0, 5.0, 5.0),
+            radius: 4.0,
+            ..default()
+        },
+        Transform::from_xyz(0.0, 1.5, 0.0).looking_to(Vec3::Y, Vec3::Z),
+    ));
+    let rendered = harness.render_next_frame();
+    let lights = harness.reference_lights();
+    harness
+        .compare_with(
+            &rendered,
+            &inputs,
+            |material: &SearchlitMaterial, surface| {
+                Some(reference::shade(surface, &(&material.base).into(), &lights))
+            },
+        )
+        .assert_within("searchlight_behind", TOLERANCE);
+}
