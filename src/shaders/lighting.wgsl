@@ -91,31 +91,43 @@ fn directional_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
     return phong_light(surface, -light.direction, light.color, light.specular);
 }
 
-// A point light: L toward its position, attenuated by distance. A light exactly at P has
-// no direction and lights nothing.
-fn point_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
-    let offset = light.position - surface.position;
+// The unit vector from the surface toward a light at `position` (L), and the light's
+// attenuation there; the attenuation is 0 out of range, and for a light exactly at P, which
+// has no direction.
+struct LightRay {
+    to_light: vec3<f32>,
+    attenuation: f32,
+}
+
+fn ray_toward(surface: PhongSurface, position: vec3<f32>, decay: vec3<f32>, range: f32) -> LightRay {
+    let offset = position - surface.position;
     let distance = length(offset);
-    let attenuation = distance_attenuation(distance, light.decay, light.range);
+    let attenuation = distance_attenuation(distance, decay, range);
     if !(attenuation > 0.0 && distance > 0.0) {
+        return LightRay(vec3<f32>(0.0), 0.0);
+    }
+    return LightRay(offset / distance, attenuation);
+}
+
+// A point light: L toward its position, attenuated by distance.
+fn point_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
+    let ray = ray_toward(surface, light.position, light.decay, light.range);
+    if ray.attenuation == 0.0 {
         return vec3<f32>(0.0);
     }
-    let to_light = offset / distance;
-    return attenuation * phong_light(surface, to_light, light.color, light.specular);
+    return ray.attenuation * phong_light(surface, ray.to_light, light.color, light.specular);
 }
 
 // A spot light: a point light times its cone factor.
 fn spot_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
-    let offset = light.position - surface.position;
-    let distance = length(offset);
-    let attenuation = distance_attenuation(distance, light.decay, light.range);
-    if !(attenuation > 0.0 && distance > 0.0) {
+    let ray = ray_toward(surface, light.position, light.decay, light.range);
+    if ray.attenuation == 0.0 {
         return vec3<f32>(0.0);
     }
-    let to_light = offset / distance;
-    let cone = spot_cone(dot(-to_light, light.direction), light.cos_outer, light.cone_scale, light.spot_exponent);
+    let cos_theta = dot(-ray.to_light, light.direction);
+    let cone = spot_cone(cos_theta, light.cos_outer, light.cone_scale, light.spot_exponent);
     if cone == 0.0 {
         return vec3<f32>(0.0);
     }
-    return (attenuation * cone) * phong_light(surface, to_light, light.color, light.specular);
+    return (ray.attenuation * cone) * phong_light(surface, ray.to_light, light.color, light.specular);
 }

@@ -164,18 +164,7 @@ fn searchlight_that_misses_everything_adds_nothing() {
         },
         Transform::from_xyz(30.0, 5.0, 0.0).looking_at(Vec3::new(30.0, -1.0, 0.0), Vec3::Z),
     ));
-    let rendered = harness.render_next_frame();
-    let lights = harness.reference_lights();
-    harness
-        .compare_with(
-            &rendered,
-            &inputs,
-            |material: &SearchlitMaterial, surface| {
-                // Phong lighting alone: the beam must not show anywhere.
-                Some(reference::shade(surface, &(&material.base).into(), &lights))
-            },
-        )
-        .assert_within("searchlight_missing_everything", TOLERANCE);
+    assert_no_beam_light(&mut harness, &inputs, "searchlight_missing_everything");
 }
 
 #[test]
@@ -191,15 +180,25 @@ fn searchlight_does_not_light_what_is_behind_it() {
         },
         Transform::from_xyz(0.0, 1.5, 0.0).looking_to(Vec3::Y, Vec3::Z),
     ));
+    assert_no_beam_light(&mut harness, &inputs, "searchlight_behind");
+}
+
+/// Renders the next frame and checks it against Phong lighting alone: no pixel may show
+/// the searchlight.
+fn assert_no_beam_light(
+    harness: &mut Harness,
+    inputs: &SurfaceInputs<SearchlitMaterial>,
+    case: &str,
+) {
     let rendered = harness.render_next_frame();
     let lights = harness.reference_lights();
     harness
         .compare_with(
             &rendered,
-            &inputs,
+            inputs,
             |material: &SearchlitMaterial, surface| {
                 Some(reference::shade(surface, &(&material.base).into(), &lights))
             },
         )
-        .assert_within("searchlight_behind", TOLERANCE);
+        .assert_within(case, TOLERANCE);
 }
