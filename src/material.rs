@@ -9,10 +9,8 @@ use bevy::{
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
     render::{
-        render_asset::RenderAssets,
-        render_resource::{AsBindGroup, AsBindGroupShaderType, ShaderType},
+        render_resource::{AsBindGroup, ShaderType},
         storage::ShaderBuffer,
-        texture::GpuImage,
     },
     shader::ShaderRef,
 };
@@ -129,16 +127,17 @@ pub struct PhongMaterialUniform {
     pub flags: u32,
 }
 
-impl AsBindGroupShaderType<PhongMaterialUniform> for PhongMaterial {
-    fn as_bind_group_shader_type(&self, _images: &RenderAssets<GpuImage>) -> PhongMaterialUniform {
-        let specular = self.specular_color.to_linear().to_vec3() * self.specular_strength;
-        PhongMaterialUniform {
-            base_color: self.base_color.to_linear().to_vec4(),
+// Bevy's `AsBindGroupShaderType` comes with this conversion.
+impl From<&PhongMaterial> for PhongMaterialUniform {
+    fn from(material: &PhongMaterial) -> Self {
+        let specular = material.specular_color.to_linear().to_vec3() * material.specular_strength;
+        Self {
+            base_color: material.base_color.to_linear().to_vec4(),
             specular,
-            shininess: self.shininess,
-            emissive: self.emissive.to_vec3(),
-            ambient_factor: self.ambient_factor,
-            flags: self.specular_model.shader_flag(),
+            shininess: material.shininess,
+            emissive: material.emissive.to_vec3(),
+            ambient_factor: material.ambient_factor,
+            flags: material.specular_model.shader_flag(),
         }
     }
 }

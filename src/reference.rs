@@ -8,9 +8,10 @@
 //!
 //! Every function follows the shader's rules for degenerate input, so that the two can be
 //! compared anywhere:
-//! - a zero, NaN or infinite normal, view or light direction counts as zero: such a light
-//!   gives no diffuse or specular light;
-//! - a point or spot light exactly at the surface point (`d = 0`) lights nothing;
+//! - a normal, view or light direction that is zero, NaN, or shorter than 1e-15
+//!   ([`MIN_LENGTH_SQUARED`]) counts as zero: such a light gives no diffuse or specular light;
+//! - a point or spot light at the surface point (closer than 1e-15) lights nothing;
+//! - a spot light whose outer angle is not positive has an empty cone and lights nothing;
 //! - `power(0, 0) = 1`;
 //! - an attenuation denominator at or below 1 (a `Decay` of all zeros included) gives 1.
 
@@ -24,6 +25,20 @@ use bevy::{
     transform::components::GlobalTransform,
 };
 use glam::DVec3;
+
+/// Vectors whose squared length is at or below this count as zero (no direction), here and
+/// in the shader.
+pub const MIN_LENGTH_SQUARED: f64 = 1e-30;
+
+/// `v / |v|`, or zero where `|v|² ≤ MIN_LENGTH_SQUARED` or `v` is not finite.
+pub fn normalize_or_zero(v: DVec3) -> DVec3 {
+    let length_squared = v.length_squared();
+    if length_squared > MIN_LENGTH_SQUARED && length_squared.is_finite() {
+        v / length_squared.sqrt()
+    } else {
+        DVec3::ZERO
+    }
+}
 
 /// A surface point and where it is seen from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,7 +149,7 @@ pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &L
         } => phong_light(
             surface,
             material,
-            -direction.normalize_or_zero(),
+            -normalize_or_zero(direction),
             color,
             specular,
         ),
@@ -164,7 +179,11 @@ pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &L
             let Some((to_light, attenuation)) = toward(surface, position, decay, range) else {
                 return DVec3::ZERO;
             };
-            let cos_theta = (-to_light).dot(direction.normalize_or_zero());
+            // Also true for a NaN angle.
+            if outer_angle.is_nan() || outer_angle <= 0.0 {
+                return DVec3::ZERO;
+            }
+            let cos_theta = (-to_light).dot(normalize_or_zero(direction));
             let cone = spot_cone(cos_theta, inner_angle.cos(), outer_angle.cos(), exponent);
             attenuation * cone * phong_light(surface, material, to_light, color, specular)
         }
@@ -172,7 +191,7 @@ pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &L
 }
 
 /// The unit vector from `surface` toward a light at `position` and the light's attenuation
-/// there; `None` where the light is exactly at the point or out of range.
+/// there; `None` where the light is at the point (closer than 1e-15) or out of range.
 fn toward(
     surface: &SurfacePoint,
     position: DVec3,
@@ -180,9 +199,13 @@ fn toward(
     range: Option<f64>,
 ) -> Option<(DVec3, f64)> {
     let offset = position - surface.position;
-    let distance = offset.length();
+    let distance_squared = offset.length_squared();
+    if distance_squared.is_nan() || distance_squared <= MIN_LENGTH_SQUARED {
+        return None;
+    }
+    let distance = distance_squared.sqrt();
     let attenuation = attenuation(distance, decay, range);
-    (attenuation > 0.0 && distance > 0.0).then(|| (offset / distance, attenuation))
+    (attenuation > 0.0).then(|| (offset / distance, attenuation))
 }
 
 /// `color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · strength · H(N, L, V)` for a unit
@@ -194,13 +217,13 @@ pub fn phong_light(
     color: DVec3,
     specular: DVec3,
 ) -> DVec3 {
-    let normal = surface.normal.normalize_or_zero();
+    let normal = normalize_or_zero(surface.normal);
     let n_dot_l = normal.dot(to_light);
     // Also true for a NaN `n_dot_l`.
     if n_dot_l.is_nan() || n_dot_l <= 0.0 {
         return DVec3::ZERO;
     }
-    let view = (surface.camera - surface.position).normalize_or_zero();
+    let view = normalize_or_zero(surface.camera - surface.position);
     let highlight = highlight(
         material.specular_model,
         normal,
@@ -224,7 +247,7 @@ pub fn highlight(
 ) -> f64 {
     let cosine = match model {
         SpecularModel::Phong => reflect(-to_light, normal).dot(view),
-        SpecularModel::BlinnPhong => normal.dot((to_light + view).normalize_or_zero()),
+        SpecularModel::BlinnPhong => normal.dot(normalize_or_zero(to_light + view)),
     };
     power(cosine.max(0.0), shininess)
 }

@@ -36,8 +36,8 @@ pub struct PhongSpotLight {
     /// Half-angle of the fully lit core, in radians, `0 ≤ inner ≤ outer`.
     /// Default 12.5° (seed 004).
     pub inner_angle: f32,
-    /// Half-angle where the light reaches zero, in radians, `inner ≤ outer < π/2`.
-    /// Default 17.5° (seed 004).
+    /// Half-angle where the light reaches zero, in radians, `inner ≤ outer < π/2`; a cone
+    /// with `outer_angle = 0` is empty and gives no light. Default 17.5° (seed 004).
     pub outer_angle: f32,
     /// Exponent of the `cos(θ)^exponent` rim darkening, `≥ 0`. Default `0` (none).
     pub exponent: f32,

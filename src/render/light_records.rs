@@ -27,9 +27,15 @@ fn intensities(color: Color, specular: Option<Color>) -> ([f32; 3], [f32; 3]) {
 }
 
 /// `(cos(outer), cone_scale)` of a spot cone: `cone_scale = 1 / (cos(inner) - cos(outer))`,
-/// or `0` (a hard edge at the outer angle) where the inner cone is not narrower.
+/// or `0` (a hard edge at the outer angle) where the inner cone is not narrower. A cone whose
+/// outer angle is not positive is empty: its `cos(outer)` is stored as infinity, which no
+/// `cos θ` reaches.
 pub fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
-    let cos_outer = outer_angle.cos();
+    let cos_outer = if outer_angle > 0.0 {
+        outer_angle.cos()
+    } else {
+        f32::INFINITY
+    };
     let cos_inner = inner_angle.cos();
     let scale = 1.0 / (cos_inner - cos_outer);
     let cone_scale = if cos_inner > cos_outer && scale.is_finite() {

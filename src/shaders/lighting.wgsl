@@ -4,14 +4,43 @@
 
 #import bevy_phong::types::{PhongLight, PhongSurface, SPECULAR_MODEL_BLINN_PHONG}
 
-// `v / |v|`, or zero when `v` is zero, NaN or too small to normalize.
+// Vectors whose squared length is at or below this count as zero (no direction): 1e-15
+// units, far below any scene's scale, and far above where f32 squares underflow.
+const MIN_LENGTH_SQUARED: f32 = 1e-30;
+
+// `v / |v|`, or zero when `v` is zero, NaN or shorter than 1e-15.
 fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     let length_squared = dot(v, v);
-    // `!(x > 0)` is also true for NaN.
-    if !(length_squared > 1e-30) {
+    // `!(x > m)` is also true for NaN.
+    if !(length_squared > MIN_LENGTH_SQUARED) {
         return vec3<f32>(0.0);
     }
     return v * inverseSqrt(length_squared);
+}
+
+// `ln(1 - d)` for `0 ≤ d < 1`, with full relative precision for small `d`: there `1 - d`
+// rounds, and `log` near 1 carries an absolute rather than a relative error on some
+// devices (lavapipe's among them), which `α` would amplify. Below 1/8 a series is used
+// (truncation error below `d^8/8`, under 1e-7 relative).
+fn ln_one_minus(d: f32) -> f32 {
+    if d < 0.125 {
+        let series = 1.0 + d * (1.0 / 2.0 + d * (1.0 / 3.0 + d * (1.0 / 4.0 + d * (1.0 / 5.0
+            + d * (1.0 / 6.0 + d * (1.0 / 7.0))))));
+        return -d * series;
+    }
+    return log(1.0 - d);
+}
+
+// `(1 - d)^exponent` for `0 ≤ d`, with `0^0 = 1`: the highlight as a function of
+// `d = 1 - cos`, the form that stays accurate near the peak, where `cos` itself rounds to 1.
+fn power_of_one_minus(d: f32, exponent: f32) -> f32 {
+    if exponent == 0.0 {
+        return 1.0;
+    }
+    if !(d < 1.0) {
+        return 0.0;
+    }
+    return exp(exponent * ln_one_minus(d));
 }
 
 // `base^exponent` for `base ≥ 0` with `0^0 = 1` (WGSL leaves `pow(0, 0)` undefined) and
@@ -24,6 +53,29 @@ fn power(base: f32, exponent: f32) -> f32 {
         return 0.0;
     }
     return pow(base, exponent);
+}
+
+// The surface point `position` with the (interpolated, any length) `normal`, seen from
+// `camera`, made of a material with diffuse `k_d`, specular `k_s · strength`, shininess and
+// specular model.
+fn phong_surface(
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    camera: vec3<f32>,
+    diffuse: vec3<f32>,
+    specular: vec3<f32>,
+    shininess: f32,
+    specular_model: u32,
+) -> PhongSurface {
+    return PhongSurface(
+        position,
+        normalize_or_zero(normal),
+        normalize_or_zero(camera - position),
+        diffuse,
+        specular,
+        shininess,
+        specular_model,
+    );
 }
 
 // A(d) = min(1, 1 / (c + l·d + q·d²)), and 0 past `range`. A denominator at or below 1
@@ -57,17 +109,25 @@ fn spot_cone(cos_theta: f32, cos_outer: f32, cone_scale: f32, exponent: f32) -> 
 
 // H(N, L, V): the highlight factor of one light, for `n_dot_l = N·L > 0`.
 // Phong: max(R·V, 0)^α with R = 2(N·L)N - L. Blinn-Phong: max(N·H, 0)^α with
-// H = normalize(L + V).
+// H = normalize(L + V). Both are computed from `1 - cos = |A - B|² / 2` for the two unit
+// vectors A, B whose cosine it is: near the peak, where the highlight matters and `α`
+// amplifies every error, this keeps the relative precision `cos` rounded to 1 would lose.
 fn highlight(surface: PhongSurface, to_light: vec3<f32>, n_dot_l: f32) -> f32 {
-    var cosine: f32;
+    var difference: vec3<f32>;
     if surface.specular_model == SPECULAR_MODEL_BLINN_PHONG {
         let half_vector = normalize_or_zero(to_light + surface.view);
-        cosine = dot(surface.normal, half_vector);
+        if all(half_vector == vec3<f32>(0.0)) {
+            return power(0.0, surface.shininess);
+        }
+        difference = surface.normal - half_vector;
     } else {
+        if all(surface.view == vec3<f32>(0.0)) {
+            return power(0.0, surface.shininess);
+        }
         let reflected = 2.0 * n_dot_l * surface.normal - to_light;
-        cosine = dot(reflected, surface.view);
+        difference = reflected - surface.view;
     }
-    return power(max(cosine, 0.0), surface.shininess);
+    return power_of_one_minus(0.5 * dot(difference, difference), surface.shininess);
 }
 
 // color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · H(N, L, V), for a unit `to_light` (L).
@@ -93,7 +153,7 @@ fn directional_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
 
 // The unit vector from the surface toward a light at `position` (L), and the light's
 // attenuation there; the attenuation is 0 out of range, and for a light exactly at P, which
-// has no direction.
+// (closer than 1e-15) has no direction.
 struct LightRay {
     to_light: vec3<f32>,
     attenuation: f32,
@@ -101,9 +161,13 @@ struct LightRay {
 
 fn ray_toward(surface: PhongSurface, position: vec3<f32>, decay: vec3<f32>, range: f32) -> LightRay {
     let offset = position - surface.position;
-    let distance = length(offset);
+    let distance_squared = dot(offset, offset);
+    if !(distance_squared > MIN_LENGTH_SQUARED) {
+        return LightRay(vec3<f32>(0.0), 0.0);
+    }
+    let distance = sqrt(distance_squared);
     let attenuation = distance_attenuation(distance, decay, range);
-    if !(attenuation > 0.0 && distance > 0.0) {
+    if !(attenuation > 0.0) {
         return LightRay(vec3<f32>(0.0), 0.0);
     }
     return LightRay(offset / distance, attenuation);

@@ -2,21 +2,21 @@
 #define_import_path bevy_phong::shading
 
 #import bevy_phong::bindings::{lights, material}
-#import bevy_phong::lighting::{directional_light, normalize_or_zero, point_light, spot_light}
-#import bevy_phong::types::{PhongSurface, SPECULAR_MODEL_BLINN_PHONG}
+#import bevy_phong::lighting::{directional_light, phong_surface, point_light, spot_light}
+#import bevy_phong::types::PhongSurface
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
 fn material_surface(position: vec3<f32>, normal: vec3<f32>, camera: vec3<f32>) -> PhongSurface {
-    var surface: PhongSurface;
-    surface.position = position;
-    surface.normal = normalize_or_zero(normal);
-    surface.view = normalize_or_zero(camera - position);
-    surface.diffuse = material.base_color.rgb;
-    surface.specular = material.specular;
-    surface.shininess = material.shininess;
-    surface.specular_model = material.flags & 3u;
-    return surface;
+    return phong_surface(
+        position,
+        normal,
+        camera,
+        material.base_color.rgb,
+        material.specular,
+        material.shininess,
+        material.flags & 3u,
+    );
 }
 
 // ambient ⊙ k_a ⊙ k_d

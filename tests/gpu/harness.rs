@@ -75,6 +75,37 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
 #[derive(Resource, Clone, Default)]
 struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
 
+/// A headless app with Bevy's renderer and [`PhongPlugin`], plus what `add_plugins` adds,
+/// built and ready to update. Rendering happens inside `update` (no pipelining), so the
+/// render world can be read between updates.
+pub fn headless_app(add_plugins: impl FnOnce(&mut App)) -> App {
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .disable::<WinitPlugin>()
+            .disable::<LogPlugin>()
+            .disable::<PipelinedRenderingPlugin>(),
+    )
+    .add_plugins(PhongPlugin);
+    add_plugins(&mut app);
+    while app.plugins_state() == PluginsState::Adding {
+        bevy::tasks::tick_global_task_pools_on_main_thread();
+    }
+    app.finish();
+    app.cleanup();
+    assert!(
+        app.get_sub_app(RenderApp).is_some(),
+        "no render app: is a Vulkan driver installed? On Debian: \
+         apt-get install mesa-vulkan-drivers, then WGPU_ADAPTER_NAME=llvmpipe"
+    );
+    app
+}
+
 /// A headless app with a float render target, the Phong plugin and a camera.
 pub struct Harness {
     pub app: App,
@@ -91,31 +122,7 @@ impl Harness {
 
     /// A harness whose app also gets what `add_plugins` adds after `PhongPlugin`.
     pub fn with_plugins(width: u32, height: u32, add_plugins: impl FnOnce(&mut App)) -> Self {
-        let mut app = App::new();
-        app.add_plugins(
-            DefaultPlugins
-                .set(WindowPlugin {
-                    primary_window: None,
-                    exit_condition: ExitCondition::DontExit,
-                    ..default()
-                })
-                .disable::<WinitPlugin>()
-                .disable::<LogPlugin>()
-                .disable::<PipelinedRenderingPlugin>(),
-        )
-        .add_plugins(PhongPlugin);
-        add_plugins(&mut app);
-        while app.plugins_state() == PluginsState::Adding {
-            bevy::tasks::tick_global_task_pools_on_main_thread();
-        }
-        app.finish();
-        app.cleanup();
-        assert!(
-            app.get_sub_app(RenderApp).is_some(),
-            "no render app: is a Vulkan driver installed? On Debian: \
-             apt-get install mesa-vulkan-drivers, then WGPU_ADAPTER_NAME=llvmpipe"
-        );
-
+        let mut app = headless_app(add_plugins);
         let received = Received::default();
         let sink = received.clone();
         app.insert_resource(received);

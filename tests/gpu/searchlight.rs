@@ -3,7 +3,7 @@
 //! that misses everything, and a beam with objects behind it.
 
 use crate::{
-    TOLERANCE,
+    frames::TOLERANCE,
     harness::{FloatImage, Harness, SurfaceInputs},
     light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
     searchlight_reference::{ReferenceSearchlight, searchlight_term},

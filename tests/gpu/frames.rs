@@ -1,6 +1,6 @@
-//! Renders scenes with `PhongMaterial` on the render device (lavapipe in CI), reads every
-//! pixel back as `f32` together with the world position and normal it was lit with, and
-//! checks it against `bevy_phong::reference` evaluated on those same inputs.
+//! Whole frames: scenes with `PhongMaterial` rendered on the render device, every pixel read
+//! back as `f32` together with the world position and normal it was lit with, and checked
+//! against `bevy_phong::reference` evaluated on those same inputs.
 //!
 //! Tolerance: the shader computes in `f32` what the reference computes in `f64` on identical
 //! inputs, so the only differences are `f32` rounding. A handful of roundings (a few units of
@@ -11,21 +11,14 @@
 //! 8-bit step, invisible on screen, yet a hundred times below what a wrong term
 //! (a missing attenuation, a wrong reflection) produces.
 
-mod harness;
-#[path = "../../examples/searchlight/light.rs"]
-mod light;
-mod searchlight;
-#[path = "../../examples/searchlight/reference.rs"]
-mod searchlight_reference;
-
+use crate::harness::{FloatImage, Harness, SurfaceInputs};
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
-use harness::{FloatImage, Harness, SurfaceInputs};
 
 /// See the module docs: a tenth of an 8-bit step (1/255).
-const TOLERANCE: f64 = 4e-4;
+pub const TOLERANCE: f64 = 4e-4;
 /// Render size: small enough for a software rasterizer, large enough for smooth gradients.
-const SIZE: u32 = 128;
+pub const SIZE: u32 = 128;
 
 /// Scene objects: a floor, a sphere, a cube and a torus, each with its own material.
 fn spawn_objects(harness: &mut Harness) -> Vec<Handle<PhongMaterial>> {

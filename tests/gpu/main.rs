@@ -1,0 +1,17 @@
+//! The tests that run on the render device (Mesa's lavapipe in CI), in one binary:
+//!
+//! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
+//!   reference model, on each pixel's own inputs;
+//! - `searchlight`: the same for the searchlight example's extension;
+//! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
+//!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
+//! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel.
+
+mod contract;
+mod frames;
+mod harness;
+#[path = "../../examples/searchlight/light.rs"]
+mod light;
+mod searchlight;
+#[path = "../../examples/searchlight/reference.rs"]
+mod searchlight_reference;
