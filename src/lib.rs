@@ -58,6 +58,8 @@
 //!   `bevy_phong::shading`. No file from `assets/` is needed.
 //! - **New light kinds** plug in from outside the crate: [`extension`] is the guide, with a
 //!   searchlight as the worked example.
+//! - **Invalid input** (a negative range, a NaN color, ...) is replaced by a documented value
+//!   with one warning naming the entity and field: see [`validation`].
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
 
@@ -70,6 +72,7 @@ pub mod render;
 mod surface_inputs;
 #[cfg(test)]
 mod test_app;
+pub mod validation;
 
 pub use lights::{
     Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,

@@ -127,16 +127,34 @@ pub struct PhongMaterialUniform {
     pub flags: u32,
 }
 
-// Bevy's `AsBindGroupShaderType` comes with this conversion.
+/// `value` if it is finite and non-negative, else `0` (see [`crate::validation`]).
+fn finite_non_negative(value: f32) -> f32 {
+    if value.is_finite() && value > 0.0 {
+        value
+    } else {
+        0.0
+    }
+}
+
+/// Each channel finite and non-negative, else `0`.
+fn finite_non_negative_rgb(rgb: Vec3) -> Vec3 {
+    Vec3::from_array(rgb.to_array().map(finite_non_negative))
+}
+
+// Bevy's `AsBindGroupShaderType` comes with this conversion. Invalid values are clamped
+// here too, so no frame draws with them before `validate_materials` has replaced them.
 impl From<&PhongMaterial> for PhongMaterialUniform {
     fn from(material: &PhongMaterial) -> Self {
-        let specular = material.specular_color.to_linear().to_vec3() * material.specular_strength;
+        let base_color = material.base_color.to_linear();
+        let specular = finite_non_negative_rgb(material.specular_color.to_linear().to_vec3())
+            * finite_non_negative(material.specular_strength);
         Self {
-            base_color: material.base_color.to_linear().to_vec4(),
+            base_color: finite_non_negative_rgb(base_color.to_vec3())
+                .extend(finite_non_negative(base_color.alpha)),
             specular,
-            shininess: material.shininess,
-            emissive: material.emissive.to_vec3(),
-            ambient_factor: material.ambient_factor,
+            shininess: finite_non_negative(material.shininess),
+            emissive: finite_non_negative_rgb(material.emissive.to_vec3()),
+            ambient_factor: finite_non_negative(material.ambient_factor),
             flags: material.specular_model.shader_flag(),
         }
     }

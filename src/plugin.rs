@@ -5,6 +5,7 @@ use crate::{
     material::{PhongMaterial, SpecularModel},
     render::{LightBufferResized, PhongLightBuffer, gather_lights, refresh_material_bind_groups},
     surface_inputs::SurfaceInputsMaterial,
+    validation::{InvalidInput, validate_ambient_light, validate_lights, validate_materials},
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
@@ -31,6 +32,9 @@ pub struct PhongPlugin;
 /// propagation and before Bevy sends the frame's asset events.
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PhongSystems {
+    /// After this set, every light component, the ambient light and every material changed
+    /// this frame holds only valid values (see [`crate::validation`]).
+    Validate,
     /// After this set, the light buffer holds every visible light of this frame.
     GatherLights,
     /// After this set, every material whose light buffer was reallocated this frame is
@@ -57,11 +61,27 @@ impl Plugin for PhongPlugin {
             .register_type::<SpecularModel>()
             .configure_sets(
                 PostUpdate,
-                (PhongSystems::GatherLights, PhongSystems::RefreshMaterials)
+                (
+                    PhongSystems::Validate,
+                    PhongSystems::GatherLights,
+                    PhongSystems::RefreshMaterials,
+                )
                     .chain()
                     .after(TransformSystems::Propagate)
                     .after(VisibilitySystems::VisibilityPropagate)
                     .before(AssetEventSystems),
+            )
+            .add_message::<InvalidInput>()
+            .add_systems(
+                PostUpdate,
+                (
+                    validate_lights::<PhongDirectionalLight>,
+                    validate_lights::<PhongPointLight>,
+                    validate_lights::<PhongSpotLight>,
+                    validate_ambient_light,
+                    validate_materials,
+                )
+                    .in_set(PhongSystems::Validate),
             )
             .add_systems(PostUpdate, gather_lights.in_set(PhongSystems::GatherLights));
 

@@ -43,7 +43,7 @@ fn gpu_light_matches_wgsl_phong_light() {
         ("position", offset_of!(GpuLight, position)),
         ("range", offset_of!(GpuLight, range)),
         ("direction", offset_of!(GpuLight, direction)),
-        ("cos_outer", offset_of!(GpuLight, cos_outer)),
+        ("outer_versine", offset_of!(GpuLight, outer_versine)),
         ("color", offset_of!(GpuLight, color)),
         ("cone_scale", offset_of!(GpuLight, cone_scale)),
         ("specular", offset_of!(GpuLight, specular)),

@@ -8,6 +8,7 @@ use super::{
     light_records::linear_rgb,
 };
 use crate::lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::validation::is_finite_transform;
 use bevy::{
     asset::Assets,
     camera::visibility::InheritedVisibility,
@@ -97,7 +98,8 @@ pub type LightQuery<'w, 's, L> = Query<
     ),
 >;
 
-/// Appends the record of every visible light in `lights` to `records`; returns how many.
+/// Appends the record of every visible light in `lights` to `records`, skipping lights with
+/// a non-finite transform; returns how many.
 pub fn push_visible<L: Component, R>(
     lights: &LightQuery<L>,
     records: &mut Vec<R>,
@@ -107,7 +109,7 @@ pub fn push_visible<L: Component, R>(
     records.extend(
         lights
             .iter()
-            .filter(|(_, _, visibility)| visibility.get())
+            .filter(|(_, transform, visibility)| visibility.get() && is_finite_transform(transform))
             .map(|(light, transform, _)| to_gpu(light, transform)),
     );
     (records.len() - start) as u32

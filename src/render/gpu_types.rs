@@ -9,7 +9,8 @@ use bytemuck::{Pod, Zeroable};
 /// One light as the shader reads it (`PhongLight` in WGSL): 80 bytes.
 ///
 /// Every kind uses the same record; the fields a kind does not use are zero. Colors are
-/// linear RGB, positions world-space, angles stored as cosines.
+/// linear RGB, positions world-space; the spot cone is stored as `1 - cos`, which keeps its
+/// precision for narrow cones where the cosine rounds to 1.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLight {
@@ -19,11 +20,11 @@ pub struct GpuLight {
     pub range: f32,
     /// Unit vector along which the light travels (directional, spot).
     pub direction: [f32; 3],
-    /// `cos(outer_angle)` (spot).
-    pub cos_outer: f32,
+    /// `1 - cos(outer_angle)` (spot), computed in `f64`; `-1` for an empty cone.
+    pub outer_versine: f32,
     /// Diffuse intensity, linear RGB.
     pub color: [f32; 3],
-    /// `1 / (cos(inner) - cos(outer))`, or `0` for a hard edge (spot).
+    /// `1 / (cos(inner) - cos(outer))`, computed in `f64`, or `0` for a hard edge (spot).
     pub cone_scale: f32,
     /// Specular intensity, linear RGB.
     pub specular: [f32; 3],

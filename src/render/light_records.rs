@@ -26,24 +26,32 @@ fn intensities(color: Color, specular: Option<Color>) -> ([f32; 3], [f32; 3]) {
     (linear_rgb(color), linear_rgb(specular.unwrap_or(color)))
 }
 
-/// `(cos(outer), cone_scale)` of a spot cone: `cone_scale = 1 / (cos(inner) - cos(outer))`,
-/// or `0` (a hard edge at the outer angle) where the inner cone is not narrower. A cone whose
-/// outer angle is not positive is empty: its `cos(outer)` is stored as infinity, which no
-/// `cos θ` reaches.
+/// `(1 - cos(outer), cone_scale)` of a spot cone, computed in `f64` and rounded once:
+/// `cone_scale = 1 / (cos(inner) - cos(outer))`, or `0` (a hard edge at the outer angle)
+/// where the inner cone is not narrower. A cone whose outer angle is not positive is empty:
+/// its `1 - cos(outer)` is stored as `-1`, which no `1 - cos θ` reaches.
 pub fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
-    let cos_outer = if outer_angle > 0.0 {
-        outer_angle.cos()
-    } else {
-        f32::INFINITY
-    };
-    let cos_inner = inner_angle.cos();
-    let scale = 1.0 / (cos_inner - cos_outer);
-    let cone_scale = if cos_inner > cos_outer && scale.is_finite() {
-        scale
+    if outer_angle.is_nan() || outer_angle <= 0.0 {
+        return (-1.0, 0.0);
+    }
+    let (inner, outer) = (f64::from(inner_angle), f64::from(outer_angle));
+    // 1 - cos x = 2 sin²(x/2) and cos i - cos o = 2 sin((o+i)/2) sin((o-i)/2): no
+    // cancellation for small or close angles.
+    let outer_versine = 2.0 * (outer / 2.0).sin().powi(2);
+    let width = 2.0 * ((outer + inner) / 2.0).sin() * ((outer - inner) / 2.0).sin();
+    let cone_scale = if width > 0.0 && (1.0 / width).is_finite() {
+        (1.0 / width) as f32
     } else {
         0.0
     };
-    (cos_outer, cone_scale)
+    (
+        outer_versine as f32,
+        if cone_scale.is_finite() {
+            cone_scale
+        } else {
+            0.0
+        },
+    )
 }
 
 impl PhongDirectionalLight {
@@ -78,12 +86,12 @@ impl PhongSpotLight {
     /// This light's GPU record.
     pub fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
-        let (cos_outer, cone_scale) = spot_cone_terms(self.inner_angle, self.outer_angle);
+        let (outer_versine, cone_scale) = spot_cone_terms(self.inner_angle, self.outer_angle);
         GpuLight {
             position: transform.translation().to_array(),
             range: stored_range(self.range),
             direction: light_direction(transform).to_array(),
-            cos_outer,
+            outer_versine,
             color,
             cone_scale,
             specular,

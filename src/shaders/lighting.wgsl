@@ -91,20 +91,24 @@ fn distance_attenuation(distance: f32, decay: vec3<f32>, range: f32) -> f32 {
     return 1.0 / denominator;
 }
 
-// S_cone for `cos_theta = dot(-L, spot_direction)`: the soft edge between the inner and
-// outer cone (`cone_scale = 1 / (cos_inner - cos_outer)`, or 0 for a hard edge at
-// `cos_outer`), times `cos(θ)^exponent`.
-fn spot_cone(cos_theta: f32, cos_outer: f32, cone_scale: f32, exponent: f32) -> f32 {
+// S_cone for the ray `from_light = -L` and the spot's unit `direction`: the soft edge
+// between the inner and outer cone (`cone_scale = 1 / (cos_inner - cos_outer)`, or 0 for a
+// hard edge at the outer cone), times `cos(θ)^exponent`. Computed from
+// `1 - cos θ = |from_light - direction|² / 2`, whose precision does not run out for narrow
+// cones, where `cos θ` rounds near 1 and `cone_scale` magnifies every rounding.
+fn spot_cone(from_light: vec3<f32>, direction: vec3<f32>, outer_versine: f32, cone_scale: f32, exponent: f32) -> f32 {
+    let difference = from_light - direction;
+    let versine = 0.5 * dot(difference, difference);
     var edge: f32;
     if cone_scale > 0.0 {
-        edge = saturate((cos_theta - cos_outer) * cone_scale);
+        edge = saturate((outer_versine - versine) * cone_scale);
     } else {
-        edge = select(0.0, 1.0, cos_theta >= cos_outer);
+        edge = select(0.0, 1.0, versine <= outer_versine);
     }
     if edge == 0.0 {
         return 0.0;
     }
-    return edge * power(max(cos_theta, 0.0), exponent);
+    return edge * power_of_one_minus(versine, exponent);
 }
 
 // H(N, L, V): the highlight factor of one light, for `n_dot_l = N·L > 0`.
@@ -188,8 +192,13 @@ fn spot_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
     if ray.attenuation == 0.0 {
         return vec3<f32>(0.0);
     }
-    let cos_theta = dot(-ray.to_light, light.direction);
-    let cone = spot_cone(cos_theta, light.cos_outer, light.cone_scale, light.spot_exponent);
+    let cone = spot_cone(
+        -ray.to_light,
+        light.direction,
+        light.outer_versine,
+        light.cone_scale,
+        light.spot_exponent,
+    );
     if cone == 0.0 {
         return vec3<f32>(0.0);
     }

@@ -11,8 +11,8 @@ struct PhongLight {
     range: f32,
     // Unit vector along which the light travels (directional, spot).
     direction: vec3<f32>,
-    // cos(outer_angle) (spot).
-    cos_outer: f32,
+    // 1 - cos(outer_angle) (spot); -1 for an empty cone.
+    outer_versine: f32,
     // Diffuse intensity, linear RGB.
     color: vec3<f32>,
     // 1 / (cos(inner) - cos(outer)), or 0 for a hard cone edge (spot).

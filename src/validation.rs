@@ -1,0 +1,448 @@
+//! Input validation: invalid values in light components, the ambient light and
+//! [`PhongMaterial`](crate::PhongMaterial)s are replaced by documented values once, when they
+//! change, with one warning that names the entity (or asset) and the field.
+//!
+//! | field | invalid | replaced by |
+//! |---|---|---|
+//! | any color | a NaN, infinite or negative channel | `0` for that channel |
+//! | `Decay` coefficients | NaN, infinite or negative | `0` (a `Decay` of all zeros does not fade) |
+//! | `range` | NaN or `≤ 0` | `None` (unlimited) |
+//! | spot `inner_angle`, `outer_angle` | NaN or negative | `0` (an outer angle of 0 lights nothing) |
+//! | spot `inner_angle` | greater than `outer_angle` | `outer_angle` (a hard edge) |
+//! | spot `exponent` | NaN, infinite or negative | `0` |
+//! | material `shininess`, `specular_strength`, `ambient_factor` | NaN, infinite or negative | `0` |
+//! | a light's transform | a NaN or infinite translation or rotation | the light is skipped while it lasts |
+//!
+//! Each replacement is also sent as an [`InvalidInput`] message, for tools and tests.
+
+use crate::{
+    lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    material::PhongMaterial,
+};
+use bevy::{
+    asset::{AssetEvent, AssetId, Assets},
+    color::{Color, ColorToComponents, LinearRgba},
+    ecs::{
+        change_detection::{DetectChanges, DetectChangesMut},
+        component::Component,
+        entity::Entity,
+        message::{Message, MessageReader, MessageWriter},
+        query::{Changed, Or},
+        system::{Query, ResMut},
+        world::Ref,
+    },
+    log::warn,
+    transform::components::GlobalTransform,
+};
+use core::fmt;
+
+/// What was invalid and what replaced it; also logged as a warning.
+#[derive(Message, Clone, Debug, PartialEq)]
+pub struct InvalidInput {
+    /// Whose field it is.
+    pub owner: Owner,
+    /// The type that holds the field, e.g. `PhongPointLight`.
+    pub component: &'static str,
+    /// The field, e.g. `range`.
+    pub field: &'static str,
+    /// The invalid value, as written.
+    pub value: String,
+    /// What the crate uses instead.
+    pub replacement: String,
+}
+
+/// The holder of an invalid field.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Owner {
+    /// A light entity.
+    Entity(Entity),
+    /// A material asset.
+    Material(AssetId<PhongMaterial>),
+    /// The ambient light resource.
+    Resource,
+}
+
+impl fmt::Display for InvalidInput {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let owner = match &self.owner {
+            Owner::Entity(entity) => format!("entity {entity}"),
+            Owner::Material(id) => format!("material {id}"),
+            Owner::Resource => "resource".to_string(),
+        };
+        write!(
+            f,
+            "{owner}: {}.{} = {} is invalid; using {}",
+            self.component, self.field, self.value, self.replacement
+        )
+    }
+}
+
+/// Collects the replacements made in one component or asset.
+pub(crate) struct Checker {
+    owner: Owner,
+    component: &'static str,
+    found: Vec<InvalidInput>,
+}
+
+impl Checker {
+    fn new(owner: Owner, component: &'static str) -> Self {
+        Self {
+            owner,
+            component,
+            found: Vec::new(),
+        }
+    }
+
+    fn replace(&mut self, field: &'static str, value: String, replacement: String) {
+        self.found.push(InvalidInput {
+            owner: self.owner.clone(),
+            component: self.component,
+            field,
+            value,
+            replacement,
+        });
+    }
+
+    /// A linear color whose channels are finite and non-negative.
+    fn color(&mut self, field: &'static str, color: &mut Color) {
+        let linear = color.to_linear();
+        let rgb = linear.to_vec3();
+        if rgb.is_finite() && rgb.min_element() >= 0.0 {
+            return;
+        }
+        let fixed = rgb
+            .to_array()
+            .map(|c| if c.is_finite() && c > 0.0 { c } else { 0.0 });
+        let replacement = LinearRgba::new(fixed[0], fixed[1], fixed[2], linear.alpha);
+        self.replace(field, format!("{linear:?}"), format!("{replacement:?}"));
+        *color = replacement.into();
+    }
+
+    fn optional_color(&mut self, field: &'static str, color: &mut Option<Color>) {
+        if let Some(color) = color {
+            self.color(field, color);
+        }
+    }
+
+    /// A finite, non-negative scalar; `0` otherwise.
+    fn non_negative(&mut self, field: &'static str, value: &mut f32) {
+        if value.is_finite() && *value >= 0.0 {
+            return;
+        }
+        self.replace(field, value.to_string(), "0".into());
+        *value = 0.0;
+    }
+
+    fn decay(&mut self, decay: &mut Decay) {
+        self.non_negative("decay.constant", &mut decay.constant);
+        self.non_negative("decay.linear", &mut decay.linear);
+        self.non_negative("decay.quadratic", &mut decay.quadratic);
+    }
+
+    /// A positive range, or `None`.
+    fn range(&mut self, range: &mut Option<f32>) {
+        if let Some(value) = *range
+            && !(value.is_finite() && value > 0.0)
+        {
+            // Infinity is a valid "unlimited"; say so without a warning.
+            if value != f32::INFINITY {
+                self.replace("range", value.to_string(), "None (unlimited)".into());
+            }
+            *range = None;
+        }
+    }
+
+    fn spot_angles(&mut self, light: &mut PhongSpotLight) {
+        for (field, angle) in [
+            ("inner_angle", &mut light.inner_angle),
+            ("outer_angle", &mut light.outer_angle),
+        ] {
+            if angle.is_nan() || *angle < 0.0 {
+                self.replace(field, angle.to_string(), "0".into());
+                *angle = 0.0;
+            }
+        }
+        if light.inner_angle > light.outer_angle {
+            self.replace(
+                "inner_angle",
+                format!("{} (> outer_angle)", light.inner_angle),
+                format!("{} (= outer_angle: a hard edge)", light.outer_angle),
+            );
+            light.inner_angle = light.outer_angle;
+        }
+    }
+
+    /// Logs and sends what was replaced.
+    fn report(self, messages: &mut MessageWriter<InvalidInput>) {
+        for invalid in self.found {
+            warn!("{invalid}");
+            messages.write(invalid);
+        }
+    }
+}
+
+/// A light kind whose fields [`validate_lights`] checks.
+pub(crate) trait Validate: Component<Mutability = bevy::ecs::component::Mutable> {
+    /// The component's name in warnings.
+    const NAME: &'static str;
+    /// Replaces every invalid field, recording each in `checker`.
+    fn validate(&mut self, checker: &mut Checker);
+}
+
+impl Validate for PhongDirectionalLight {
+    const NAME: &'static str = "PhongDirectionalLight";
+    fn validate(&mut self, checker: &mut Checker) {
+        checker.color("color", &mut self.color);
+        checker.optional_color("specular", &mut self.specular);
+    }
+}
+
+impl Validate for PhongPointLight {
+    const NAME: &'static str = "PhongPointLight";
+    fn validate(&mut self, checker: &mut Checker) {
+        checker.color("color", &mut self.color);
+        checker.optional_color("specular", &mut self.specular);
+        checker.decay(&mut self.decay);
+        checker.range(&mut self.range);
+    }
+}
+
+impl Validate for PhongSpotLight {
+    const NAME: &'static str = "PhongSpotLight";
+    fn validate(&mut self, checker: &mut Checker) {
+        checker.color("color", &mut self.color);
+        checker.optional_color("specular", &mut self.specular);
+        checker.decay(&mut self.decay);
+        checker.range(&mut self.range);
+        checker.spot_angles(self);
+        checker.non_negative("exponent", &mut self.exponent);
+    }
+}
+
+/// Whether a light at `transform` can be gathered: a finite translation and basis.
+pub fn is_finite_transform(transform: &GlobalTransform) -> bool {
+    let affine = transform.affine();
+    affine.translation.is_finite() && affine.matrix3.is_finite()
+}
+
+/// Replaces the invalid fields of every light of kind `L` that changed, without marking it
+/// changed again, and warns once per replacement; warns once when a light's transform
+/// becomes non-finite (the gather system skips it while it is).
+pub(crate) fn validate_lights<L: Validate>(
+    mut lights: Query<
+        (Entity, &mut L, Ref<GlobalTransform>),
+        Or<(Changed<L>, Changed<GlobalTransform>)>,
+    >,
+    mut messages: MessageWriter<InvalidInput>,
+) {
+    for (entity, mut light, transform) in &mut lights {
+        let mut checker = Checker::new(Owner::Entity(entity), L::NAME);
+        if transform.is_changed() && !is_finite_transform(&transform) {
+            checker.replace(
+                "GlobalTransform",
+                format!("{:?}", transform.translation()),
+                "nothing: the light is skipped until its transform is finite".into(),
+            );
+        }
+        light.bypass_change_detection().validate(&mut checker);
+        checker.report(&mut messages);
+    }
+}
+
+/// Replaces an invalid ambient color when the resource changed.
+pub fn validate_ambient_light(
+    mut ambient: ResMut<PhongAmbientLight>,
+    mut messages: MessageWriter<InvalidInput>,
+) {
+    if !ambient.is_changed() {
+        return;
+    }
+    let mut checker = Checker::new(Owner::Resource, "PhongAmbientLight");
+    checker.color("color", &mut ambient.bypass_change_detection().color);
+    checker.report(&mut messages);
+}
+
+/// Replaces the invalid fields of every material added or modified, and warns once per
+/// replacement. (The uniform the shader reads is clamped the same way on its own, so no
+/// frame ever draws with an invalid value.)
+pub fn validate_materials(
+    mut events: MessageReader<AssetEvent<PhongMaterial>>,
+    mut materials: ResMut<Assets<PhongMaterial>>,
+    mut messages: MessageWriter<InvalidInput>,
+) {
+    for event in events.read() {
+        let (AssetEvent::Added { id } | AssetEvent::Modified { id }) = event else {
+            continue;
+        };
+        let Some(material) = materials.get_mut_untracked(*id) else {
+            continue;
+        };
+        let mut checker = Checker::new(Owner::Material(*id), "PhongMaterial");
+        checker.color("base_color", &mut material.base_color);
+        checker.color("specular_color", &mut material.specular_color);
+        checker.non_negative("shininess", &mut material.shininess);
+        checker.non_negative("specular_strength", &mut material.specular_strength);
+        checker.non_negative("ambient_factor", &mut material.ambient_factor);
+        let mut emissive: Color = material.emissive.into();
+        checker.color("emissive", &mut emissive);
+        material.emissive = emissive.to_linear();
+        checker.report(&mut messages);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{
+        render::PhongLightBuffer,
+        test_app::{test_app, uploads_in_next_frame},
+    };
+    use bevy::{
+        ecs::message::Messages,
+        prelude::{Transform, Vec3},
+    };
+
+    fn invalid_inputs(app: &mut bevy::app::App) -> Vec<InvalidInput> {
+        app.world_mut()
+            .resource_mut::<Messages<InvalidInput>>()
+            .drain()
+            .collect()
+    }
+
+    #[test]
+    fn an_invalid_light_is_sanitised_once_with_a_warning_naming_entity_and_field() {
+        let mut app = test_app(|_| {});
+        let good = app
+            .world_mut()
+            .spawn((
+                PhongPointLight::default(),
+                Transform::from_xyz(0.0, 2.0, 0.0),
+            ))
+            .id();
+        let bad = app
+            .world_mut()
+            .spawn((
+                PhongPointLight {
+                    color: Color::linear_rgb(f32::NAN, 0.5, -1.0),
+                    range: Some(-3.0),
+                    decay: Decay::new(1.0, -0.5, 0.1),
+                    ..Default::default()
+                },
+                Transform::from_xyz(1.0, 2.0, 0.0),
+            ))
+            .id();
+        app.update();
+        let warnings = invalid_inputs(&mut app);
+        let fields: Vec<_> = warnings
+            .iter()
+            .map(|w| (w.owner.clone(), w.field))
+            .collect();
+        assert_eq!(
+            fields,
+            [
+                (Owner::Entity(bad), "color"),
+                (Owner::Entity(bad), "decay.linear"),
+                (Owner::Entity(bad), "range"),
+            ]
+        );
+        let text = warnings[2].to_string();
+        assert!(
+            text.contains(&format!("entity {bad}")) && text.contains("PhongPointLight.range = -3")
+        );
+
+        let light = app.world().get::<PhongPointLight>(bad).unwrap();
+        assert_eq!(light.color.to_linear().to_vec3(), Vec3::new(0.0, 0.5, 0.0));
+        assert_eq!((light.range, light.decay.linear), (None, 0.0));
+
+        // Both lights are in the buffer, with finite values.
+        let state = app.world().resource::<PhongLightBuffer>();
+        assert_eq!(state.header().point_count, 2);
+        assert!(
+            state
+                .records()
+                .iter()
+                .all(|r| r.color.iter().all(|c| c.is_finite()))
+        );
+
+        // Once: no new warning and no new upload while nothing changes.
+        assert_eq!(uploads_in_next_frame(&mut app), 0);
+        assert!(invalid_inputs(&mut app).is_empty());
+        let _ = good;
+    }
+
+    #[test]
+    fn a_spot_with_inner_above_outer_gets_a_hard_edge() {
+        let mut app = test_app(|_| {});
+        let spot = app
+            .world_mut()
+            .spawn(PhongSpotLight {
+                inner_angle: 0.6,
+                outer_angle: 0.4,
+                exponent: f32::NAN,
+                ..Default::default()
+            })
+            .id();
+        app.update();
+        let warnings = invalid_inputs(&mut app);
+        assert_eq!(warnings.len(), 2, "{warnings:?}");
+        let light = app.world().get::<PhongSpotLight>(spot).unwrap();
+        assert_eq!(
+            (light.inner_angle, light.outer_angle, light.exponent),
+            (0.4, 0.4, 0.0)
+        );
+    }
+
+    #[test]
+    fn a_light_with_a_nan_position_is_skipped_and_others_stay() {
+        let mut app = test_app(|_| {});
+        app.world_mut().spawn(PhongPointLight::default());
+        let bad = app
+            .world_mut()
+            .spawn((
+                PhongPointLight::default(),
+                Transform::from_xyz(f32::NAN, 0.0, 0.0),
+            ))
+            .id();
+        app.update();
+        let warnings = invalid_inputs(&mut app);
+        assert_eq!(warnings.len(), 1);
+        assert_eq!(
+            (warnings[0].owner.clone(), warnings[0].field),
+            (Owner::Entity(bad), "GlobalTransform")
+        );
+        assert_eq!(
+            app.world()
+                .resource::<PhongLightBuffer>()
+                .header()
+                .point_count,
+            1
+        );
+    }
+
+    #[test]
+    fn an_invalid_material_is_sanitised_with_a_warning_naming_the_asset() {
+        let mut app = test_app(|_| {});
+        let handle = app
+            .world_mut()
+            .resource_mut::<Assets<PhongMaterial>>()
+            .add(PhongMaterial {
+                shininess: -5.0,
+                ..Default::default()
+            });
+        let id = handle.id();
+        app.update();
+        app.update();
+        let warnings = invalid_inputs(&mut app);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert_eq!(
+            (warnings[0].owner.clone(), warnings[0].field),
+            (Owner::Material(id), "shininess")
+        );
+        let material = app
+            .world()
+            .resource::<Assets<PhongMaterial>>()
+            .get(id)
+            .unwrap();
+        assert_eq!(material.shininess, 0.0);
+    }
+}
