@@ -225,14 +225,14 @@ pub fn is_finite_transform(transform: &GlobalTransform) -> bool {
     affine.translation.is_finite() && affine.matrix3.is_finite()
 }
 
+/// Lights whose component or transform changed.
+type ChangedLight<L> = Or<(Changed<L>, Changed<GlobalTransform>)>;
+
 /// Replaces the invalid fields of every light of kind `L` that changed, without marking it
 /// changed again, and warns once per replacement; warns once when a light's transform
 /// becomes non-finite (the gather system skips it while it is).
 pub(crate) fn validate_lights<L: Validate>(
-    mut lights: Query<
-        (Entity, &mut L, Ref<GlobalTransform>),
-        Or<(Changed<L>, Changed<GlobalTransform>)>,
-    >,
+    mut lights: Query<(Entity, &mut L, Ref<GlobalTransform>), ChangedLight<L>>,
     mut messages: MessageWriter<InvalidInput>,
 ) {
     for (entity, mut light, transform) in &mut lights {

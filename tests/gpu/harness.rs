@@ -22,6 +22,7 @@ use bevy_phong::{
     SurfaceInput, SurfaceInputsMaterial,
     prelude::*,
     reference::{self, SurfacePoint},
+    validation::is_finite_transform,
 };
 use glam::DVec3;
 use std::{
@@ -262,7 +263,8 @@ impl Harness {
             AnyOf<(&PhongDirectionalLight, &PhongPointLight, &PhongSpotLight)>,
         )>();
         for (transform, visibility, (directional, point, spot)) in visible.iter(world) {
-            if !visibility.get() {
+            // As the gather system: hidden lights and lights at a non-finite place are skipped.
+            if !visibility.get() || !is_finite_transform(transform) {
                 continue;
             }
             lights.extend(directional.map(|l| reference::Light::directional(l, transform)));

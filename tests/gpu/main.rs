@@ -15,3 +15,4 @@ mod light;
 mod searchlight;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
+mod stress;
