@@ -9,7 +9,7 @@
 //! ## 1. The component and its GPU record
 //!
 //! The light is a component that requires `Transform` and `Visibility`, like the built-in
-//! ones. Its GPU record is a `#[repr(C)]` [`Pod`](bytemuck::Pod) struct whose size is a
+//! ones. Its GPU record is a `#[repr(C)]` [`bytemuck::Pod`] struct whose size is a
 //! multiple of 16 bytes, laid out like the WGSL struct the shader reads (a `vec3<f32>` takes
 //! 16 bytes when an `f32` follows it, so pair each `[f32; 3]` with one `f32`).
 //! Implementing [`PhongLightKind`] says how an entity becomes a record:

@@ -1,5 +1,5 @@
 //! Input validation: invalid values in light components, the ambient light and
-//! [`PhongMaterial`](crate::PhongMaterial)s are replaced by documented values once, when they
+//! [`PhongMaterial`]s are replaced by documented values once, when they
 //! change, with one warning that names the entity (or asset) and the field.
 //!
 //! | field | invalid | replaced by |

@@ -103,7 +103,7 @@ fn setup(
     commands.spawn((
         PhongPointLight {
             color: Color::linear_rgb(0.5, 0.45, 0.4),
-            decay: Decay::TUTORIAL_50,
+            decay: Decay::DISTANCE_50,
             ..default()
         },
         Transform::from_xyz(0.0, 4.0, 4.0),

@@ -30,9 +30,10 @@ impl Decay {
     /// No fall-off: `A(d) = 1` at every distance.
     pub const NONE: Self = Self::new(1.0, 0.0, 0.0);
 
-    /// The fall-off used by seed 004's point light and many OpenGL tutorials:
-    /// `1 / (1 + 0.09·d + 0.032·d²)`, which reaches about 1/2 at 5 units and 1/10 at 14.
-    pub const TUTORIAL_50: Self = Self::new(1.0, 0.09, 0.032);
+    /// Seed 004's point light, the common OpenGL choice for a light meant to reach about
+    /// 50 units: `1 / (1 + 0.09·d + 0.032·d²)`, which is 0.44 at 5 units, 0.12 at 14 and
+    /// 0.01 at 50.
+    pub const DISTANCE_50: Self = Self::new(1.0, 0.09, 0.032);
 
     /// Builds a decay from its three coefficients.
     pub const fn new(constant: f32, linear: f32, quadratic: f32) -> Self {

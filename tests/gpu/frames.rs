@@ -97,7 +97,7 @@ fn red_point_light() -> (PhongPointLight, Transform) {
     (
         PhongPointLight {
             color: Color::linear_rgb(1.0, 0.2, 0.2),
-            decay: Decay::TUTORIAL_50,
+            decay: Decay::DISTANCE_50,
             ..default()
         },
         Transform::from_xyz(-3.0, 3.0, 0.0),
@@ -130,7 +130,7 @@ fn spot_light() -> (PhongSpotLight, Transform) {
     (
         PhongSpotLight {
             color: Color::linear_rgb(1.0, 1.0, 0.8),
-            decay: Decay::TUTORIAL_50,
+            decay: Decay::DISTANCE_50,
             inner_angle: 12.5_f32.to_radians(),
             outer_angle: 17.5_f32.to_radians(),
             exponent: 2.0,

@@ -149,7 +149,7 @@ fn searchlight_that_misses_everything_adds_nothing() {
     harness.world_mut().spawn((
         PhongPointLight {
             color: Color::linear_rgb(0.6, 0.6, 0.6),
-            decay: Decay::TUTORIAL_50,
+            decay: Decay::DISTANCE_50,
             ..default()
         },
         Transform::from_xyz(-2.0, 3.0, 2.0),

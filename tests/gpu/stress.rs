@@ -102,7 +102,7 @@ fn a_million_unit_wide_scene_gives_finite_pixels() {
     let world = harness.world_mut();
     world.spawn((
         PhongPointLight {
-            decay: Decay::TUTORIAL_50,
+            decay: Decay::DISTANCE_50,
             ..default()
         },
         Transform::from_xyz(0.0, 3.0, 2.0),
