@@ -14,3 +14,5 @@ cargo test --doc "$@"
 for example in showcase searchlight; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
+# The benchmark still runs (a small scene, two frames).
+cargo run --quiet --example bench -- --quick

@@ -1,6 +1,9 @@
 //! What every example shares: a window where a display exists, else (or with
 //! `--headless PATH`) a render to a PNG file and exit.
 
+#[allow(dead_code, reason = "only the benchmark drives frames itself")]
+pub mod headless;
+
 use bevy::{
     app::{AppExit, ScheduleRunnerPlugin},
     camera::RenderTarget,

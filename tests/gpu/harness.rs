@@ -2,21 +2,16 @@
 //! inputs each pixel was lit with, and compares them with the f64 reference model.
 
 use bevy::{
-    app::PluginsState,
     camera::RenderTarget,
     core_pipeline::tonemapping::{DebandDither, Tonemapping},
     image::Image,
-    log::LogPlugin,
     prelude::*,
     render::{
         RenderApp,
         gpu_readback::{Readback, ReadbackComplete},
-        pipelined_rendering::PipelinedRenderingPlugin,
         render_resource::{PipelineCache, TextureFormat, TextureUsages},
         view::Msaa,
     },
-    window::ExitCondition,
-    winit::WinitPlugin,
 };
 use bevy_phong::{
     SurfaceInput, SurfaceInputsMaterial,
@@ -25,6 +20,8 @@ use bevy_phong::{
     validation::is_finite_transform,
 };
 use glam::DVec3;
+
+pub use crate::headless::headless_app;
 use std::{
     collections::HashMap,
     path::PathBuf,
@@ -75,37 +72,6 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
 
 #[derive(Resource, Clone, Default)]
 struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
-
-/// A headless app with Bevy's renderer and [`PhongPlugin`], plus what `add_plugins` adds,
-/// built and ready to update. Rendering happens inside `update` (no pipelining), so the
-/// render world can be read between updates.
-pub fn headless_app(add_plugins: impl FnOnce(&mut App)) -> App {
-    let mut app = App::new();
-    app.add_plugins(
-        DefaultPlugins
-            .set(WindowPlugin {
-                primary_window: None,
-                exit_condition: ExitCondition::DontExit,
-                ..default()
-            })
-            .disable::<WinitPlugin>()
-            .disable::<LogPlugin>()
-            .disable::<PipelinedRenderingPlugin>(),
-    )
-    .add_plugins(PhongPlugin);
-    add_plugins(&mut app);
-    while app.plugins_state() == PluginsState::Adding {
-        bevy::tasks::tick_global_task_pools_on_main_thread();
-    }
-    app.finish();
-    app.cleanup();
-    assert!(
-        app.get_sub_app(RenderApp).is_some(),
-        "no render app: is a Vulkan driver installed? On Debian: \
-         apt-get install mesa-vulkan-drivers, then WGPU_ADAPTER_NAME=llvmpipe"
-    );
-    app
-}
 
 /// A headless app with a float render target, the Phong plugin and a camera.
 pub struct Harness {

@@ -10,6 +10,8 @@
 mod contract;
 mod frames;
 mod harness;
+#[path = "../../examples/support/headless.rs"]
+mod headless;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
 mod searchlight;

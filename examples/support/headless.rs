@@ -1,0 +1,43 @@
+//! A headless app with Bevy's renderer and `PhongPlugin`, for tests and benchmarks that drive
+//! frames themselves.
+
+use bevy::{
+    app::PluginsState,
+    log::LogPlugin,
+    prelude::*,
+    render::{RenderApp, pipelined_rendering::PipelinedRenderingPlugin},
+    window::ExitCondition,
+    winit::WinitPlugin,
+};
+use bevy_phong::PhongPlugin;
+
+/// An app with Bevy's default plugins (no window, no log, no pipelined rendering) and
+/// [`PhongPlugin`], plus what `add_plugins` adds, built and ready to `update`. Rendering
+/// happens inside `update`, so the render world can be read between updates.
+pub fn headless_app(add_plugins: impl FnOnce(&mut App)) -> App {
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .disable::<WinitPlugin>()
+            .disable::<LogPlugin>()
+            .disable::<PipelinedRenderingPlugin>(),
+    )
+    .add_plugins(PhongPlugin);
+    add_plugins(&mut app);
+    while app.plugins_state() == PluginsState::Adding {
+        bevy::tasks::tick_global_task_pools_on_main_thread();
+    }
+    app.finish();
+    app.cleanup();
+    assert!(
+        app.get_sub_app(RenderApp).is_some(),
+        "no render app: is a Vulkan driver installed? On Debian: \
+         apt-get install mesa-vulkan-drivers, then WGPU_ADAPTER_NAME=llvmpipe"
+    );
+    app
+}
