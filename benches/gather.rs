@@ -6,8 +6,8 @@
 //! ```
 
 use bevy::{
-    asset::AssetPlugin, camera::visibility::InheritedVisibility, prelude::*,
-    transform::TransformPlugin,
+    asset::AssetPlugin, camera::visibility::InheritedVisibility,
+    ecs::schedule::SingleThreadedExecutor, prelude::*, transform::TransformPlugin,
 };
 use bevy_phong::{prelude::*, render::gather_lights};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
@@ -44,7 +44,9 @@ fn world_with_lights(count: usize) -> (App, Schedule) {
             ));
         }
     }
+    // Single-threaded, so that the timing is the system's and not the executor's.
     let mut schedule = Schedule::default();
+    schedule.set_executor(SingleThreadedExecutor::new());
     schedule.add_systems(gather_lights);
     schedule.run(app.world_mut());
     (app, schedule)

@@ -31,6 +31,11 @@ fn ln_one_minus(d: f32) -> f32 {
     return log(1.0 - d);
 }
 
+// Below `e^LN_NEGLIGIBLE` (1.8e-35) a factor is flushed to zero: its contribution is far
+// below any output's resolution, and the f32 subnormals it would produce are slow to compute
+// with on CPU rasterizers.
+const LN_NEGLIGIBLE: f32 = -80.0;
+
 // `(1 - d)^exponent` for `0 ≤ d`, with `0^0 = 1`: the highlight as a function of
 // `d = 1 - cos`, the form that stays accurate near the peak, where `cos` itself rounds to 1.
 fn power_of_one_minus(d: f32, exponent: f32) -> f32 {
@@ -40,7 +45,11 @@ fn power_of_one_minus(d: f32, exponent: f32) -> f32 {
     if !(d < 1.0) {
         return 0.0;
     }
-    return exp(exponent * ln_one_minus(d));
+    let ln_power = exponent * ln_one_minus(d);
+    if ln_power < LN_NEGLIGIBLE {
+        return 0.0;
+    }
+    return exp(ln_power);
 }
 
 // `base^exponent` for `base ≥ 0` with `0^0 = 1` (WGSL leaves `pow(0, 0)` undefined) and
