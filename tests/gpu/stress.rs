@@ -36,21 +36,26 @@ fn shiny(shininess: f32) -> PhongMaterial {
     }
 }
 
+/// A unit sphere at the origin on a 10×10 floor, with the given shininesses.
+fn spawn_sphere_on_floor(harness: &mut Harness, sphere_shininess: f32, floor_shininess: f32) {
+    spawn_mesh(
+        harness,
+        Sphere::new(1.0).mesh().uv(32, 16),
+        Transform::default(),
+        shiny(sphere_shininess),
+    );
+    spawn_mesh(
+        harness,
+        Plane3d::default().mesh().size(10.0, 10.0).into(),
+        Transform::from_xyz(0.0, -1.0, 0.0),
+        shiny(floor_shininess),
+    );
+}
+
 #[test]
 fn lights_inside_and_on_objects_give_finite_pixels() {
     let mut harness = Harness::new(SIZE, SIZE);
-    spawn_mesh(
-        &mut harness,
-        Sphere::new(1.0).mesh().uv(32, 16),
-        Transform::default(),
-        shiny(0.0),
-    );
-    spawn_mesh(
-        &mut harness,
-        Plane3d::default().mesh().size(10.0, 10.0).into(),
-        Transform::from_xyz(0.0, -1.0, 0.0),
-        shiny(10_000.0),
-    );
+    spawn_sphere_on_floor(&mut harness, 0.0, 10_000.0);
     let world = harness.world_mut();
     // Inside the sphere, at its center, with no fall-off and with a zero decay.
     world.spawn((
@@ -126,18 +131,7 @@ fn a_million_unit_wide_scene_gives_finite_pixels() {
 #[test]
 fn ten_thousand_overlapping_lights_give_finite_pixels() {
     let mut harness = Harness::new(SIZE, SIZE);
-    spawn_mesh(
-        &mut harness,
-        Sphere::new(1.0).mesh().uv(32, 16),
-        Transform::default(),
-        shiny(160.0),
-    );
-    spawn_mesh(
-        &mut harness,
-        Plane3d::default().mesh().size(10.0, 10.0).into(),
-        Transform::from_xyz(0.0, -1.0, 0.0),
-        shiny(8.0),
-    );
+    spawn_sphere_on_floor(&mut harness, 160.0, 8.0);
     let world = harness.world_mut();
     for i in 0..10_000 {
         let position = Vec3::new(0.0, 2.0, 1.5);
@@ -166,18 +160,7 @@ fn ten_thousand_overlapping_lights_give_finite_pixels() {
 #[test]
 fn an_invalid_light_is_sanitised_and_the_others_still_render() {
     let mut harness = Harness::new(SIZE, SIZE);
-    spawn_mesh(
-        &mut harness,
-        Sphere::new(1.0).mesh().uv(32, 16),
-        Transform::default(),
-        shiny(50.0),
-    );
-    spawn_mesh(
-        &mut harness,
-        Plane3d::default().mesh().size(10.0, 10.0).into(),
-        Transform::from_xyz(0.0, -1.0, 0.0),
-        shiny(8.0),
-    );
+    spawn_sphere_on_floor(&mut harness, 50.0, 8.0);
     harness.settle();
     let inputs = harness.capture_inputs();
     let world = harness.world_mut();
