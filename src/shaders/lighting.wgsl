@@ -38,30 +38,13 @@ const LN_NEGLIGIBLE: f32 = -80.0;
 
 // `(1 - d)^exponent` for `0 ≤ d`, with `0^0 = 1`: the highlight as a function of
 // `d = 1 - cos`, the form that stays accurate near the peak, where `cos` itself rounds to 1.
+// The exponent (a material's shininess, from a uniform) selects rather than branches: a
+// branch on a uniform value makes some drivers (lavapipe) recompile the shader for every
+// material bound.
 fn power_of_one_minus(d: f32, exponent: f32) -> f32 {
-    if exponent == 0.0 {
-        return 1.0;
-    }
-    if !(d < 1.0) {
-        return 0.0;
-    }
-    let ln_power = exponent * ln_one_minus(d);
-    if ln_power < LN_NEGLIGIBLE {
-        return 0.0;
-    }
-    return exp(ln_power);
-}
-
-// `base^exponent` for `base ≥ 0` with `0^0 = 1` (WGSL leaves `pow(0, 0)` undefined) and
-// `0^exponent = 0` for `exponent > 0`.
-fn power(base: f32, exponent: f32) -> f32 {
-    if exponent == 0.0 {
-        return 1.0;
-    }
-    if base <= 0.0 {
-        return 0.0;
-    }
-    return pow(base, exponent);
+    let ln_power = exponent * ln_one_minus(min(d, 1.0));
+    let value = select(exp(ln_power), 0.0, !(d < 1.0) || ln_power < LN_NEGLIGIBLE);
+    return select(value, 1.0, exponent == 0.0);
 }
 
 // The surface point `position` with the (interpolated, any length) `normal`, seen from
@@ -126,21 +109,18 @@ fn spot_cone(from_light: vec3<f32>, direction: vec3<f32>, outer_versine: f32, co
 // vectors A, B whose cosine it is: near the peak, where the highlight matters and `α`
 // amplifies every error, this keeps the relative precision `cos` rounded to 1 would lose.
 fn highlight(surface: PhongSurface, to_light: vec3<f32>, n_dot_l: f32) -> f32 {
-    var difference: vec3<f32>;
-    if surface.specular_model == SPECULAR_MODEL_BLINN_PHONG {
-        let half_vector = normalize_or_zero(to_light + surface.view);
-        if all(half_vector == vec3<f32>(0.0)) {
-            return power(0.0, surface.shininess);
-        }
-        difference = surface.normal - half_vector;
-    } else {
-        if all(surface.view == vec3<f32>(0.0)) {
-            return power(0.0, surface.shininess);
-        }
-        let reflected = 2.0 * n_dot_l * surface.normal - to_light;
-        difference = reflected - surface.view;
-    }
-    return power_of_one_minus(0.5 * dot(difference, difference), surface.shininess);
+    // Both vectors are computed and one is selected: the model comes from a uniform, and a
+    // branch on it would make some drivers (lavapipe) recompile the shader per material.
+    let blinn_phong = surface.specular_model == SPECULAR_MODEL_BLINN_PHONG;
+    let half_vector = normalize_or_zero(to_light + surface.view);
+    let reflected = 2.0 * n_dot_l * surface.normal - to_light;
+    let toward = select(surface.view, surface.normal, blinn_phong);
+    let away = select(reflected, half_vector, blinn_phong);
+    // A zero view (camera at P) or half vector (L = -V) has no direction: cos = 0.
+    let degenerate = all(away == vec3<f32>(0.0)) || all(toward == vec3<f32>(0.0));
+    let difference = away - toward;
+    let d = select(0.5 * dot(difference, difference), 1.0, degenerate);
+    return power_of_one_minus(d, surface.shininess);
 }
 
 // color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · H(N, L, V), for a unit `to_light` (L).

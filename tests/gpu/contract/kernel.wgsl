@@ -1,6 +1,6 @@
 // The shader contract kernel: runs the material's own lighting functions
 // (`bevy_phong::lighting`, imported as the material imports them) on a batch of cases.
-#import bevy_phong::lighting::{directional_light, highlight, phong_surface, point_light, power, spot_light}
+#import bevy_phong::lighting::{directional_light, highlight, phong_surface, point_light, spot_light}
 #import bevy_phong::types::SPECULAR_MODEL_BLINN_PHONG
 #import bevy_phong::types::{PhongLight, PhongSurface}
 
@@ -47,6 +47,17 @@ fn crate_highlight(@builtin(global_invocation_id) id: vec3<u32>) {
     results[index] = vec4<f32>(highlight(surface, to_light, max(n_dot_l, 0.0)), 0.0, 0.0, 0.0);
 }
 
+// `pow(base, α)` with `0^0 = 1`, for the straightforward formula below.
+fn naive_power(base: f32, exponent: f32) -> f32 {
+    if exponent == 0.0 {
+        return 1.0;
+    }
+    if base <= 0.0 {
+        return 0.0;
+    }
+    return pow(base, exponent);
+}
+
 // The same factor by the straightforward formula, `pow(max(cos, 0), α)`: kept here only to
 // measure what the crate's formula gains near the peak.
 @compute @workgroup_size(64)
@@ -63,7 +74,7 @@ fn naive_highlight(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         cosine = dot(2.0 * dot(surface.normal, to_light) * surface.normal - to_light, surface.view);
     }
-    results[index] = vec4<f32>(power(max(cosine, 0.0), surface.shininess), 0.0, 0.0, 0.0);
+    results[index] = vec4<f32>(naive_power(max(cosine, 0.0), surface.shininess), 0.0, 0.0, 0.0);
 }
 
 @compute @workgroup_size(64)
