@@ -166,7 +166,7 @@ use crate::{
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
-    asset::{AssetApp, Assets, Handle},
+    asset::{Assets, Handle},
     ecs::{
         component::Component, message::MessageWriter, resource::Resource,
         schedule::IntoScheduleConfigs, system::ResMut,
@@ -235,9 +235,7 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
                 "PhongLightKind::Gpu must be a non-empty multiple of 16 bytes, as WGSL lays it out"
             )
         };
-        if !app.world().contains_resource::<Assets<ShaderBuffer>>() {
-            app.init_asset::<ShaderBuffer>();
-        }
+        crate::render::init_shader_buffers(app);
         let handle = app
             .world_mut()
             .resource_mut::<Assets<ShaderBuffer>>()

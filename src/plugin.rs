@@ -13,7 +13,7 @@ use bevy::{
     camera::visibility::VisibilitySystems,
     ecs::schedule::{IntoScheduleConfigs, SystemSet},
     pbr::{Material, MaterialPlugin},
-    render::{RenderApp, storage::ShaderBuffer},
+    render::RenderApp,
     shader::load_shader_library,
     transform::TransformSystems,
 };
@@ -44,12 +44,7 @@ pub enum PhongSystems {
 
 impl Plugin for PhongPlugin {
     fn build(&self, app: &mut App) {
-        if !app
-            .world()
-            .contains_resource::<bevy::asset::Assets<ShaderBuffer>>()
-        {
-            app.init_asset::<ShaderBuffer>();
-        }
+        crate::render::init_shader_buffers(app);
         app.init_resource::<PhongAmbientLight>()
             .init_resource::<PhongLightBuffer>()
             .add_message::<LightBufferResized>()

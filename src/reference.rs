@@ -676,52 +676,20 @@ mod properties {
         ]
     }
 
-    fn rotate(light: Light, rotation: DQuat) -> Light {
-        match light {
-            Light::Directional {
-                direction,
-                color,
-                specular,
-            } => Light::Directional {
-                direction: rotation * direction,
-                color,
-                specular,
-            },
-            Light::Point {
-                position,
-                color,
-                specular,
-                decay,
-                range,
-            } => Light::Point {
-                position: rotation * position,
-                color,
-                specular,
-                decay,
-                range,
-            },
+    fn rotate(mut light: Light, rotation: DQuat) -> Light {
+        match &mut light {
+            Light::Directional { direction, .. } => *direction = rotation * *direction,
+            Light::Point { position, .. } => *position = rotation * *position,
             Light::Spot {
                 position,
                 direction,
-                color,
-                specular,
-                decay,
-                range,
-                inner_angle,
-                outer_angle,
-                exponent,
-            } => Light::Spot {
-                position: rotation * position,
-                direction: rotation * direction,
-                color,
-                specular,
-                decay,
-                range,
-                inner_angle,
-                outer_angle,
-                exponent,
-            },
+                ..
+            } => {
+                *position = rotation * *position;
+                *direction = rotation * *direction;
+            }
         }
+        light
     }
 
     proptest! {

@@ -2,11 +2,20 @@
 //! [`ShaderBuffer`] asset that materials bind.
 
 use bevy::{
-    asset::{Assets, Handle},
+    app::App,
+    asset::{AssetApp, Assets, Handle},
     ecs::message::Message,
     render::storage::ShaderBuffer,
 };
 use bytemuck::Pod;
+
+/// Registers the [`ShaderBuffer`] asset type where the renderer has not (as under
+/// `MinimalPlugins`), so that light buffers can be gathered without one.
+pub(crate) fn init_shader_buffers(app: &mut App) {
+    if !app.world().contains_resource::<Assets<ShaderBuffer>>() {
+        app.init_asset::<ShaderBuffer>();
+    }
+}
 
 /// Sent when a light buffer's byte size changed, so that the render world made a new GPU
 /// buffer for it: every material bind group that holds the old one must be rebuilt.

@@ -39,19 +39,14 @@ pub fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
     // cancellation for small or close angles.
     let outer_versine = 2.0 * (outer / 2.0).sin().powi(2);
     let width = 2.0 * ((outer + inner) / 2.0).sin() * ((outer - inner) / 2.0).sin();
-    let cone_scale = if width > 0.0 && (1.0 / width).is_finite() {
-        (1.0 / width) as f32
+    // Beyond f32's range (or for no width at all) the edge is hard.
+    let cone_scale = (1.0 / width) as f32;
+    let cone_scale = if width > 0.0 && cone_scale.is_finite() {
+        cone_scale
     } else {
         0.0
     };
-    (
-        outer_versine as f32,
-        if cone_scale.is_finite() {
-            cone_scale
-        } else {
-            0.0
-        },
-    )
+    (outer_versine as f32, cone_scale)
 }
 
 impl PhongDirectionalLight {

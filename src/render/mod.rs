@@ -24,6 +24,7 @@ pub use gather::{
     LightChanged, LightChanges, LightQuery, PhongLightBuffer, gather_lights, push_visible,
 };
 pub use gpu_types::{GpuLight, GpuLightsHeader};
+pub(crate) use light_buffer::init_shader_buffers;
 pub use light_buffer::{LightBuffer, LightBufferResized, MIN_CAPACITY};
 pub use light_records::{light_direction, linear_rgb, spot_cone_terms};
 pub(crate) use material_upkeep::schedule_light_buffers_before;
