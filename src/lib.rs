@@ -63,6 +63,7 @@
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
 
+pub mod culling;
 pub mod extension;
 mod lights;
 mod material;
@@ -74,18 +75,19 @@ mod surface_inputs;
 mod test_app;
 pub mod validation;
 
+pub use culling::PhongLightCulling;
 pub use lights::{
     Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
 };
-pub use material::{PhongMaterial, PhongMaterialUniform, SpecularModel};
+pub use material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel};
 pub use plugin::{PhongMaterialAppExt, PhongPlugin, PhongSystems};
-pub use render::PHONG_LIGHT_BUFFER;
+pub use render::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER};
 pub use surface_inputs::{SurfaceInput, SurfaceInputUniform, SurfaceInputsMaterial};
 
 /// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
 pub mod prelude {
     pub use crate::{
-        Decay, PhongAmbientLight, PhongDirectionalLight, PhongMaterial, PhongMaterialAppExt,
-        PhongPlugin, PhongPointLight, PhongSpotLight, SpecularModel,
+        Decay, PhongAmbientLight, PhongDirectionalLight, PhongLightCulling, PhongMaterial,
+        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSpotLight, SpecularModel,
     };
 }

@@ -1,15 +1,18 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
-use crate::render::PHONG_LIGHT_BUFFER;
+use crate::render::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER};
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
     math::{Vec3, Vec4},
-    pbr::Material,
+    mesh::MeshVertexBufferLayoutRef,
+    pbr::{Material, MaterialPipeline, MaterialPipelineKey},
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
     render::{
-        render_resource::{AsBindGroup, ShaderType},
+        render_resource::{
+            AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+        },
         storage::ShaderBuffer,
     },
     shader::ShaderRef,
@@ -59,6 +62,7 @@ impl SpecularModel {
 #[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
 #[reflect(Default, Debug, Clone)]
 #[uniform(0, PhongMaterialUniform)]
+#[bind_group_data(PhongMaterialKey)]
 pub struct PhongMaterial {
     /// Diffuse reflectance `k_d`; its alpha is the output alpha (see
     /// [`alpha_mode`](Self::alpha_mode)). Default white.
@@ -82,6 +86,10 @@ pub struct PhongMaterial {
     /// default, [`PHONG_LIGHT_BUFFER`].
     #[storage(1, read_only)]
     pub lights: Handle<ShaderBuffer>,
+    /// The scene's light grid, which the plugin fills with the lights of finite reach. Leave
+    /// it at its default, [`PHONG_LIGHT_GRID_BUFFER`].
+    #[storage(2, read_only)]
+    pub light_grid: Handle<ShaderBuffer>,
 }
 
 impl Default for PhongMaterial {
@@ -96,6 +104,7 @@ impl Default for PhongMaterial {
             emissive: LinearRgba::BLACK,
             alpha_mode: AlphaMode::Opaque,
             lights: PHONG_LIGHT_BUFFER,
+            light_grid: PHONG_LIGHT_GRID_BUFFER,
         }
     }
 }
@@ -160,9 +169,46 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
     }
 }
 
+/// The shader variant a [`PhongMaterial`] is drawn with: materials with equal keys share a
+/// pipeline.
+///
+/// A material without a highlight (`specular_color` black or `specular_strength` zero) is
+/// drawn by a variant that leaves the specular term out (shader def `PHONG_NO_SPECULAR`).
+/// A variant is compiled the first time a material needs it; meanwhile Bevy draws nothing
+/// for the meshes that wait for it. To avoid that gap when a material switches its
+/// highlight on or off while the game runs, create a material of each kind at load time:
+/// compiled pipelines are kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PhongMaterialKey {
+    /// Whether the material has a specular term.
+    pub specular: bool,
+}
+
+impl From<&PhongMaterial> for PhongMaterialKey {
+    fn from(material: &PhongMaterial) -> Self {
+        Self {
+            specular: PhongMaterialUniform::from(material).specular != Vec3::ZERO,
+        }
+    }
+}
+
 impl Material for PhongMaterial {
     fn fragment_shader() -> ShaderRef {
         PHONG_MATERIAL_SHADER.into()
+    }
+
+    fn specialize(
+        _pipeline: &MaterialPipeline,
+        descriptor: &mut RenderPipelineDescriptor,
+        _layout: &MeshVertexBufferLayoutRef,
+        key: MaterialPipelineKey<Self>,
+    ) -> Result<(), SpecializedMeshPipelineError> {
+        if !key.bind_group_data.specular
+            && let Some(fragment) = descriptor.fragment.as_mut()
+        {
+            fragment.shader_defs.push("PHONG_NO_SPECULAR".into());
+        }
+        Ok(())
     }
 
     fn alpha_mode(&self) -> AlphaMode {

@@ -1,6 +1,7 @@
 //! [`PhongPlugin`] and the system sets it runs in.
 
 use crate::{
+    culling::PhongLightCulling,
     lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
     material::{PhongMaterial, SpecularModel},
     render::{LightBufferResized, PhongLightBuffer, gather_lights, refresh_material_bind_groups},
@@ -46,9 +47,11 @@ impl Plugin for PhongPlugin {
     fn build(&self, app: &mut App) {
         crate::render::init_shader_buffers(app);
         app.init_resource::<PhongAmbientLight>()
+            .init_resource::<PhongLightCulling>()
             .init_resource::<PhongLightBuffer>()
             .add_message::<LightBufferResized>()
             .register_type::<PhongAmbientLight>()
+            .register_type::<PhongLightCulling>()
             .register_type::<PhongDirectionalLight>()
             .register_type::<PhongPointLight>()
             .register_type::<PhongSpotLight>()

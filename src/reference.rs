@@ -16,6 +16,7 @@
 //! - an attenuation denominator at or below 1 (a `Decay` of all zeros included) gives 1.
 
 use crate::{
+    culling::influence_radius,
     lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
     material::{PhongMaterial, SpecularModel},
     render::light_direction,
@@ -126,6 +127,52 @@ pub struct Lights {
     pub ambient: DVec3,
     /// Directional, point and spot lights.
     pub lights: Vec<Light>,
+}
+
+impl Lights {
+    /// These lights as [`PhongLightCulling`](crate::PhongLightCulling) with `epsilon`
+    /// leaves them: each point and spot light's range shortened to its
+    /// [`influence_radius`](crate::culling::influence_radius), and the lights that reach
+    /// nowhere left out. With `epsilon = 0`, the lights unchanged.
+    pub fn culled(&self, epsilon: f32) -> Lights {
+        let limit = |range: &mut Option<f64>, decay: [f64; 3], color: DVec3, specular: DVec3| {
+            let intensity = color.max_element().max(specular.max_element()) as f32;
+            let radius = influence_radius(decay.map(|c| c as f32), intensity, epsilon);
+            if radius.is_finite() {
+                *range = Some(range.map_or(f64::from(radius), |r| r.min(f64::from(radius))));
+            }
+            *range != Some(0.0)
+        };
+        let lights = self
+            .lights
+            .iter()
+            .copied()
+            .filter_map(|mut light| {
+                let reaches = match &mut light {
+                    Light::Directional { .. } => true,
+                    Light::Point {
+                        range,
+                        decay,
+                        color,
+                        specular,
+                        ..
+                    }
+                    | Light::Spot {
+                        range,
+                        decay,
+                        color,
+                        specular,
+                        ..
+                    } => limit(range, *decay, *color, *specular),
+                };
+                reaches.then_some(light)
+            })
+            .collect();
+        Lights {
+            ambient: self.ambient,
+            lights,
+        }
+    }
 }
 
 /// The color of `surface` made of `material` under `lights` (SPEC.md's equation):

@@ -356,7 +356,7 @@ mod tests {
 
         // Both lights are in the buffer, with finite values.
         let state = app.world().resource::<PhongLightBuffer>();
-        assert_eq!(state.header().point_count, 2);
+        assert_eq!(state.header().light_count(), 2);
         assert!(
             state
                 .records()

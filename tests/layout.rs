@@ -4,7 +4,7 @@
 use bevy::render::render_resource::ShaderType;
 use bevy_phong::{
     PhongMaterialUniform,
-    render::{GpuLight, GpuLightsHeader},
+    render::{GpuLight, GpuLightGridHeader, GpuLightsHeader},
 };
 use std::mem::offset_of;
 
@@ -81,7 +81,32 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
         offset("spot_count"),
         offset_of!(GpuLightsHeader, spot_count)
     );
+    assert_eq!(
+        offset("grid_point_count"),
+        offset_of!(GpuLightsHeader, grid_point_count)
+    );
+    assert_eq!(
+        offset("grid_spot_count"),
+        offset_of!(GpuLightsHeader, grid_spot_count)
+    );
     assert_eq!(offset("lights"), size_of::<GpuLightsHeader>());
+}
+
+#[test]
+fn light_grid_header_matches_wgsl_phong_light_grid() {
+    let (_, members) = wgsl_struct(&types_module(), "PhongLightGrid");
+    let rust = [
+        ("origin", offset_of!(GpuLightGridHeader, origin)),
+        ("cell_size", offset_of!(GpuLightGridHeader, cell_size)),
+        ("dimensions", offset_of!(GpuLightGridHeader, dimensions)),
+        ("padding", offset_of!(GpuLightGridHeader, padding)),
+        ("data", size_of::<GpuLightGridHeader>()),
+    ];
+    let rust: Vec<(String, u32)> = rust
+        .iter()
+        .map(|(name, offset)| (name.to_string(), *offset as u32))
+        .collect();
+    assert_eq!(members, rust);
 }
 
 #[test]

@@ -2,11 +2,13 @@
 //! into the light buffer.
 
 use super::{
-    PHONG_LIGHT_BUFFER,
-    gpu_types::{GpuLight, GpuLightsHeader},
+    PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER,
+    gpu_types::{GpuLight, GpuLightGridHeader, GpuLightsHeader},
     light_buffer::{LightBuffer, LightBufferResized},
-    light_records::linear_rgb,
+    light_grid::{LightGrid, has_finite_reach},
+    light_records::{limit_reach, linear_rgb},
 };
+use crate::culling::PhongLightCulling;
 use crate::lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use crate::validation::is_finite_transform;
 use bevy::{
@@ -25,12 +27,17 @@ use bevy::{
     transform::components::GlobalTransform,
 };
 
-/// The built-in lights' buffer and the scratch space the gather system fills it from.
+/// The built-in lights' buffer and light grid, and the scratch space the gather system
+/// fills them from (kept between frames: no allocation once the scene's size is reached).
 #[derive(Resource, Debug)]
 pub struct PhongLightBuffer {
     buffer: LightBuffer,
     records: Vec<GpuLight>,
     header: GpuLightsHeader,
+    grid_buffer: LightBuffer,
+    grid: LightGrid,
+    points: Vec<GpuLight>,
+    spots: Vec<GpuLight>,
 }
 
 impl Default for PhongLightBuffer {
@@ -39,6 +46,10 @@ impl Default for PhongLightBuffer {
             buffer: LightBuffer::new(PHONG_LIGHT_BUFFER),
             records: Vec::new(),
             header: GpuLightsHeader::default(),
+            grid_buffer: LightBuffer::new(PHONG_LIGHT_GRID_BUFFER),
+            grid: LightGrid::default(),
+            points: Vec::new(),
+            spots: Vec::new(),
         }
     }
 }
@@ -49,9 +60,19 @@ impl PhongLightBuffer {
         &self.header
     }
 
-    /// The records last written, directional then point then spot lights.
+    /// The records last written, in the order [`GpuLightsHeader`] describes.
     pub fn records(&self) -> &[GpuLight] {
         &self.records
+    }
+
+    /// Where the light grid last written lies.
+    pub fn grid_header(&self) -> &GpuLightGridHeader {
+        self.grid.header()
+    }
+
+    /// The light grid's cell records and light indices last written.
+    pub fn grid_data(&self) -> &[u32] {
+        self.grid.data()
     }
 
     /// How many lights the GPU buffer has room for.
@@ -115,12 +136,13 @@ pub fn push_visible<L: Component, R>(
     (records.len() - start) as u32
 }
 
-/// Writes every visible built-in light into [`PhongLightBuffer`] when any of them, or the
-/// ambient light, changed (and on the first run); otherwise it touches nothing, so the GPU
-/// buffer is not uploaded again.
+/// Writes every visible built-in light into [`PhongLightBuffer`], and those of finite reach
+/// into its light grid, when any of them, the ambient light or [`PhongLightCulling`] changed
+/// (and on the first run); otherwise it touches nothing, so no GPU buffer is uploaded again.
 #[allow(clippy::too_many_arguments)]
 pub fn gather_lights(
     ambient: Res<PhongAmbientLight>,
+    culling: Res<PhongLightCulling>,
     directional: LightQuery<PhongDirectionalLight>,
     point: LightQuery<PhongPointLight>,
     spot: LightQuery<PhongSpotLight>,
@@ -137,6 +159,7 @@ pub fn gather_lights(
         point_changes.any(),
         spot_changes.any(),
         ambient.is_changed(),
+        culling.is_changed(),
         state.capacity() == 0,
     ];
     if !changes.contains(&true) {
@@ -145,24 +168,64 @@ pub fn gather_lights(
 
     let state = &mut *state;
     state.records.clear();
+    state.points.clear();
+    state.spots.clear();
+    let directional_count = push_visible(
+        &directional,
+        &mut state.records,
+        PhongDirectionalLight::to_gpu,
+    );
+    push_visible(&point, &mut state.points, PhongPointLight::to_gpu);
+    push_visible(&spot, &mut state.spots, PhongSpotLight::to_gpu);
+    for lights in [&mut state.points, &mut state.spots] {
+        lights.retain_mut(|light| limit_reach(light, culling.epsilon));
+    }
+
+    // Unlimited reach first (every fragment loops over them), then the grid's lights.
+    let in_grid = |light: &GpuLight| culling.grid && has_finite_reach(light);
+    let mut append = |lights: &[GpuLight], grid: bool| {
+        let start = state.records.len();
+        state
+            .records
+            .extend(lights.iter().filter(|light| in_grid(light) == grid));
+        (state.records.len() - start) as u32
+    };
+    let point_count = append(&state.points, false);
+    let spot_count = append(&state.spots, false);
+    let grid_point_count = append(&state.points, true);
+    let grid_spot_count = append(&state.spots, true);
+    let grid_start = (directional_count + point_count + spot_count) as usize;
+    let grid_spots_start = grid_start + grid_point_count as usize;
+    state.grid.build(
+        &state.records,
+        grid_start..grid_spots_start,
+        grid_spots_start..state.records.len(),
+    );
+
     state.header = GpuLightsHeader {
         ambient: linear_rgb(ambient.color),
-        directional_count: push_visible(
-            &directional,
-            &mut state.records,
-            PhongDirectionalLight::to_gpu,
-        ),
-        point_count: push_visible(&point, &mut state.records, PhongPointLight::to_gpu),
-        spot_count: push_visible(&spot, &mut state.records, PhongSpotLight::to_gpu),
-        padding: [0; 2],
+        directional_count,
+        point_count,
+        spot_count,
+        grid_point_count,
+        grid_spot_count,
     };
-    if state
+    let lights_resized = state
         .buffer
-        .write(&mut buffers, &state.header, &state.records)
-    {
-        resized.write(LightBufferResized {
-            buffer: state.buffer.handle().clone(),
-        });
+        .write(&mut buffers, &state.header, &state.records);
+    let grid_resized =
+        state
+            .grid_buffer
+            .write(&mut buffers, state.grid.header(), state.grid.data());
+    for (was_resized, buffer) in [
+        (lights_resized, &state.buffer),
+        (grid_resized, &state.grid_buffer),
+    ] {
+        if was_resized {
+            resized.write(LightBufferResized {
+                buffer: buffer.handle().clone(),
+            });
+        }
     }
 }
 

@@ -40,7 +40,9 @@ pub struct GpuLight {
 /// `lights` array): 32 bytes.
 ///
 /// The array that follows holds `directional_count` directional lights, then `point_count`
-/// point lights, then `spot_count` spot lights.
+/// point lights and `spot_count` spot lights of unlimited reach (every fragment loops over
+/// these), then `grid_point_count` point lights and `grid_spot_count` spot lights of finite
+/// reach, which fragments find through the light grid ([`GpuLightGridHeader`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightsHeader {
@@ -48,20 +50,58 @@ pub struct GpuLightsHeader {
     pub ambient: [f32; 3],
     /// Number of directional lights at the start of the array.
     pub directional_count: u32,
-    /// Number of point lights after the directional ones.
+    /// Number of point lights of unlimited reach after the directional ones.
     pub point_count: u32,
-    /// Number of spot lights after the point lights.
+    /// Number of spot lights of unlimited reach after those point lights.
     pub spot_count: u32,
-    /// Unused; the array that follows starts at a 16-byte boundary.
-    pub padding: [u32; 2],
+    /// Number of point lights of finite reach after those spot lights (in the grid).
+    pub grid_point_count: u32,
+    /// Number of spot lights of finite reach at the end of the array (in the grid).
+    pub grid_spot_count: u32,
 }
 
 impl GpuLightsHeader {
     /// Total number of lights in the array.
     pub fn light_count(&self) -> usize {
-        (self.directional_count + self.point_count + self.spot_count) as usize
+        (self.directional_count
+            + self.point_count
+            + self.spot_count
+            + self.grid_point_count
+            + self.grid_spot_count) as usize
+    }
+}
+
+/// The fixed part at the start of the light grid buffer (`PhongLightGrid` in WGSL, before
+/// its `data` array): 32 bytes. See `render::light_grid` for the array.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuLightGridHeader {
+    /// World-space corner of cell `(0, 0, 0)`, the grid's minimum.
+    pub origin: [f32; 3],
+    /// Edge length of the cubic cells, world units.
+    pub cell_size: f32,
+    /// Number of cells along x, y and z; zeros when no light is in the grid.
+    pub dimensions: [u32; 3],
+    /// Unused; the array that follows starts at a 16-byte boundary.
+    pub padding: u32,
+}
+
+impl GpuLightGridHeader {
+    /// A grid of no cells.
+    pub const EMPTY: Self = Self {
+        origin: [0.0; 3],
+        cell_size: 1.0,
+        dimensions: [0; 3],
+        padding: 0,
+    };
+}
+
+impl Default for GpuLightGridHeader {
+    fn default() -> Self {
+        Self::EMPTY
     }
 }
 
 const _: () = assert!(size_of::<GpuLight>() == 80);
 const _: () = assert!(size_of::<GpuLightsHeader>() == 32);
+const _: () = assert!(size_of::<GpuLightGridHeader>() == 32);

@@ -71,7 +71,8 @@ impl LightBuffer {
         }
     }
 
-    /// Writes `header` then `records` (zero-filled up to the capacity) into the asset.
+    /// Writes `header` then `records` (zero-filled up to the capacity) into the asset,
+    /// unless it holds exactly these bytes already (then it is left alone, and not uploaded).
     ///
     /// Returns `true` when the byte size changed (or the asset was created), which gives the
     /// buffer a new GPU buffer: the caller must then send [`LightBufferResized`].
@@ -87,6 +88,12 @@ impl LightBuffer {
         self.capacity = capacity;
         let size = size_of::<H>() + capacity * size_of::<R>();
 
+        let unchanged = buffers
+            .get(&self.handle)
+            .is_some_and(|asset| holds(asset, header, records, size));
+        if unchanged {
+            return resized;
+        }
         match buffers.get_or_insert_with(&self.handle, ShaderBuffer::default) {
             Ok(mut asset) => fill(&mut asset, header, records, size),
             // Only a stale `Handle::Index` can fail; the buffer keeps its last contents.
@@ -94,6 +101,20 @@ impl LightBuffer {
         }
         resized
     }
+}
+
+/// Whether `asset` holds `header, records`, zero-padded to `size`.
+fn holds<H: Pod, R: Pod>(asset: &ShaderBuffer, header: &H, records: &[R], size: usize) -> bool {
+    let Some(data) = asset.data.as_deref() else {
+        return false;
+    };
+    let header = bytemuck::bytes_of(header);
+    let records: &[u8] = bytemuck::cast_slice(records);
+    let (stored_header, rest) = data.split_at(header.len().min(data.len()));
+    data.len() == size
+        && stored_header == header
+        && rest.starts_with(records)
+        && rest[records.len()..].iter().all(|&byte| byte == 0)
 }
 
 /// Replaces the bytes of `asset` with `header, records`, zero-padded to `size`.

@@ -1,6 +1,7 @@
 //! From light components and their transforms to [`GpuLight`] records.
 
 use super::gpu_types::GpuLight;
+use crate::culling::influence_radius;
 use crate::lights::{Decay, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use bevy::{color::Color, math::Vec3, transform::components::GlobalTransform};
 
@@ -19,6 +20,21 @@ pub fn light_direction(transform: &GlobalTransform) -> Vec3 {
 /// `range`, with `None` stored as `f32::MAX` (never reached).
 fn stored_range(range: Option<f32>) -> f32 {
     range.unwrap_or(f32::MAX)
+}
+
+/// Shortens a point or spot light's `range` to its influence radius for `epsilon` (see
+/// [`crate::culling`]), from its largest color or specular channel; returns `false` when the
+/// light reaches nowhere, so that it can be left out.
+pub fn limit_reach(light: &mut GpuLight, epsilon: f32) -> bool {
+    let intensity = light
+        .color
+        .into_iter()
+        .chain(light.specular)
+        .fold(0.0, f32::max);
+    light.range = light
+        .range
+        .min(influence_radius(light.decay, intensity, epsilon));
+    light.range > 0.0
 }
 
 /// The diffuse and specular intensities of a light whose specular color may default.

@@ -42,6 +42,11 @@ const LN_NEGLIGIBLE: f32 = -80.0;
 // branch on a uniform value makes some drivers (lavapipe) recompile the shader for every
 // material bound.
 fn power_of_one_minus(d: f32, exponent: f32) -> f32 {
+    // ln(1 - d) ≤ -d, so past α·d > 80 the value is flushed anyway: skip the log and exp
+    // (most of a surface, away from its highlights).
+    if exponent * d > -LN_NEGLIGIBLE {
+        return 0.0;
+    }
     let ln_power = exponent * ln_one_minus(min(d, 1.0));
     let value = select(exp(ln_power), 0.0, !(d < 1.0) || ln_power < LN_NEGLIGIBLE);
     return select(value, 1.0, exponent == 0.0);
@@ -136,7 +141,12 @@ fn phong_light(
         return vec3<f32>(0.0);
     }
     let diffuse = color * surface.diffuse * n_dot_l;
+#ifdef PHONG_NO_SPECULAR
+    // The material's k_s · strength is zero: the variant without the highlight.
+    return diffuse;
+#else
     return diffuse + specular * surface.specular * highlight(surface, to_light, n_dot_l);
+#endif
 }
 
 // A directional light: L = -direction, no attenuation.

@@ -1,7 +1,7 @@
 // Lights a surface point with every light in the light buffer.
 #define_import_path bevy_phong::shading
 
-#import bevy_phong::bindings::{lights, material}
+#import bevy_phong::bindings::{light_grid, lights, material}
 #import bevy_phong::lighting::{directional_light, phong_surface, point_light, spot_light}
 #import bevy_phong::types::PhongSurface
 
@@ -24,7 +24,8 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
     return lights.ambient * material.ambient_factor * surface.diffuse;
 }
 
-// Σ over every directional, point and spot light in the buffer.
+// Σ over every light that reaches the surface point: the directional lights, the point and
+// spot lights of unlimited reach, and those of the point's grid cell.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     var color = vec3<f32>(0.0);
     var index = 0u;
@@ -39,6 +40,29 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     let spot_end = point_end + lights.spot_count;
     for (; index < spot_end; index += 1u) {
         color += spot_light(surface, lights.lights[index]);
+    }
+    return color + grid_lights(surface);
+}
+
+// Σ over the point and spot lights listed in the grid cell that holds the surface point.
+fn grid_lights(surface: PhongSurface) -> vec3<f32> {
+    let dimensions = light_grid.dimensions;
+    let cell = (surface.position - light_grid.origin) / light_grid.cell_size;
+    // Outside the grid no light of finite reach arrives; `!(…)` also rejects NaN.
+    if !(all(cell >= vec3<f32>(0.0)) && all(cell < vec3<f32>(dimensions))) {
+        return vec3<f32>(0.0);
+    }
+    let cell_index = vec3<u32>(cell);
+    let record = 4u * (cell_index.x + dimensions.x * (cell_index.y + dimensions.y * cell_index.z));
+    var slot = light_grid.data[record];
+    let point_end = slot + light_grid.data[record + 1u];
+    let spot_end = point_end + light_grid.data[record + 2u];
+    var color = vec3<f32>(0.0);
+    for (; slot < point_end; slot += 1u) {
+        color += point_light(surface, lights.lights[light_grid.data[slot]]);
+    }
+    for (; slot < spot_end; slot += 1u) {
+        color += spot_light(surface, lights.lights[light_grid.data[slot]]);
     }
     return color;
 }

@@ -27,13 +27,32 @@ struct PhongLight {
 }
 
 // The light buffer: the ambient light, then `directional_count` directional lights,
-// `point_count` point lights and `spot_count` spot lights, in that order.
+// `point_count` point lights and `spot_count` spot lights of unlimited reach (every fragment
+// loops over them), then `grid_point_count` point lights and `grid_spot_count` spot lights
+// of finite reach (fragments find these through the light grid), in that order.
 struct PhongLights {
     ambient: vec3<f32>,
     directional_count: u32,
     point_count: u32,
     spot_count: u32,
+    grid_point_count: u32,
+    grid_spot_count: u32,
     lights: array<PhongLight>,
+}
+
+// The light grid: cubic cells over the lights of finite reach. `data` holds one record per
+// cell (x fastest, then y, then z): `[first, point_count, spot_count, 0]`, where
+// `data[first..]` are the indices (into `PhongLights.lights`) of the cell's point lights,
+// then of its spot lights.
+struct PhongLightGrid {
+    // World-space corner of cell (0, 0, 0).
+    origin: vec3<f32>,
+    // Edge length of the cells, world units.
+    cell_size: f32,
+    // Cells along x, y, z; zeros when no light is in the grid.
+    dimensions: vec3<u32>,
+    padding: u32,
+    data: array<u32>,
 }
 
 // `PhongMaterial` as the shader reads it.

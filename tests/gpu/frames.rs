@@ -247,10 +247,54 @@ fn material_changes_show_in_the_next_frame() {
     });
     check(&mut harness, &inputs, "material_changed");
 
+    // The floor now needs the variant without specular; once it has compiled (see
+    // `a_new_shader_variant_leaves_a_gap_once_and_cached_ones_none`), it is drawn as before.
     edit_material(&mut harness, &materials[0], |floor| {
         floor.specular_strength = 0.0
     });
+    harness.settle();
     check(&mut harness, &inputs, "material_without_specular");
+}
+
+/// Pixels a mesh covers: the background is cleared to alpha 0, materials draw alpha 1.
+fn covered_pixels(image: &FloatImage) -> usize {
+    image.pixels.iter().filter(|pixel| pixel[3] > 0.0).count()
+}
+
+#[test]
+fn a_new_shader_variant_leaves_a_gap_once_and_cached_ones_none() {
+    let (mut harness, inputs, materials) = scene();
+    harness.world_mut().spawn(red_point_light());
+    harness.settle();
+    let all_drawn = covered_pixels(&harness.render_next_frame());
+
+    // First switch to the variant without specular: Bevy skips the floor until it compiled.
+    let start = std::time::Instant::now();
+    edit_material(&mut harness, &materials[0], |floor| {
+        floor.specular_strength = 0.0
+    });
+    let mut gap_frames = 0;
+    while covered_pixels(&harness.render_next_frame()) < all_drawn {
+        gap_frames += 1;
+        assert!(gap_frames < 600, "the variant never compiled");
+    }
+    println!(
+        "first use of the variant without specular: floor missing for {gap_frames} frames, \
+         {:.0} ms",
+        start.elapsed().as_secs_f64() * 1000.0
+    );
+
+    // Both pipelines are now cached: switching back and forth shows in the very next frame.
+    for (case, strength) in [("specular_back_on", 0.5), ("specular_off_again", 0.0)] {
+        edit_material(&mut harness, &materials[0], |floor| {
+            floor.specular_strength = strength
+        });
+        let rendered = harness.render_next_frame();
+        assert_eq!(covered_pixels(&rendered), all_drawn, "{case}: no gap");
+        harness
+            .compare(&rendered, &inputs)
+            .assert_within(case, TOLERANCE);
+    }
 }
 
 fn edit_material(

@@ -88,8 +88,14 @@ impl Harness {
     }
 
     /// A harness whose app also gets what `add_plugins` adds after `PhongPlugin`.
+    ///
+    /// Lights are culled only past their range ([`PhongLightCulling::EXACT`]), so that
+    /// renders follow SPEC.md exactly; tests of ε culling insert their own setting.
     pub fn with_plugins(width: u32, height: u32, add_plugins: impl FnOnce(&mut App)) -> Self {
-        let mut app = headless_app(add_plugins);
+        let mut app = headless_app(|app| {
+            app.insert_resource(PhongLightCulling::EXACT);
+            add_plugins(app);
+        });
         let received = Received::default();
         let sink = received.clone();
         app.insert_resource(received);
@@ -125,6 +131,19 @@ impl Harness {
 
     pub fn world_mut(&mut self) -> &mut World {
         self.app.world_mut()
+    }
+
+    /// Moves the camera to `position`, looking at the origin (before `capture_inputs`).
+    #[allow(
+        dead_code,
+        reason = "used by the benchmark example, which includes this file"
+    )]
+    pub fn look_from(&mut self, position: Vec3) {
+        let world = self.app.world_mut();
+        let mut camera = world.query_filtered::<&mut Transform, With<Camera3d>>();
+        for mut transform in camera.iter_mut(world) {
+            *transform = Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y);
+        }
     }
 
     /// Runs frames until every pipeline has compiled and two more frames were drawn.
@@ -387,9 +406,13 @@ impl Comparison {
     }
 
     fn write_pngs(&self, case: &str) -> PathBuf {
-        let directory = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-            .parent()
-            .map(|target| target.join("render-tests"))
+        // `CARGO_TARGET_TMPDIR` is set for tests; the benchmark example includes this file too.
+        let directory = option_env!("CARGO_TARGET_TMPDIR")
+            .and_then(|tmp| {
+                PathBuf::from(tmp)
+                    .parent()
+                    .map(|target| target.join("render-tests"))
+            })
             .unwrap_or_else(|| PathBuf::from("target/render-tests"));
         std::fs::create_dir_all(&directory).expect("create target/render-tests");
         let difference: Vec<[f32; 3]> = self

@@ -3,11 +3,13 @@
 //! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
 //!   reference model, on each pixel's own inputs;
 //! - `searchlight`: the same for the searchlight example's extension;
+//! - `culling`: the light grid and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel.
 
 mod contract;
+mod culling;
 mod frames;
 mod harness;
 #[path = "../../examples/support/headless.rs"]

@@ -1,0 +1,293 @@
+//! Frame time of `PhongMaterial` beside Bevy's `StandardMaterial` (lit by the equivalent
+//! Bevy lights) and a constant-color material (the floor: rasterization and Bevy's overhead
+//! without lighting), rendered headless on the render device, measured side by side in one
+//! run; then the frame time of each speed/accuracy variant next to its error against the
+//! f64 reference model.
+//!
+//! ```sh
+//! cargo run --example bench             # the full tables (about half an hour)
+//! cargo run --example bench -- --quick  # a small smoke run (what CI runs)
+//! cargo run --example bench -- --scene showcase --size 1024 --no-variants  # one row
+//! ```
+//!
+//! `--scene` (`showcase`, `field16`, `field256`, `field4096`) and `--size` may be repeated
+//! to pick rows of the frame-time table; `--no-variants` skips the second table.
+//!
+//! Each frame is timed from the start of `App::update` until the device has finished the
+//! frame's work; the tables give the median over the measured frames, after the pipelines
+//! compiled and a few warm-up frames. Errors are the largest per-channel difference from
+//! `bevy_phong::reference` over a 128² render (relative to `max(1, |expected|)`), measured
+//! with the render tests' harness. It writes `target/bench/*.csv` and `target/bench/*.png`.
+
+mod accuracy;
+// The render tests' harness; the benchmark uses part of it.
+#[allow(dead_code)]
+#[path = "../../tests/gpu/harness.rs"]
+mod harness;
+#[path = "../support/headless.rs"]
+mod headless;
+mod plot;
+mod scene;
+mod timing;
+
+use bevy::prelude::*;
+use bevy_phong::{PhongLightCulling, SpecularModel};
+use scene::{Scene, Shading};
+use std::{fmt::Write as _, path::Path, time::Duration};
+use timing::{Frames, median_frame_time};
+
+struct Options {
+    variants: bool,
+    sizes: Vec<u32>,
+    scenes: Vec<Scene>,
+    variant_scene: Scene,
+    variant_size: u32,
+    frames: Frames,
+}
+
+impl Options {
+    fn from_args() -> Self {
+        let args: Vec<String> = std::env::args().skip(1).collect();
+        let mut options = Self::defaults(args.iter().any(|arg| arg == "--quick"));
+        options.variants = !args.iter().any(|arg| arg == "--no-variants");
+        let values = |flag: &str| -> Vec<String> {
+            args.windows(2)
+                .filter(|pair| pair[0] == flag)
+                .map(|pair| pair[1].clone())
+                .collect()
+        };
+        let sizes: Vec<u32> = values("--size")
+            .iter()
+            .filter_map(|v| v.parse().ok())
+            .collect();
+        if !sizes.is_empty() {
+            options.sizes = sizes;
+        }
+        let scenes: Vec<Scene> = values("--scene")
+            .iter()
+            .filter_map(|name| match name.as_str() {
+                "showcase" => Some(Scene::Showcase),
+                "field16" => Some(Scene::Field { lights: 16 }),
+                "field256" => Some(Scene::Field { lights: 256 }),
+                "field4096" => Some(Scene::Field { lights: 4096 }),
+                other => {
+                    eprintln!("unknown scene {other}: showcase, field16, field256 or field4096");
+                    None
+                }
+            })
+            .collect();
+        if !scenes.is_empty() {
+            options.scenes = scenes;
+        }
+        options
+    }
+
+    fn defaults(quick: bool) -> Self {
+        if quick {
+            return Self {
+                variants: true,
+                sizes: vec![128],
+                scenes: vec![Scene::Showcase, Scene::Field { lights: 16 }],
+                variant_scene: Scene::FieldWithoutRanges { lights: 16 },
+                variant_size: 128,
+                frames: Frames {
+                    warmup: 1,
+                    measured: 3,
+                    budget: Duration::ZERO,
+                },
+            };
+        }
+        Self {
+            variants: true,
+            sizes: vec![512, 1024],
+            scenes: vec![
+                Scene::Showcase,
+                Scene::Field { lights: 16 },
+                Scene::Field { lights: 256 },
+                Scene::Field { lights: 4096 },
+            ],
+            variant_scene: Scene::FieldWithoutRanges { lights: 256 },
+            variant_size: 512,
+            frames: Frames {
+                warmup: 2,
+                measured: 31,
+                budget: Duration::from_secs(20),
+            },
+        }
+    }
+}
+
+/// A speed/accuracy variant of the Phong shading.
+struct Variant {
+    name: String,
+    specular_model: Option<SpecularModel>,
+    culling: PhongLightCulling,
+}
+
+fn variants() -> Vec<Variant> {
+    let variant = |name: &str, specular_model, epsilon: f32, grid| Variant {
+        name: name.into(),
+        specular_model,
+        culling: PhongLightCulling { epsilon, grid },
+    };
+    let mut variants = vec![
+        variant("Phong, no culling", Some(SpecularModel::Phong), 0.0, false),
+        variant(
+            "Blinn-Phong, no culling",
+            Some(SpecularModel::BlinnPhong),
+            0.0,
+            false,
+        ),
+        variant("no specular, no culling", None, 0.0, false),
+        variant(
+            "radius eps=1/4096, no grid",
+            Some(SpecularModel::Phong),
+            1.0 / 4096.0,
+            false,
+        ),
+    ];
+    for denominator in [255.0, 1024.0, 4096.0, 16384.0] {
+        let name = format!("grid, eps=1/{denominator}");
+        variants.push(variant(
+            &name,
+            Some(SpecularModel::Phong),
+            1.0 / denominator,
+            true,
+        ));
+    }
+    variants
+}
+
+fn ms(duration: Duration) -> f64 {
+    duration.as_secs_f64() * 1000.0
+}
+
+fn main() {
+    let options = Options::from_args();
+    let directory = Path::new("target/bench");
+    if let Err(error) = std::fs::create_dir_all(directory) {
+        eprintln!("cannot create {}: {error}", directory.display());
+    }
+    frame_times(&options, directory);
+    if options.variants {
+        time_against_error(&options, directory);
+    }
+}
+
+/// Phong beside Standard and the constant-color floor, each scene at each size.
+fn frame_times(options: &Options, directory: &Path) {
+    let default_culling = PhongLightCulling::default();
+    let mut table = String::from(
+        "| scene | size | Phong ms | Standard ms | constant ms | Phong/Standard | Phong/constant | Phong error |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut csv = String::from("scene,size,shading,median_ms\n");
+    let mut series: Vec<plot::Series> = Vec::new();
+    for &size in &options.sizes {
+        let shadings = [
+            ("Phong", Shading::Phong(Some(SpecularModel::Phong))),
+            ("Standard", Shading::Standard),
+            ("constant", Shading::Constant),
+        ];
+        let first_series = series.len();
+        series.extend(shadings.iter().map(|(name, _)| plot::Series {
+            label: format!("{name} {size}x{size}"),
+            points: Vec::new(),
+        }));
+        for &scene in &options.scenes {
+            let times = shadings.map(|(name, shading)| {
+                let median = ms(median_frame_time(
+                    scene,
+                    size,
+                    shading,
+                    default_culling,
+                    options.frames,
+                ));
+                let _ = writeln!(csv, "{},{size},{name},{median:.3}", scene.name());
+                eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
+                median
+            });
+            let error = accuracy::max_error(scene, Some(SpecularModel::Phong), default_culling);
+            let lights = match scene {
+                Scene::Showcase => 3,
+                Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
+            };
+            for (offset, time) in times.iter().enumerate() {
+                series[first_series + offset]
+                    .points
+                    .push((lights as f64, *time));
+            }
+            let _ = writeln!(
+                table,
+                "| {} | {size}² | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {error:.1e} |",
+                scene.name(),
+                times[0],
+                times[1],
+                times[2],
+                times[0] / times[1],
+                times[0] / times[2],
+            );
+        }
+    }
+    println!("\nFrame time, median ms (Phong with the default PhongLightCulling):\n\n{table}");
+    write(&directory.join("frame_times.csv"), &csv);
+    plot::lines(
+        &directory.join("frame_times.png"),
+        "Frame time on lavapipe: Phong, StandardMaterial, constant color",
+        "point lights in the scene",
+        "median frame time, ms",
+        &series,
+    );
+}
+
+/// Each variant's frame time next to its error against the reference model.
+fn time_against_error(options: &Options, directory: &Path) {
+    let scene = options.variant_scene;
+    let size = options.variant_size;
+    let mut table = String::from("| variant | ms | max error | error × 255 |\n|---|---|---|---|\n");
+    let mut csv = String::from("variant,median_ms,max_error\n");
+    let mut series = Vec::new();
+    for variant in variants() {
+        let shading = Shading::Phong(variant.specular_model);
+        let time = ms(median_frame_time(
+            scene,
+            size,
+            shading,
+            variant.culling,
+            options.frames,
+        ));
+        let error = accuracy::max_error(scene, variant.specular_model, variant.culling);
+        eprintln!("{}: {time:.1} ms, error {error:.2e}", variant.name);
+        let _ = writeln!(
+            table,
+            "| {} | {time:.1} | {error:.2e} | {:.3} |",
+            variant.name,
+            error * 255.0
+        );
+        let _ = writeln!(csv, "{},{time:.3},{error:.3e}", variant.name);
+        series.push(plot::Series {
+            label: variant.name,
+            // Exact variants still carry f32 rounding; the floor keeps them on a log axis.
+            points: vec![(error.max(1e-9), time)],
+        });
+    }
+    println!(
+        "\nRun time against error: {} at {size}² (error at {}²):\n\n{table}",
+        scene.name(),
+        accuracy::ERROR_SIZE
+    );
+    write(&directory.join("time_vs_error.csv"), &csv);
+    plot::points(
+        &directory.join("time_vs_error.png"),
+        &format!("Run time against error: {}, {size}x{size}", scene.name()),
+        "largest error against the f64 model (1/255 is one 8-bit step)",
+        "median frame time, ms",
+        &series,
+    );
+}
+
+fn write(path: &Path, contents: &str) {
+    match std::fs::write(path, contents) {
+        Ok(()) => println!("wrote {}", path.display()),
+        Err(error) => eprintln!("cannot write {}: {error}", path.display()),
+    }
+}

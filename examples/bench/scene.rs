@@ -1,0 +1,229 @@
+//! The benchmark's scenes, drawn with `PhongMaterial`, `StandardMaterial` or a constant color.
+
+use bevy::{prelude::*, render::render_resource::AsBindGroup, shader::ShaderRef};
+use bevy_phong::prelude::*;
+
+/// What the scene's meshes are made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// `PhongMaterial` with this crate's lights, the given highlight, or none.
+    Phong(Option<SpecularModel>),
+    /// Bevy's `StandardMaterial` with the equivalent Bevy lights.
+    Standard,
+    /// [`ConstantColor`]: no lighting at all.
+    Constant,
+}
+
+/// The scenes: the showcase (3 lights), or a field of 100 spheres on a floor under point
+/// lights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scene {
+    /// Seed 000's four shapes under a directional and two point lights.
+    Showcase,
+    /// `lights` point lights that fade as `1 / (1 + 0.2 d²)` and are cut off at 4 units.
+    Field { lights: usize },
+    /// `lights` point lights that fade as `1 / (1 + 4 d²)`, with no range: only ε culling
+    /// bounds their reach.
+    FieldWithoutRanges { lights: usize },
+}
+
+impl Scene {
+    pub fn name(self) -> String {
+        match self {
+            Scene::Showcase => "showcase (3 lights)".into(),
+            Scene::Field { lights } => format!("field, {lights} point lights with range"),
+            Scene::FieldWithoutRanges { lights } => {
+                format!("field, {lights} point lights without range")
+            }
+        }
+    }
+
+    /// Where the camera stands (looking at the origin).
+    pub fn camera_position(self) -> Vec3 {
+        match self {
+            Scene::Showcase => Vec3::new(0.0, 1.0, 8.5),
+            _ => Vec3::new(0.0, 14.0, 16.0),
+        }
+    }
+}
+
+/// A material whose fragment shader returns a constant color.
+#[derive(Asset, AsBindGroup, TypePath, Clone)]
+pub struct ConstantColor {
+    #[uniform(0)]
+    color: LinearRgba,
+}
+
+impl Material for ConstantColor {
+    fn fragment_shader() -> ShaderRef {
+        "shaders/constant_color.wgsl".into()
+    }
+}
+
+/// A small deterministic generator for light positions and colors.
+fn scatter(i: usize) -> (f32, f32, f32) {
+    let golden = 0.618_034_f32;
+    let t = i as f32;
+    (
+        (t * golden).fract(),
+        (t * golden * golden).fract(),
+        (t * 0.754_877_7).fract(),
+    )
+}
+
+/// The meshes of `scene` and their colors.
+fn objects(scene: Scene) -> Vec<(Mesh, Vec3, Color)> {
+    let mut objects: Vec<(Mesh, Vec3, Color)> = Vec::new();
+    if scene == Scene::Showcase {
+        objects.push((
+            Cuboid::new(1.6, 1.6, 1.6).into(),
+            Vec3::new(-4.5, 0.0, 0.0),
+            Color::srgb(0.0, 0.0, 1.0),
+        ));
+        objects.push((
+            Sphere::new(1.0).mesh().uv(64, 48),
+            Vec3::new(-1.5, 0.0, 0.0),
+            Color::srgb(1.0, 0.0, 1.0),
+        ));
+        objects.push((
+            Cylinder::new(0.9, 1.8).into(),
+            Vec3::new(1.5, 0.0, 0.0),
+            Color::srgb(0.0, 0.5, 0.0),
+        ));
+        objects.push((
+            Torus::new(0.45, 1.0).into(),
+            Vec3::new(4.5, 0.0, 0.0),
+            Color::srgb(1.0, 0.0, 0.0),
+        ));
+        return objects;
+    }
+    objects.push((
+        Plane3d::default().mesh().size(40.0, 40.0).into(),
+        Vec3::new(0.0, -0.8, 0.0),
+        Color::srgb(0.7, 0.7, 0.7),
+    ));
+    for x in -5..5 {
+        for z in -5..5 {
+            let position = Vec3::new(x as f32 * 2.4 + 1.2, 0.0, z as f32 * 2.4 + 1.2);
+            let hue = ((x + 5) * 10 + z + 5) as f32 * 3.6;
+            objects.push((
+                Sphere::new(0.8).mesh().uv(24, 16),
+                position,
+                Color::hsl(hue, 0.7, 0.5),
+            ));
+        }
+    }
+    objects
+}
+
+/// A point light of the scene: position, color, this crate's decay and range.
+struct Light {
+    position: Vec3,
+    color: Color,
+    decay: Decay,
+    range: Option<f32>,
+}
+
+fn point_lights(scene: Scene) -> Vec<Light> {
+    let field = |count: usize, decay: Decay, range: Option<f32>| {
+        (0..count)
+            .map(|i| {
+                let (u, v, w) = scatter(i);
+                Light {
+                    position: Vec3::new(u * 24.0 - 12.0, 0.5 + 2.5 * w, v * 24.0 - 12.0),
+                    color: Color::hsl(w * 360.0, 1.0, 0.5),
+                    decay,
+                    range,
+                }
+            })
+            .collect()
+    };
+    match scene {
+        Scene::Showcase => [
+            (Vec3::new(-3.0, 3.0, 0.0), Color::linear_rgb(1.0, 0.0, 0.0)),
+            (Vec3::new(3.0, 3.0, 0.0), Color::linear_rgb(0.0, 0.0, 1.0)),
+        ]
+        .map(|(position, color)| Light {
+            position,
+            color,
+            decay: Decay::quadratic(0.2),
+            range: None,
+        })
+        .into(),
+        Scene::Field { lights } => field(lights, Decay::quadratic(0.2), Some(4.0)),
+        Scene::FieldWithoutRanges { lights } => field(lights, Decay::quadratic(4.0), None),
+    }
+}
+
+/// Spawns the meshes and lights of `scene` drawn with `shading` (no camera).
+pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
+    for (mesh, position, color) in objects(scene) {
+        let mesh = Mesh3d(world.resource_mut::<Assets<Mesh>>().add(mesh));
+        let transform = Transform::from_translation(position);
+        match shading {
+            Shading::Phong(specular_model) => {
+                let material = world
+                    .resource_mut::<Assets<PhongMaterial>>()
+                    .add(PhongMaterial {
+                        base_color: color,
+                        specular_strength: if specular_model.is_some() { 2.0 } else { 0.0 },
+                        shininess: 50.0,
+                        specular_model: specular_model.unwrap_or_default(),
+                        ..default()
+                    });
+                world.spawn((mesh, MeshMaterial3d(material), transform));
+            }
+            Shading::Standard => {
+                let material = world
+                    .resource_mut::<Assets<StandardMaterial>>()
+                    .add(StandardMaterial::from(color));
+                world.spawn((mesh, MeshMaterial3d(material), transform));
+            }
+            Shading::Constant => {
+                let material = world
+                    .resource_mut::<Assets<ConstantColor>>()
+                    .add(ConstantColor {
+                        color: color.into(),
+                    });
+                world.spawn((mesh, MeshMaterial3d(material), transform));
+            }
+        }
+    }
+
+    let directional = Transform::default().looking_to(Vec3::NEG_X, Vec3::Y);
+    let has_directional = scene == Scene::Showcase;
+    match shading {
+        Shading::Phong(_) => {
+            if has_directional {
+                world.spawn((PhongDirectionalLight::default(), directional));
+            }
+            for light in point_lights(scene) {
+                world.spawn((
+                    PhongPointLight {
+                        color: light.color,
+                        decay: light.decay,
+                        range: light.range,
+                        ..default()
+                    },
+                    Transform::from_translation(light.position),
+                ));
+            }
+        }
+        Shading::Standard => {
+            if has_directional {
+                world.spawn((DirectionalLight::default(), directional));
+            }
+            for light in point_lights(scene) {
+                world.spawn((
+                    PointLight {
+                        color: light.color,
+                        range: light.range.unwrap_or(20.0),
+                        ..default()
+                    },
+                    Transform::from_translation(light.position),
+                ));
+            }
+        }
+        Shading::Constant => {}
+    }
+}

@@ -1,0 +1,179 @@
+//! Skipping the lights that cannot reach a surface point: each point and spot light's
+//! influence radius, and the world-space grid that lists, per cell, the lights that reach it.
+//!
+//! A point or spot light reaches no further than its `range`. With [`PhongLightCulling`]'s
+//! `epsilon` (ε) above zero it also stops where its light has faded below ε: its
+//! *influence radius* is the distance past which `I · A(d) < ε`, where `I` is its largest
+//! color or specular channel and `A` its [`Decay`](crate::Decay). Out there it is skipped,
+//! so a skipped light changes a channel of the output by less than
+//! `ε · (k_d + k_s · strength)`: with white, full-strength material colors, under `2ε` per
+//! light. A light without fall-off (`Decay::NONE`) has no influence radius.
+//!
+//! Lights with a finite reach (a range, an influence radius, or both) are sorted into a
+//! world-space grid of cubic cells. A fragment finds its cell and loops only over the lights
+//! listed there; lights of unlimited reach and directional lights are looped over by every
+//! fragment. Sorting is conservative: a light is listed in every cell its sphere touches, so
+//! the grid itself changes no result. See `render::light_grid` for the cell size.
+
+use bevy::{
+    ecs::resource::Resource,
+    prelude::{ReflectDefault, ReflectResource},
+    reflect::Reflect,
+};
+use serde::{Deserialize, Serialize};
+
+/// How the plugin skips the lights that cannot reach a surface point. A resource: insert
+/// it to change the default; changing it rewrites the light buffers in the same frame.
+///
+/// ```
+/// # use bevy::prelude::*;
+/// # use bevy_phong::PhongLightCulling;
+/// fn setup(app: &mut App) {
+///     // Skip lights where they have faded below a quarter of an 8-bit step.
+///     app.insert_resource(PhongLightCulling {
+///         epsilon: 1.0 / 1024.0,
+///         ..default()
+///     });
+/// }
+/// ```
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Resource, Default, Debug, PartialEq, Clone)]
+#[serde(default)]
+pub struct PhongLightCulling {
+    /// ε, in the units of light colors (linear RGB, where 1 is a full channel): a point or
+    /// spot light is skipped where its attenuated intensity falls below it, which changes an
+    /// output channel by less than `ε · (k_d + k_s · strength)` per skipped light.
+    /// `0` skips only past each light's `range`: the exact SPEC.md model.
+    /// Default [`PhongLightCulling::DEFAULT_EPSILON`].
+    pub epsilon: f32,
+    /// Whether lights of finite reach are sorted into a world-space grid, so that a fragment
+    /// loops over the lights of its cell instead of all of them. Exact either way. Default
+    /// `true`.
+    pub grid: bool,
+}
+
+impl PhongLightCulling {
+    /// The default ε, 1/4096 (a sixteenth of an 8-bit step): below what an 8-bit output
+    /// shows even where a few dozen skipped lights add up, while the influence radius of an
+    /// inverse-square light stays 64× shorter than at ε = 0 with a range of 64× its
+    /// half-intensity distance.
+    pub const DEFAULT_EPSILON: f32 = 1.0 / 4096.0;
+
+    /// No skipping by ε (only ranges), no grid: every fragment loops over every light, as
+    /// SPEC.md writes the sum.
+    pub const NONE: Self = Self {
+        epsilon: 0.0,
+        grid: false,
+    };
+
+    /// The exact model (ε = 0) with the grid: lights are skipped only past their range.
+    pub const EXACT: Self = Self {
+        epsilon: 0.0,
+        grid: true,
+    };
+}
+
+impl Default for PhongLightCulling {
+    fn default() -> Self {
+        Self {
+            epsilon: Self::DEFAULT_EPSILON,
+            grid: true,
+        }
+    }
+}
+
+/// The distance (world units) past which a light of largest channel `intensity` with
+/// distance fall-off `1 / (constant + linear·d + quadratic·d²)` stays below `epsilon`:
+/// `f32::INFINITY` when it never does (no fall-off, or `epsilon ≤ 0`), `0` when it never
+/// reaches `epsilon` at all. Computed in `f64`, rounded up.
+///
+/// ```
+/// # use bevy_phong::culling::influence_radius;
+/// // 1 / (1 + 0.09·d + 0.032·d²) falls to 1/256 at about 88 units.
+/// let radius = influence_radius([1.0, 0.09, 0.032], 1.0, 1.0 / 256.0);
+/// assert!((radius - 88.0).abs() < 0.5);
+/// ```
+pub fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
+    if epsilon.is_nan() || epsilon <= 0.0 {
+        return f32::INFINITY;
+    }
+    if intensity.is_nan() || intensity < epsilon {
+        // A ≤ 1, so the light is below ε everywhere (also for a NaN intensity).
+        return 0.0;
+    }
+    let [constant, linear, quadratic] = decay.map(f64::from);
+    // I · A(d) < ε  ⇔  constant + linear·d + quadratic·d² > I / ε  (A's min(1, …) aside,
+    // which only matters where I / ε ≤ 1, handled above).
+    let threshold = f64::from(intensity) / f64::from(epsilon) - constant;
+    let radius = if threshold <= 0.0 {
+        0.0
+    } else if quadratic > 0.0 {
+        // The positive root of quadratic·d² + linear·d - threshold, in the form without
+        // cancellation.
+        2.0 * threshold / (linear + (linear * linear + 4.0 * quadratic * threshold).sqrt())
+    } else if linear > 0.0 {
+        threshold / linear
+    } else {
+        f64::INFINITY
+    };
+    let rounded = radius as f32;
+    if f64::from(rounded) < radius {
+        rounded.next_up()
+    } else {
+        rounded
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference;
+
+    fn intensity_at(decay: [f32; 3], intensity: f32, distance: f32) -> f64 {
+        f64::from(intensity)
+            * reference::attenuation(f64::from(distance), decay.map(f64::from), None)
+    }
+
+    #[test]
+    fn past_the_radius_a_light_stays_below_epsilon() {
+        let epsilon = 1.0 / 4096.0;
+        for (decay, intensity) in [
+            ([1.0, 0.09, 0.032], 1.0),
+            ([1.0, 0.0, 0.2], 3.0),
+            ([1.0, 0.5, 0.0], 0.5),
+            ([0.0, 0.0, 1.0], 100.0),
+        ] {
+            let radius = influence_radius(decay, intensity, epsilon);
+            assert!(radius.is_finite() && radius > 0.0);
+            for factor in [1.0, 1.0001, 2.0, 100.0] {
+                let beyond = intensity_at(decay, intensity, radius * factor);
+                assert!(
+                    beyond <= f64::from(epsilon) * (1.0 + 1e-6),
+                    "{decay:?} at {factor}× the radius: {beyond}"
+                );
+            }
+            let inside = intensity_at(decay, intensity, radius * 0.999);
+            assert!(
+                inside > f64::from(epsilon),
+                "{decay:?} just inside: {inside}"
+            );
+        }
+    }
+
+    #[test]
+    fn lights_without_fall_off_or_epsilon_reach_everywhere() {
+        assert_eq!(influence_radius([1.0, 0.0, 0.0], 1.0, 1e-3), f32::INFINITY);
+        assert_eq!(influence_radius([1.0, 0.0, 0.2], 1.0, 0.0), f32::INFINITY);
+        assert_eq!(
+            influence_radius([1.0, 0.0, 0.2], 1.0, f32::NAN),
+            f32::INFINITY
+        );
+    }
+
+    #[test]
+    fn lights_dimmer_than_epsilon_reach_nowhere() {
+        assert_eq!(influence_radius([1.0, 0.0, 0.2], 1e-4, 1e-3), 0.0);
+        assert_eq!(influence_radius([1.0, 0.0, 0.2], 0.0, 1e-3), 0.0);
+        assert_eq!(influence_radius([4.0, 0.0, 0.2], 2e-3, 1e-3), 0.0);
+    }
+}

@@ -1,0 +1,135 @@
+//! Light culling (`PhongLightCulling`): the light grid changes no pixel, and ε culling
+//! renders exactly the model with each light's range shortened to its influence radius,
+//! whose distance from the exact model is measured here and bounded by `ε · (k_d + k_s)`
+//! per skipped light.
+
+use crate::frames::{SIZE, TOLERANCE};
+use crate::harness::{Harness, SurfaceInputs};
+use bevy::prelude::*;
+use bevy_phong::{prelude::*, reference, render::PhongLightBuffer};
+
+/// A floor and a sphere under `count` point lights scattered over the floor, each fading
+/// with `decay` and cut off at `range`.
+fn scene(count: usize, decay: Decay, range: Option<f32>) -> (Harness, SurfaceInputs) {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight::NONE);
+    for (mesh, transform, material) in [
+        (
+            Plane3d::default().mesh().size(12.0, 12.0).into(),
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.8, 0.8),
+                shininess: 8.0,
+                specular_strength: 0.5,
+                ..default()
+            },
+        ),
+        (
+            Sphere::new(1.0).mesh().uv(48, 32),
+            Transform::default(),
+            PhongMaterial {
+                specular_strength: 1.0,
+                shininess: 50.0,
+                ..default()
+            },
+        ),
+    ] {
+        let mesh: Mesh = mesh;
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+    for i in 0..count {
+        let t = i as f32;
+        let position = Vec3::new(
+            (t * 0.618_034).fract() * 12.0 - 6.0,
+            -0.5 + (t * 0.381_966).fract() * 2.5,
+            (t * 0.754_878).fract() * 12.0 - 6.0,
+        );
+        let color = Color::hsl((t * 0.569_840).fract() * 360.0, 1.0, 0.5);
+        world.spawn((
+            PhongPointLight {
+                color: color.to_linear().with_luminance(0.1).into(),
+                decay,
+                range,
+                ..default()
+            },
+            Transform::from_translation(position),
+        ));
+    }
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    (harness, inputs)
+}
+
+fn set_culling(harness: &mut Harness, culling: PhongLightCulling) {
+    harness.world_mut().insert_resource(culling);
+}
+
+fn grid_light_count(harness: &mut Harness) -> u32 {
+    let header = *harness.world_mut().resource::<PhongLightBuffer>().header();
+    header.grid_point_count + header.grid_spot_count
+}
+
+#[test]
+fn the_light_grid_changes_no_pixel() {
+    let (mut harness, inputs) = scene(600, Decay::new(1.0, 0.5, 0.5), Some(3.0));
+    for (case, culling, in_grid) in [
+        ("grid_of_600_lights", PhongLightCulling::EXACT, 600),
+        ("no_grid_600_lights", PhongLightCulling::NONE, 0),
+        ("grid_again_600_lights", PhongLightCulling::EXACT, 600),
+    ] {
+        set_culling(&mut harness, culling);
+        let rendered = harness.render_next_frame();
+        assert_eq!(grid_light_count(&mut harness), in_grid, "{case}");
+        harness
+            .compare(&rendered, &inputs)
+            .assert_within(case, TOLERANCE);
+    }
+}
+
+#[test]
+fn epsilon_culling_renders_the_model_with_influence_radii() {
+    // Unlimited range: only ε bounds each light's reach. With intensity ≤ 0.3 and
+    // 1 / (1 + 4d²), the influence radius is 4.3 units at ε = 1/255 and 17 at 1/4096.
+    let (mut harness, inputs) = scene(300, Decay::new(1.0, 0.0, 4.0), None);
+    let exact_lights = harness.reference_lights();
+    let materials = harness.world_mut().resource::<Assets<PhongMaterial>>();
+    // The largest k_d + k_s · strength of the scene's materials, per channel.
+    let response = materials
+        .iter()
+        .map(|(_, material)| {
+            let material = reference::Material::from(material);
+            (material.diffuse + material.specular * material.specular_strength).max_element()
+        })
+        .fold(0.0, f64::max);
+    for epsilon in [1.0 / 255.0, 1.0 / 1024.0, 1.0 / 4096.0] {
+        set_culling(
+            &mut harness,
+            PhongLightCulling {
+                epsilon,
+                grid: true,
+            },
+        );
+        let rendered = harness.render_next_frame();
+        let case = format!("epsilon_1_over_{:.0}", 1.0 / epsilon);
+        // What the shader is meant to compute: the model with shortened ranges.
+        let culled_lights = exact_lights.culled(epsilon);
+        let culled = harness.compare_with(&rendered, &inputs, |material, surface| {
+            let material = reference::Material::from(material);
+            Some(reference::shade(surface, &material, &culled_lights))
+        });
+        culled.assert_within(&format!("{case}_against_culled_model"), TOLERANCE);
+        // Its distance from the exact model: each skipped light adds at most ε per unit of
+        // the material's response.
+        let exact = harness.compare(&rendered, &inputs);
+        let skipped = exact_lights.lights.len() as f64;
+        let bound = skipped * f64::from(epsilon) * response + TOLERANCE;
+        exact.assert_within(&format!("{case}_against_exact_model"), bound);
+        assert!(
+            grid_light_count(&mut harness) > 0,
+            "{case}: lights of finite reach go into the grid"
+        );
+    }
+}
