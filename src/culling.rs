@@ -2,12 +2,13 @@
 //! influence radius, and the world-space grid that lists, per cell, the lights that reach it.
 //!
 //! A point or spot light reaches no further than its `range`. With [`PhongLightCulling`]'s
-//! `epsilon` (ε) above zero it also stops where its light has faded below ε: its
-//! *influence radius* is the distance past which `I · A(d) < ε`, where `I` is its largest
-//! color or specular channel and `A` its [`Decay`](crate::Decay). Out there it is skipped,
-//! so a skipped light changes a channel of the output by less than
-//! `ε · (k_d + k_s · strength)`: with white, full-strength material colors, under `2ε` per
-//! light. A light without fall-off (`Decay::NONE`) has no influence radius.
+//! `epsilon` (ε) above zero it also stops where its light has faded below `ε / n`, `n` being
+//! the number of point and spot lights: its *influence radius* is the distance past which
+//! `I · A(d) < ε / n`, where `I` is its largest color or specular channel and `A` its
+//! [`Decay`](crate::Decay). Out there it is skipped. Together the skipped lights change an
+//! output channel by less than `ε · (k_d + k_s · strength)` (under `2ε` for white,
+//! full-strength material colors), however many lights the scene has. A light without
+//! fall-off (`Decay::NONE`) has no influence radius.
 //!
 //! Lights with a finite reach (a range, an influence radius, or both) are sorted into a
 //! world-space grid of cubic cells. A fragment finds its cell and loops only over the lights
@@ -40,11 +41,11 @@ use serde::{Deserialize, Serialize};
 #[reflect(Resource, Default, Debug, PartialEq, Clone)]
 #[serde(default)]
 pub struct PhongLightCulling {
-    /// ε, in the units of light colors (linear RGB, where 1 is a full channel): a point or
-    /// spot light is skipped where its attenuated intensity falls below it, which changes an
-    /// output channel by less than `ε · (k_d + k_s · strength)` per skipped light.
-    /// `0` skips only past each light's `range`: the exact SPEC.md model.
-    /// Default [`PhongLightCulling::DEFAULT_EPSILON`].
+    /// ε, in the units of light colors (linear RGB, where 1 is a full channel): each of the
+    /// `n` point and spot lights is skipped where its attenuated intensity falls below
+    /// `ε / n`, so that all skipped lights together change an output channel by less than
+    /// `ε · (k_d + k_s · strength)`. `0` skips only past each light's `range`: the exact
+    /// SPEC.md model. Default [`PhongLightCulling::DEFAULT_EPSILON`].
     pub epsilon: f32,
     /// Whether lights of finite reach are sorted into a world-space grid, so that a fragment
     /// loops over the lights of its cell instead of all of them. Exact either way. Default
@@ -53,11 +54,10 @@ pub struct PhongLightCulling {
 }
 
 impl PhongLightCulling {
-    /// The default ε, 1/4096 (a sixteenth of an 8-bit step): below what an 8-bit output
-    /// shows even where a few dozen skipped lights add up, while the influence radius of an
-    /// inverse-square light stays 64× shorter than at ε = 0 with a range of 64× its
-    /// half-intensity distance.
-    pub const DEFAULT_EPSILON: f32 = 1.0 / 4096.0;
+    /// The default ε, 1/1024: on a white, full-strength material (`k_d + k_s · strength`
+    /// = 2) culling changes a channel by less than 1/512, under half an 8-bit step, so an
+    /// 8-bit image rounds to the same value or its neighbour.
+    pub const DEFAULT_EPSILON: f32 = 1.0 / 1024.0;
 
     /// No skipping by ε (only ranges), no grid: every fragment loops over every light, as
     /// SPEC.md writes the sum.

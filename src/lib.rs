@@ -65,6 +65,7 @@
 
 pub mod culling;
 pub mod extension;
+pub mod interop;
 mod lights;
 mod material;
 mod plugin;
@@ -76,6 +77,7 @@ mod test_app;
 pub mod validation;
 
 pub use culling::PhongLightCulling;
+pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
 pub use lights::{
     Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
 };

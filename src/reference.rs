@@ -131,10 +131,16 @@ pub struct Lights {
 
 impl Lights {
     /// These lights as [`PhongLightCulling`](crate::PhongLightCulling) with `epsilon`
-    /// leaves them: each point and spot light's range shortened to its
-    /// [`influence_radius`](crate::culling::influence_radius), and the lights that reach
-    /// nowhere left out. With `epsilon = 0`, the lights unchanged.
+    /// leaves them: each of the `n` point and spot lights' range shortened to its
+    /// [`influence_radius`](crate::culling::influence_radius) for `epsilon / n`, and the
+    /// lights that reach nowhere left out. With `epsilon = 0`, the lights unchanged.
     pub fn culled(&self, epsilon: f32) -> Lights {
+        let count = self
+            .lights
+            .iter()
+            .filter(|light| !matches!(light, Light::Directional { .. }))
+            .count();
+        let epsilon = epsilon / count.max(1) as f32;
         let limit = |range: &mut Option<f64>, decay: [f64; 3], color: DVec3, specular: DVec3| {
             let intensity = color.max_element().max(specular.max_element()) as f32;
             let radius = influence_radius(decay.map(|c| c as f32), intensity, epsilon);

@@ -11,7 +11,8 @@
 //! ```
 //!
 //! `--scene` (`showcase`, `field16`, `field256`, `field4096`) and `--size` may be repeated
-//! to pick rows of the frame-time table; `--no-variants` skips the second table.
+//! to pick rows of the frame-time table; `--culling` (`none`, `exact`, `default`) sets the
+//! Phong column's `PhongLightCulling`; `--no-variants` skips the second table.
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -38,9 +39,11 @@ use timing::{Frames, median_frame_time};
 
 struct Options {
     variants: bool,
+    culling: PhongLightCulling,
     sizes: Vec<u32>,
     scenes: Vec<Scene>,
-    variant_scene: Scene,
+    /// The variants' scenes: the same field with and without ranges.
+    variant_lights: usize,
     variant_size: u32,
     frames: Frames,
 }
@@ -56,6 +59,14 @@ impl Options {
                 .map(|pair| pair[1].clone())
                 .collect()
         };
+        for name in values("--culling") {
+            match name.as_str() {
+                "none" => options.culling = PhongLightCulling::NONE,
+                "exact" => options.culling = PhongLightCulling::EXACT,
+                "default" => options.culling = PhongLightCulling::default(),
+                other => eprintln!("unknown culling {other}: none, exact or default"),
+            }
+        }
         let sizes: Vec<u32> = values("--size")
             .iter()
             .filter_map(|v| v.parse().ok())
@@ -86,9 +97,10 @@ impl Options {
         if quick {
             return Self {
                 variants: true,
+                culling: PhongLightCulling::default(),
                 sizes: vec![128],
                 scenes: vec![Scene::Showcase, Scene::Field { lights: 16 }],
-                variant_scene: Scene::FieldWithoutRanges { lights: 16 },
+                variant_lights: 16,
                 variant_size: 128,
                 frames: Frames {
                     warmup: 1,
@@ -99,6 +111,7 @@ impl Options {
         }
         Self {
             variants: true,
+            culling: PhongLightCulling::default(),
             sizes: vec![512, 1024],
             scenes: vec![
                 Scene::Showcase,
@@ -106,7 +119,7 @@ impl Options {
                 Scene::Field { lights: 256 },
                 Scene::Field { lights: 4096 },
             ],
-            variant_scene: Scene::FieldWithoutRanges { lights: 256 },
+            variant_lights: 256,
             variant_size: 512,
             frames: Frames {
                 warmup: 2,
@@ -117,43 +130,52 @@ impl Options {
     }
 }
 
-/// A speed/accuracy variant of the Phong shading.
+/// A speed/accuracy variant of the Phong shading, on one of the two variant scenes.
 struct Variant {
     name: String,
+    /// `true`: the scene's lights have ranges; `false`: only ε bounds their reach.
+    ranged: bool,
     specular_model: Option<SpecularModel>,
     culling: PhongLightCulling,
 }
 
 fn variants() -> Vec<Variant> {
-    let variant = |name: &str, specular_model, epsilon: f32, grid| Variant {
+    let variant = |name: &str, ranged, specular_model, epsilon: f32, grid| Variant {
         name: name.into(),
+        ranged,
         specular_model,
         culling: PhongLightCulling { epsilon, grid },
     };
+    let phong = Some(SpecularModel::Phong);
+    let default_epsilon = PhongLightCulling::DEFAULT_EPSILON;
     let mut variants = vec![
-        variant("Phong, no culling", Some(SpecularModel::Phong), 0.0, false),
+        variant("ranges: Phong, no grid", true, phong, 0.0, false),
         variant(
-            "Blinn-Phong, no culling",
+            "ranges: Blinn-Phong, no grid",
+            true,
             Some(SpecularModel::BlinnPhong),
             0.0,
             false,
         ),
-        variant("no specular, no culling", None, 0.0, false),
+        variant("ranges: no specular, no grid", true, None, 0.0, false),
+        variant("ranges: Phong, grid", true, phong, 0.0, true),
         variant(
-            "radius eps=1/4096, no grid",
-            Some(SpecularModel::Phong),
-            1.0 / 4096.0,
-            false,
-        ),
-    ];
-    for denominator in [255.0, 1024.0, 4096.0, 16384.0] {
-        let name = format!("grid, eps=1/{denominator}");
-        variants.push(variant(
-            &name,
-            Some(SpecularModel::Phong),
-            1.0 / denominator,
+            "ranges: default (grid, eps=1/1024)",
             true,
-        ));
+            phong,
+            default_epsilon,
+            true,
+        ),
+        variant("no ranges: Phong, no culling", false, phong, 0.0, false),
+    ];
+    for (name, epsilon) in [
+        ("1/1024", default_epsilon),
+        ("1/64", 1.0 / 64.0),
+        ("1/8", 0.125),
+        ("1", 1.0),
+    ] {
+        let name = format!("no ranges: grid, eps={name}");
+        variants.push(variant(&name, false, phong, epsilon, true));
     }
     variants
 }
@@ -176,7 +198,7 @@ fn main() {
 
 /// Phong beside Standard and the constant-color floor, each scene at each size.
 fn frame_times(options: &Options, directory: &Path) {
-    let default_culling = PhongLightCulling::default();
+    let default_culling = options.culling;
     let mut table = String::from(
         "| scene | size | Phong ms | Standard ms | constant ms | Phong/Standard | Phong/constant | Phong error |\n|---|---|---|---|---|---|---|---|\n",
     );
@@ -206,7 +228,8 @@ fn frame_times(options: &Options, directory: &Path) {
                 eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
                 median
             });
-            let error = accuracy::max_error(scene, Some(SpecularModel::Phong), default_culling);
+            let (error, _) =
+                accuracy::max_error(scene, Some(SpecularModel::Phong), default_culling);
             let lights = match scene {
                 Scene::Showcase => 3,
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
@@ -241,12 +264,17 @@ fn frame_times(options: &Options, directory: &Path) {
 
 /// Each variant's frame time next to its error against the reference model.
 fn time_against_error(options: &Options, directory: &Path) {
-    let scene = options.variant_scene;
+    let lights = options.variant_lights;
     let size = options.variant_size;
     let mut table = String::from("| variant | ms | max error | error × 255 |\n|---|---|---|---|\n");
     let mut csv = String::from("variant,median_ms,max_error\n");
     let mut series = Vec::new();
     for variant in variants() {
+        let scene = if variant.ranged {
+            Scene::Field { lights }
+        } else {
+            Scene::FieldWithoutRanges { lights }
+        };
         let shading = Shading::Phong(variant.specular_model);
         let time = ms(median_frame_time(
             scene,
@@ -255,7 +283,7 @@ fn time_against_error(options: &Options, directory: &Path) {
             variant.culling,
             options.frames,
         ));
-        let error = accuracy::max_error(scene, variant.specular_model, variant.culling);
+        let (error, _) = accuracy::max_error(scene, variant.specular_model, variant.culling);
         eprintln!("{}: {time:.1} ms, error {error:.2e}", variant.name);
         let _ = writeln!(
             table,
@@ -271,14 +299,14 @@ fn time_against_error(options: &Options, directory: &Path) {
         });
     }
     println!(
-        "\nRun time against error: {} at {size}² (error at {}²):\n\n{table}",
-        scene.name(),
+        "\nRun time against error: the field of {lights} point lights, with ranges (4 units) and \
+         without (1 / (1 + 4d²)), at {size}² (error at {}²):\n\n{table}",
         accuracy::ERROR_SIZE
     );
     write(&directory.join("time_vs_error.csv"), &csv);
     plot::points(
         &directory.join("time_vs_error.png"),
-        &format!("Run time against error: {}, {size}x{size}", scene.name()),
+        &format!("Run time against error: field of {lights} point lights, {size}x{size}"),
         "largest error against the f64 model (1/255 is one 8-bit step)",
         "median frame time, ms",
         &series,

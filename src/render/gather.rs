@@ -177,8 +177,11 @@ pub fn gather_lights(
     );
     push_visible(&point, &mut state.points, PhongPointLight::to_gpu);
     push_visible(&spot, &mut state.spots, PhongSpotLight::to_gpu);
+    // ε bounds the sum of what every skipped light leaves out: each gets ε / count.
+    let count = state.points.len() + state.spots.len();
+    let per_light_epsilon = culling.epsilon / count.max(1) as f32;
     for lights in [&mut state.points, &mut state.spots] {
-        lights.retain_mut(|light| limit_reach(light, culling.epsilon));
+        lights.retain_mut(|light| limit_reach(light, per_light_epsilon));
     }
 
     // Unlimited reach first (every fragment loops over them), then the grid's lights.

@@ -1,0 +1,308 @@
+//! Lighting `PhongMaterial` meshes with Bevy's own lights: [`PhongBevyLightsPlugin`] mirrors
+//! Bevy's `PointLight`, `SpotLight`, `DirectionalLight` and `GlobalAmbientLight` into this
+//! crate's lights, on the same entities, so an existing scene needs no new entities.
+//!
+//! # The conversion
+//!
+//! Bevy's lights are in photometric units, and its renderer multiplies what reaches the
+//! camera by the camera's exposure `e = 2^-EV100 / 1.2` (EV100 9.7, Bevy's default
+//! `Exposure::BLENDER`, gives `e = 6.4e-4`). A Phong light is given the color for which its
+//! diffuse term on a white surface equals what Bevy's Lambertian diffuse term (`k_d / π`)
+//! shows on screen:
+//!
+//! | Bevy | Phong |
+//! |---|---|
+//! | `DirectionalLight { illuminance: E lux, color }` | `color · e · E / π` |
+//! | `PointLight { intensity: Φ lumens, color, range }` | `color · e · Φ / (4π²) · 10⁴`, `Decay::new(0, 0, 10⁴)`, `range` |
+//! | `SpotLight` | as `PointLight`, with its `inner_angle` and `outer_angle` |
+//! | `GlobalAmbientLight { brightness: L cd/m², color }` | `color · e · L` |
+//!
+//! The point light's decay `1 / (10⁴ d²)` (and its color, ×10⁴) reproduce Bevy's
+//! inverse-square fall-off `1 / max(d², 10⁻⁴)` exactly: the `min(1, …)` of SPEC.md's
+//! attenuation clamps where Bevy's `max` does, at 1 cm.
+//!
+//! What does not carry over: Bevy fades a light smoothly to zero toward its `range`, a Phong
+//! light is cut off there; Bevy's spot edge is `smoothstep`-like (a squared ramp), a Phong
+//! spot's is linear; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
+//! specular intensity is its diffuse color, shaped by the material's shininess. Shadows
+//! are not cast. Per-camera `AmbientLight` overrides are not mirrored.
+//!
+//! A mirrored light is updated whenever its Bevy light changes, and removed with it. Do not
+//! also put a Phong light of the same kind on a Bevy light's entity: the mirror owns it.
+
+use crate::{
+    PhongSystems,
+    lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+};
+use bevy::{
+    app::{App, Plugin, PostUpdate},
+    camera::Exposure,
+    color::{Color, ColorToComponents, LinearRgba},
+    ecs::{
+        change_detection::DetectChanges,
+        component::Component,
+        entity::Entity,
+        lifecycle::RemovedComponents,
+        query::Changed,
+        resource::Resource,
+        schedule::IntoScheduleConfigs,
+        system::{Commands, Query, Res, ResMut},
+    },
+    light::{DirectionalLight, GlobalAmbientLight, PointLight, SpotLight},
+    prelude::{ReflectDefault, ReflectResource},
+    reflect::Reflect,
+};
+use core::f32::consts::PI;
+
+/// The quadratic decay coefficient (and color factor) that gives Bevy's
+/// `1 / max(d², 10⁻⁴)` fall-off.
+pub const BEVY_FALL_OFF: f32 = 1e4;
+
+/// Mirrors Bevy's lights into this crate's lights (see the [module docs](self)). Opt-in: add
+/// it beside [`PhongPlugin`](crate::PhongPlugin).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PhongBevyLightsPlugin;
+
+/// The exposure the conversion assumes. A resource; change it to match your camera's
+/// [`Exposure`]. Every mirrored light is converted again when it changes.
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Resource, Default, Debug, PartialEq, Clone)]
+pub struct BevyLightExposure {
+    /// Exposure value at ISO 100. Default Bevy's default camera exposure,
+    /// [`Exposure::EV100_BLENDER`] (9.7).
+    pub ev100: f32,
+}
+
+impl Default for BevyLightExposure {
+    fn default() -> Self {
+        Self {
+            ev100: Exposure::EV100_BLENDER,
+        }
+    }
+}
+
+impl BevyLightExposure {
+    /// The factor Bevy multiplies scene light by, `2^-EV100 / 1.2`.
+    pub fn factor(&self) -> f32 {
+        Exposure { ev100: self.ev100 }.exposure()
+    }
+
+    /// The Phong directional light that shows like `light`.
+    pub fn directional(&self, light: &DirectionalLight) -> PhongDirectionalLight {
+        PhongDirectionalLight {
+            color: scaled(light.color, self.factor() * light.illuminance / PI),
+            specular: None,
+        }
+    }
+
+    /// The Phong point light that shows like `light`.
+    pub fn point(&self, light: &PointLight) -> PhongPointLight {
+        PhongPointLight {
+            color: self.point_color(light.color, light.intensity),
+            specular: None,
+            decay: Decay::new(0.0, 0.0, BEVY_FALL_OFF),
+            range: Some(light.range),
+        }
+    }
+
+    /// The Phong spot light that shows like `light` (its edge linear, not squared).
+    pub fn spot(&self, light: &SpotLight) -> PhongSpotLight {
+        PhongSpotLight {
+            color: self.point_color(light.color, light.intensity),
+            specular: None,
+            decay: Decay::new(0.0, 0.0, BEVY_FALL_OFF),
+            range: Some(light.range),
+            inner_angle: light.inner_angle,
+            outer_angle: light.outer_angle,
+            exponent: 0.0,
+        }
+    }
+
+    /// The Phong ambient light that shows like `light`.
+    pub fn ambient(&self, light: &GlobalAmbientLight) -> PhongAmbientLight {
+        PhongAmbientLight {
+            color: scaled(light.color, self.factor() * light.brightness),
+        }
+    }
+
+    /// `Φ` lumens over the sphere (`Φ / 4π` candela), through a Lambertian `1 / π`, times
+    /// the exposure, times the decay's `10⁴`.
+    fn point_color(&self, color: Color, lumens: f32) -> Color {
+        scaled(
+            color,
+            self.factor() * lumens / (4.0 * PI * PI) * BEVY_FALL_OFF,
+        )
+    }
+}
+
+/// `color`'s linear RGB times `factor`.
+fn scaled(color: Color, factor: f32) -> Color {
+    let linear = color.to_linear().to_vec3() * factor;
+    LinearRgba::rgb(linear.x, linear.y, linear.z).into()
+}
+
+impl Plugin for PhongBevyLightsPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<BevyLightExposure>()
+            .register_type::<BevyLightExposure>()
+            .add_systems(
+                PostUpdate,
+                (
+                    mirror::<DirectionalLight, PhongDirectionalLight>(
+                        BevyLightExposure::directional,
+                    ),
+                    mirror::<PointLight, PhongPointLight>(BevyLightExposure::point),
+                    mirror::<SpotLight, PhongSpotLight>(BevyLightExposure::spot),
+                    mirror_ambient_light,
+                )
+                    .before(PhongSystems::Validate),
+            );
+    }
+}
+
+/// A system that keeps a `P` beside every `B`, converted by `convert`.
+#[allow(clippy::type_complexity)]
+fn mirror<B: Component, P: Component>(
+    convert: fn(&BevyLightExposure, &B) -> P,
+) -> impl FnMut(
+    Commands,
+    Res<BevyLightExposure>,
+    Query<(Entity, &B)>,
+    Query<(Entity, &B), Changed<B>>,
+    RemovedComponents<B>,
+) {
+    move |mut commands, exposure, all, changed, mut removed| {
+        let mut insert = |entity: Entity, light: &B| {
+            commands.entity(entity).insert(convert(&exposure, light));
+        };
+        if exposure.is_changed() {
+            all.iter().for_each(|(entity, light)| insert(entity, light));
+        } else {
+            changed
+                .iter()
+                .for_each(|(entity, light)| insert(entity, light));
+        }
+        for entity in removed.read() {
+            if let Ok(mut entity) = commands.get_entity(entity) {
+                entity.try_remove::<P>();
+            }
+        }
+    }
+}
+
+/// Keeps [`PhongAmbientLight`] equal to Bevy's [`GlobalAmbientLight`], converted.
+fn mirror_ambient_light(
+    exposure: Res<BevyLightExposure>,
+    bevy_ambient: Option<Res<GlobalAmbientLight>>,
+    mut ambient: ResMut<PhongAmbientLight>,
+) {
+    let Some(bevy_ambient) = bevy_ambient else {
+        return;
+    };
+    if bevy_ambient.is_changed() || exposure.is_changed() {
+        *ambient = exposure.ambient(&bevy_ambient);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{reference, test_app::test_app};
+    use bevy::{prelude::Transform, transform::components::GlobalTransform};
+
+    /// What Bevy's renderer shows for a white Lambertian surface facing the light: the
+    /// radiance `E / π` times the exposure, with `E` the illuminance at `distance`.
+    fn bevy_point_radiance(lumens: f32, distance: f64, exposure: f32) -> f64 {
+        let candela = f64::from(lumens) / (4.0 * std::f64::consts::PI);
+        let illuminance = candela / (distance * distance).max(1e-4);
+        illuminance / std::f64::consts::PI * f64::from(exposure)
+    }
+
+    #[test]
+    fn a_mirrored_point_light_shows_as_bright_as_bevy_shows_it() {
+        let exposure = BevyLightExposure::default();
+        let phong = exposure.point(&PointLight {
+            intensity: 800_000.0,
+            range: 50.0,
+            ..PointLight::default()
+        });
+        let light = reference::Light::point(&phong, &GlobalTransform::IDENTITY);
+        let reference::Light::Point { color, decay, .. } = light else {
+            unreachable!()
+        };
+        for distance in [0.001, 0.01, 0.5, 1.0, 3.0, 20.0] {
+            let phong = color.x * reference::attenuation(distance, decay, None);
+            let bevy = bevy_point_radiance(800_000.0, distance, exposure.factor());
+            assert!(
+                (phong - bevy).abs() <= 1e-6 * bevy,
+                "at {distance}: Phong {phong}, Bevy {bevy}"
+            );
+        }
+    }
+
+    #[test]
+    fn directional_and_ambient_lights_convert_by_exposure_over_pi() {
+        let exposure = BevyLightExposure { ev100: 0.0 };
+        let factor = 1.0 / 1.2;
+        let sun = exposure.directional(&DirectionalLight {
+            illuminance: 10.0,
+            ..DirectionalLight::default()
+        });
+        let red = sun.color.to_linear().red;
+        assert!((red - factor * 10.0 / PI).abs() < 1e-6);
+        let ambient = exposure.ambient(&GlobalAmbientLight {
+            brightness: 3.0,
+            color: Color::linear_rgb(1.0, 0.5, 0.0),
+            ..GlobalAmbientLight::default()
+        });
+        let linear = ambient.color.to_linear();
+        assert!((linear.red - factor * 3.0).abs() < 1e-6);
+        assert!((linear.green - factor * 1.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn bevy_lights_are_mirrored_updated_and_removed() {
+        let mut app = test_app(|app| {
+            app.add_plugins(PhongBevyLightsPlugin)
+                .insert_resource(GlobalAmbientLight::default());
+        });
+        let point = app
+            .world_mut()
+            .spawn((PointLight::default(), Transform::default()))
+            .id();
+        let spot = app
+            .world_mut()
+            .spawn((SpotLight::default(), Transform::default()))
+            .id();
+        let sun = app
+            .world_mut()
+            .spawn((DirectionalLight::default(), Transform::default()))
+            .id();
+        app.update();
+        let world = app.world();
+        let exposure = *world.resource::<BevyLightExposure>();
+        assert_eq!(
+            world.get::<PhongPointLight>(point),
+            Some(&exposure.point(&PointLight::default()))
+        );
+        assert!(world.get::<PhongSpotLight>(spot).is_some());
+        assert!(world.get::<PhongDirectionalLight>(sun).is_some());
+        assert_eq!(
+            *world.resource::<PhongAmbientLight>(),
+            exposure.ambient(&GlobalAmbientLight::default())
+        );
+        let header = *world.resource::<crate::render::PhongLightBuffer>().header();
+        assert_eq!(header.directional_count, 1);
+        assert_eq!(header.light_count(), 3);
+
+        app.world_mut().get_mut::<PointLight>(point).unwrap().range = 7.0;
+        app.update();
+        let mirrored = app.world().get::<PhongPointLight>(point).unwrap();
+        assert_eq!(mirrored.range, Some(7.0));
+
+        app.world_mut().entity_mut(point).remove::<PointLight>();
+        app.world_mut().despawn(spot);
+        app.update();
+        assert!(app.world().get::<PhongPointLight>(point).is_none());
+    }
+}
