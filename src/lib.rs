@@ -49,8 +49,14 @@
 //!   specification in code, and the tests compare the shader with it pixel by pixel.
 //! - **Lights** are components: [`PhongDirectionalLight`], [`PhongPointLight`],
 //!   [`PhongSpotLight`]; the ambient light is the resource [`PhongAmbientLight`]. They
-//!   light only [`PhongMaterial`]s (Bevy's own `PointLight` & co. light only Bevy's
-//!   materials). There is no fixed maximum count.
+//!   light only [`PhongMaterial`]s; Bevy's own `PointLight` & co. light them too once
+//!   [`PhongBevyLightsPlugin`] (opt-in, see [`interop`]) mirrors them. There is no fixed
+//!   maximum count.
+//! - **Culling** ([`culling`]) skips the lights that cannot reach a point: past each light's
+//!   range, and (with [`PhongLightCulling`]'s ε) where it has faded below a bound on the
+//!   total error; a world-space light grid lets each fragment loop over only the lights of
+//!   its cell. Materials without a highlight use a shader variant without the specular
+//!   term ([`PhongMaterialKey`]).
 //! - **The light buffer** ([`render`]) is a storage buffer that the gather system rewrites
 //!   in the frames where a light changed; see that module for how it stays bound.
 //! - **Shaders** are embedded: `bevy_phong::types`, `bevy_phong::lighting` (one function per

@@ -60,14 +60,14 @@ impl Material for ConstantColor {
     }
 }
 
-/// A small deterministic generator for light positions and colors.
+/// A small deterministic generator for light positions and colors: the R2 sequence (evenly
+/// spread over the unit square) and a golden-ratio sequence.
 fn scatter(i: usize) -> (f32, f32, f32) {
-    let golden = 0.618_034_f32;
     let t = i as f32;
     (
-        (t * golden).fract(),
-        (t * golden * golden).fract(),
-        (t * 0.754_877_7).fract(),
+        (0.5 + t * 0.754_877_7).fract(),
+        (0.5 + t * 0.569_840_3).fract(),
+        (t * 0.618_034).fract(),
     )
 }
 
