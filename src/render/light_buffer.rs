@@ -39,6 +39,8 @@ pub const MIN_CAPACITY: usize = 16;
 pub struct LightBuffer {
     handle: Handle<ShaderBuffer>,
     capacity: usize,
+    /// Bytes of records last written; past them the asset holds zeros.
+    written: usize,
 }
 
 impl LightBuffer {
@@ -47,6 +49,7 @@ impl LightBuffer {
         Self {
             handle,
             capacity: 0,
+            written: 0,
         }
     }
 
@@ -88,12 +91,17 @@ impl LightBuffer {
         self.capacity = capacity;
         let size = size_of::<H>() + capacity * size_of::<R>();
 
-        let unchanged = buffers
-            .get(&self.handle)
-            .is_some_and(|asset| holds(asset, header, records, size));
+        let records_bytes: &[u8] = bytemuck::cast_slice(records);
+        // Past `written` bytes of records the asset is zero: only the part that may differ
+        // is compared.
+        let unchanged = self.written <= records_bytes.len()
+            && buffers
+                .get(&self.handle)
+                .is_some_and(|asset| holds(asset, bytemuck::bytes_of(header), records_bytes, size));
         if unchanged {
             return resized;
         }
+        self.written = records_bytes.len();
         match buffers.get_or_insert_with(&self.handle, ShaderBuffer::default) {
             Ok(mut asset) => fill(&mut asset, header, records, size),
             // Only a stale `Handle::Index` can fail; the buffer keeps its last contents.
@@ -103,18 +111,12 @@ impl LightBuffer {
     }
 }
 
-/// Whether `asset` holds `header, records`, zero-padded to `size`.
-fn holds<H: Pod, R: Pod>(asset: &ShaderBuffer, header: &H, records: &[R], size: usize) -> bool {
-    let Some(data) = asset.data.as_deref() else {
-        return false;
-    };
-    let header = bytemuck::bytes_of(header);
-    let records: &[u8] = bytemuck::cast_slice(records);
-    let (stored_header, rest) = data.split_at(header.len().min(data.len()));
-    data.len() == size
-        && stored_header == header
-        && rest.starts_with(records)
-        && rest[records.len()..].iter().all(|&byte| byte == 0)
+/// Whether `asset` is `size` bytes long and starts with `header, records` (the caller knows
+/// that the rest is zero).
+fn holds(asset: &ShaderBuffer, header: &[u8], records: &[u8], size: usize) -> bool {
+    asset.data.as_deref().is_some_and(|data| {
+        data.len() == size && data.starts_with(header) && data[header.len()..].starts_with(records)
+    })
 }
 
 /// Replaces the bytes of `asset` with `header, records`, zero-padded to `size`.
@@ -135,6 +137,7 @@ mod tests {
         LightBuffer {
             handle: Handle::default(),
             capacity,
+            written: 0,
         }
     }
 

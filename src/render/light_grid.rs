@@ -26,6 +26,7 @@ pub struct LightGrid {
     header: GpuLightGridHeader,
     data: Vec<u32>,
     reaches: Vec<f32>,
+    pairs: Vec<(u32, u32)>,
 }
 
 /// Whether `light` (a point or spot light) has a finite sphere of reach that the grid can
@@ -70,14 +71,21 @@ impl LightGrid {
         let data = &mut self.data;
         data.resize(cells * CELL_WORDS, 0);
 
-        // Count each cell's point lights (word 1) and spot lights (word 2).
+        // One pass over the lights: count each cell's point lights (word 1) and spot lights
+        // (word 2), and note every (cell, light) pair.
+        let pairs = &mut self.pairs;
+        pairs.clear();
         for (index, light) in bounded.iter().enumerate() {
-            let word = if index + points.start < points.end {
+            let light_index = (points.start + index) as u32;
+            let word = if light_index < points.end as u32 {
                 1
             } else {
                 2
             };
-            for_each_cell(&header, light, |cell| data[cell * CELL_WORDS + word] += 1);
+            for_each_cell(&header, light, |cell| {
+                data[cell * CELL_WORDS + word] += 1;
+                pairs.push((cell as u32, light_index));
+            });
         }
         // Give each cell its first index (word 0) and a write cursor (word 3).
         let mut next = (cells * CELL_WORDS) as u32;
@@ -87,14 +95,12 @@ impl LightGrid {
             next += record[1] + record[2];
         }
         data.resize(next as usize, 0);
-        // Points first, then spots: each cell lists its point lights before its spot lights.
-        for (index, light) in bounded.iter().enumerate() {
-            let light_index = (points.start + index) as u32;
-            for_each_cell(&header, light, |cell| {
-                let cursor = data[cell * CELL_WORDS + 3] as usize;
-                data[cursor] = light_index;
-                data[cell * CELL_WORDS + 3] += 1;
-            });
+        // The pairs are in light order, points before spots: so is each cell's list.
+        for &(cell, light_index) in pairs.iter() {
+            let cursor = &mut data[cell as usize * CELL_WORDS + 3];
+            let slot = *cursor as usize;
+            *cursor += 1;
+            data[slot] = light_index;
         }
         for record in data[..cells * CELL_WORDS].chunks_exact_mut(CELL_WORDS) {
             record[3] = 0;
@@ -140,20 +146,48 @@ fn for_each_cell(header: &GpuLightGridHeader, light: &GpuLight, mut visit: impl 
     let margin = cell_size * 1e-3
         + 8.0 * f32::EPSILON * (origin.abs().max_element() + far_corner.max_element());
     let reach = light.range + margin;
+    // For coordinates ≥ 0 the (saturating) conversion truncates, which is `floor`.
     let cell_of = |x: Vec3| {
         (x / cell_size)
-            .floor()
-            .clamp(Vec3::ZERO, (dimensions - 1).as_vec3())
+            .max(Vec3::ZERO)
             .as_uvec3()
+            .min(dimensions - 1)
     };
     let (first, last) = (cell_of(center - reach), cell_of(center + reach));
+    // The squared distance from the center to the slab of cell `i` along one axis, for the
+    // (at most a few) cells the sphere spans on that axis.
+    let slab_distances = |axis: usize| -> [f32; 4] {
+        let mut distances = [f32::INFINITY; 4];
+        for (slot, cell) in (first[axis]..=last[axis]).take(4).enumerate() {
+            let low = cell as f32 * cell_size;
+            let outside = (low - center[axis])
+                .max(center[axis] - (low + cell_size))
+                .max(0.0);
+            distances[slot] = outside * outside;
+        }
+        distances
+    };
+    let spans_few_cells = (last - first).max_element() < 4;
+    let (x_distances, y_distances, z_distances) =
+        (slab_distances(0), slab_distances(1), slab_distances(2));
+    let reach_squared = reach * reach;
     for z in first.z..=last.z {
         for y in first.y..=last.y {
+            let row = (dimensions.y * z + y) * dimensions.x;
             for x in first.x..=last.x {
-                let low = UVec3::new(x, y, z).as_vec3() * cell_size;
-                let nearest = center.clamp(low, low + cell_size);
-                if nearest.distance_squared(center) <= reach * reach {
-                    visit((x + dimensions.x * (y + dimensions.y * z)) as usize);
+                let touches = if spans_few_cells {
+                    let (i, j, k) = (
+                        (x - first.x) as usize,
+                        (y - first.y) as usize,
+                        (z - first.z) as usize,
+                    );
+                    x_distances[i] + y_distances[j] + z_distances[k] <= reach_squared
+                } else {
+                    let low = UVec3::new(x, y, z).as_vec3() * cell_size;
+                    center.clamp(low, low + cell_size).distance_squared(center) <= reach_squared
+                };
+                if touches {
+                    visit((row + x) as usize);
                 }
             }
         }
