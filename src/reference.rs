@@ -132,7 +132,7 @@ pub struct Lights {
 impl Lights {
     /// These lights as [`PhongLightCulling`](crate::PhongLightCulling) with `epsilon`
     /// leaves them: each of the `n` point and spot lights' range shortened to its
-    /// [`influence_radius`](crate::culling::influence_radius) for `epsilon / n`, and the
+    /// [`influence_radius`] for `epsilon / n`, and the
     /// lights that reach nowhere left out. With `epsilon = 0`, the lights unchanged.
     pub fn culled(&self, epsilon: f32) -> Lights {
         let count = self
