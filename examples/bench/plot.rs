@@ -1,6 +1,9 @@
 //! The benchmark's plots, as PNG files.
 
-use plotters::prelude::*;
+use plotters::{
+    coord::ranged1d::{Ranged, ValueFormatter},
+    prelude::*,
+};
 use std::path::Path;
 
 const WIDTH: u32 = 960;
@@ -94,14 +97,7 @@ fn chart(
     if joined {
         let y_range = log_range(all().map(|(_, y)| y));
         let mut chart = builder.build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .x_label_formatter(&x_format)
-            .y_label_formatter(&|y| format!("{y:.0}"))
-            .label_style(("sans-serif", 14))
-            .draw()?;
+        draw_axes(&mut chart, x_label, y_label, &x_format)?;
         for (index, line) in series.iter().enumerate() {
             let color = COLORS[index % COLORS.len()];
             chart
@@ -129,14 +125,7 @@ fn chart(
             .draw()?;
     } else {
         let mut chart = builder.build_cartesian_2d(x_range.log_scale(), 0.0..y_max)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .x_label_formatter(&x_format)
-            .y_label_formatter(&|y| format!("{y:.0}"))
-            .label_style(("sans-serif", 14))
-            .draw()?;
+        draw_axes(&mut chart, x_label, y_label, &x_format)?;
         for (index, point) in series.iter().enumerate() {
             let color = COLORS[index % COLORS.len()];
             let style = ShapeStyle::from(color).filled();
@@ -150,5 +139,26 @@ fn chart(
             }))?;
         }
     }
+    Ok(())
+}
+
+/// The grid, tick labels and axis descriptions of a chart with a logarithmic x axis.
+fn draw_axes<Y>(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<LogCoord<f64>, Y>>,
+    x_label: &str,
+    y_label: &str,
+    x_format: &dyn Fn(&f64) -> String,
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(x_format)
+        .y_label_formatter(&|y| format!("{y:.0}"))
+        .label_style(("sans-serif", 14))
+        .draw()?;
     Ok(())
 }

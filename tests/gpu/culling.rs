@@ -3,43 +3,18 @@
 //! whose distance from the exact model is measured here and bounded by `ε · (k_d + k_s)`
 //! per skipped light.
 
-use crate::frames::{SIZE, TOLERANCE};
+use crate::frames::{SIZE, TOLERANCE, spawn_objects};
 use crate::harness::{Harness, SurfaceInputs};
 use bevy::prelude::*;
 use bevy_phong::{prelude::*, reference, render::PhongLightBuffer};
 
-/// A floor and a sphere under `count` point lights scattered over the floor, each fading
+/// The frame tests' objects under `count` point lights scattered over the floor, each fading
 /// with `decay` and cut off at `range`.
 fn scene(count: usize, decay: Decay, range: Option<f32>) -> (Harness, SurfaceInputs) {
     let mut harness = Harness::new(SIZE, SIZE);
+    harness.world_mut().insert_resource(PhongAmbientLight::NONE);
+    spawn_objects(&mut harness);
     let world = harness.world_mut();
-    world.insert_resource(PhongAmbientLight::NONE);
-    for (mesh, transform, material) in [
-        (
-            Plane3d::default().mesh().size(12.0, 12.0).into(),
-            Transform::from_xyz(0.0, -1.0, 0.0),
-            PhongMaterial {
-                base_color: Color::srgb(0.8, 0.8, 0.8),
-                shininess: 8.0,
-                specular_strength: 0.5,
-                ..default()
-            },
-        ),
-        (
-            Sphere::new(1.0).mesh().uv(48, 32),
-            Transform::default(),
-            PhongMaterial {
-                specular_strength: 1.0,
-                shininess: 50.0,
-                ..default()
-            },
-        ),
-    ] {
-        let mesh: Mesh = mesh;
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
-    }
     for i in 0..count {
         let t = i as f32;
         let position = Vec3::new(

@@ -22,7 +22,7 @@ pub const TOLERANCE: f64 = 4e-4;
 pub const SIZE: u32 = 128;
 
 /// Scene objects: a floor, a sphere, a cube and a torus, each with its own material.
-fn spawn_objects(harness: &mut Harness) -> Vec<Handle<PhongMaterial>> {
+pub fn spawn_objects(harness: &mut Harness) -> Vec<Handle<PhongMaterial>> {
     let world = harness.world_mut();
     let specs: [(Mesh, Transform, PhongMaterial); 4] = [
         (
