@@ -145,13 +145,7 @@ fn keys(
         println!("light grid {}", if culling.grid { "on" } else { "off" });
     }
     if keys.just_pressed(KeyCode::KeyB) {
-        for (_, material) in materials.iter_mut() {
-            material.specular_model = match material.specular_model {
-                SpecularModel::Phong => SpecularModel::BlinnPhong,
-                SpecularModel::BlinnPhong => SpecularModel::Phong,
-            };
-        }
-        println!("specular model switched");
+        support::switch_specular_model(&mut materials);
     }
     if keys.just_pressed(KeyCode::Space) {
         paused.0 = !paused.0;

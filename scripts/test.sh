@@ -11,7 +11,7 @@ cargo test --all-targets "$@"
 cargo test --doc "$@"
 
 # Every example must still render: each writes its PNG headless and exits.
-for example in showcase searchlight many_lights; do
+for example in showcase searchlight orbiting_light many_lights; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
 # The benchmark still runs (a small scene, two frames).

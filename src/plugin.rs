@@ -57,6 +57,7 @@ impl Plugin for PhongPlugin {
             .register_type::<PhongSpotLight>()
             .register_type::<Decay>()
             .register_type::<SpecularModel>()
+            .register_asset_reflect::<PhongMaterial>()
             .configure_sets(
                 PostUpdate,
                 (
@@ -123,5 +124,31 @@ impl PhongMaterialAppExt for App {
             crate::render::schedule_light_buffers_before::<M>(render_app);
         }
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::test_app::test_app;
+    use bevy::{asset::ReflectAsset, ecs::reflect::AppTypeRegistry, reflect::TypePath};
+
+    #[test]
+    fn components_resources_and_the_material_are_registered_for_reflection() {
+        let app = test_app(|_| {});
+        let registry = app.world().resource::<AppTypeRegistry>().read();
+        for path in [
+            crate::PhongPointLight::type_path(),
+            crate::PhongSpotLight::type_path(),
+            crate::PhongDirectionalLight::type_path(),
+            crate::PhongAmbientLight::type_path(),
+            crate::PhongLightCulling::type_path(),
+            crate::Decay::type_path(),
+        ] {
+            assert!(registry.get_with_type_path(path).is_some(), "{path}");
+        }
+        let material = registry
+            .get_with_type_path(crate::PhongMaterial::type_path())
+            .expect("PhongMaterial is registered");
+        assert!(material.data::<ReflectAsset>().is_some());
     }
 }

@@ -228,3 +228,16 @@ fn save_capture(
 pub fn example_camera(transform: Transform) -> impl Bundle {
     (Camera3d::default(), Tonemapping::None, transform)
 }
+
+/// Switches every `PhongMaterial` between Phong and Blinn-Phong highlights (key B).
+#[allow(dead_code, reason = "only the examples that take keys use it")]
+pub fn switch_specular_model(materials: &mut Assets<bevy_phong::PhongMaterial>) {
+    use bevy_phong::SpecularModel;
+    for (_, material) in materials.iter_mut() {
+        material.specular_model = match material.specular_model {
+            SpecularModel::Phong => SpecularModel::BlinnPhong,
+            SpecularModel::BlinnPhong => SpecularModel::Phong,
+        };
+    }
+    println!("specular model switched");
+}
