@@ -3,7 +3,7 @@
 
 use super::{
     PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER,
-    gpu_types::{GpuLight, GpuLightGridHeader, GpuLightsHeader},
+    gpu_types::{GpuLight, GpuLightsHeader},
     light_buffer::{LightBuffer, LightBufferResized},
     light_grid::{LightGrid, has_finite_reach},
     light_records::{limit_reach, linear_rgb},
@@ -63,16 +63,6 @@ impl PhongLightBuffer {
     /// The records last written, in the order [`GpuLightsHeader`] describes.
     pub fn records(&self) -> &[GpuLight] {
         &self.records
-    }
-
-    /// Where the light grid last written lies.
-    pub fn grid_header(&self) -> &GpuLightGridHeader {
-        self.grid.header()
-    }
-
-    /// The light grid's cell records and light indices last written.
-    pub fn grid_data(&self) -> &[u32] {
-        self.grid.data()
     }
 
     /// How many lights the GPU buffer has room for.

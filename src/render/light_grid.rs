@@ -154,38 +154,23 @@ fn for_each_cell(header: &GpuLightGridHeader, light: &GpuLight, mut visit: impl 
             .min(dimensions - 1)
     };
     let (first, last) = (cell_of(center - reach), cell_of(center + reach));
-    // The squared distance from the center to the slab of cell `i` along one axis, for the
-    // (at most a few) cells the sphere spans on that axis.
-    let slab_distances = |axis: usize| -> [f32; 4] {
-        let mut distances = [f32::INFINITY; 4];
-        for (slot, cell) in (first[axis]..=last[axis]).take(4).enumerate() {
-            let low = cell as f32 * cell_size;
-            let outside = (low - center[axis])
-                .max(center[axis] - (low + cell_size))
-                .max(0.0);
-            distances[slot] = outside * outside;
-        }
-        distances
+    // The squared distance from the center to cell `cell`'s slab along `axis`; summed over
+    // the three axes, the squared distance to the cell.
+    let slab_distance_squared = |axis: usize, cell: u32| {
+        let low = cell as f32 * cell_size;
+        let outside = (low - center[axis])
+            .max(center[axis] - (low + cell_size))
+            .max(0.0);
+        outside * outside
     };
-    let spans_few_cells = (last - first).max_element() < 4;
-    let (x_distances, y_distances, z_distances) =
-        (slab_distances(0), slab_distances(1), slab_distances(2));
     let reach_squared = reach * reach;
     for z in first.z..=last.z {
+        let z_distance = slab_distance_squared(2, z);
         for y in first.y..=last.y {
+            let yz_distance = z_distance + slab_distance_squared(1, y);
             let row = (dimensions.y * z + y) * dimensions.x;
             for x in first.x..=last.x {
-                let touches = if spans_few_cells {
-                    let (i, j, k) = (
-                        (x - first.x) as usize,
-                        (y - first.y) as usize,
-                        (z - first.z) as usize,
-                    );
-                    x_distances[i] + y_distances[j] + z_distances[k] <= reach_squared
-                } else {
-                    let low = UVec3::new(x, y, z).as_vec3() * cell_size;
-                    center.clamp(low, low + cell_size).distance_squared(center) <= reach_squared
-                };
+                let touches = yz_distance + slab_distance_squared(0, x) <= reach_squared;
                 if touches {
                     visit((row + x) as usize);
                 }

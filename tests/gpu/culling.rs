@@ -1,7 +1,7 @@
 //! Light culling (`PhongLightCulling`): the light grid changes no pixel, and ε culling
 //! renders exactly the model with each light's range shortened to its influence radius,
-//! whose distance from the exact model is measured here and bounded by `ε · (k_d + k_s)`
-//! per skipped light.
+//! whose distance from the exact model is measured here and bounded by
+//! `ε · (k_d + k_s · strength)` for all skipped lights together.
 
 use crate::frames::{SIZE, TOLERANCE, spawn_objects};
 use crate::harness::{Harness, SurfaceInputs};
