@@ -11,8 +11,12 @@ cargo test --all-targets "$@"
 cargo test --doc "$@"
 
 # Every example must still render: each writes its PNG headless and exits.
-for example in showcase searchlight orbiting_light many_lights; do
+for example in showcase searchlight orbiting_light many_lights textured_cubes; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
+# A scene file rendered to PNG and OpenEXR, as the README shows.
+cargo run --quiet --example render_scene -- assets/scenes/shapes.phong_scene.ron \
+    --out target/examples/render_scene --size 480x270
+cargo run --quiet --example render_scene -- --help >/dev/null
 # The benchmark still runs (a small scene, two frames).
 cargo run --quiet --example bench -- --quick

@@ -66,6 +66,11 @@
 //!   searchlight as the worked example.
 //! - **Invalid input** (a negative range, a NaN color, ...) is replaced by a documented value
 //!   with one warning naming the entity and field: see [`validation`].
+//! - **Scene and material files** ([`scene`]): a scene written in RON
+//!   (`*.phong_scene.ron`), spawned by a [`PhongSceneRoot`](scene::PhongSceneRoot) and
+//!   hot-reloaded; a material alone in a `*.phong.ron` file.
+//! - **Texture maps**: base color, specular, emissive and normal maps on [`PhongMaterial`],
+//!   each sampled only by the materials that have it.
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
 
@@ -77,6 +82,7 @@ mod material;
 mod plugin;
 pub mod reference;
 pub mod render;
+pub mod scene;
 mod surface_inputs;
 #[cfg(test)]
 mod test_app;
@@ -97,5 +103,6 @@ pub mod prelude {
     pub use crate::{
         Decay, PhongAmbientLight, PhongDirectionalLight, PhongLightCulling, PhongMaterial,
         PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSpotLight, SpecularModel,
+        scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 }

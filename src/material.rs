@@ -4,8 +4,10 @@ use crate::render::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER};
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
+    image::Image,
+    log::warn,
     math::{Vec3, Vec4},
-    mesh::MeshVertexBufferLayoutRef,
+    mesh::{Mesh, MeshVertexBufferLayoutRef},
     pbr::{Material, MaterialPipeline, MaterialPipelineKey},
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
@@ -57,8 +59,21 @@ impl SpecularModel {
 /// `strength = specular_strength`, and `H` the highlight of [`specular_model`] with exponent
 /// [`shininess`]. All colors are taken in linear RGB.
 ///
+/// # Texture maps
+///
+/// Each map is optional and multiplies its color, sampled at the mesh's first UV set
+/// (`Mesh::ATTRIBUTE_UV_0`): `k_d ⊙ base_color_texture` (alpha too), `k_s ⊙
+/// specular_texture`, `emissive ⊙ emissive_texture`. The [`normal_map_texture`] replaces the
+/// interpolated normal by one in tangent space (it needs `Mesh::ATTRIBUTE_TANGENT`:
+/// `Mesh::with_generated_tangents`). Values are what the sampler returns: images Bevy loads
+/// as sRGB are decoded to linear first, so load specular and normal maps with
+/// `is_srgb: false` (`ImageLoaderSettings`). A material's shader variant samples only the
+/// maps it has; on a mesh without UVs (or, for the normal map, without tangents) a map is
+/// left out, with a warning.
+///
 /// [`specular_model`]: Self::specular_model
 /// [`shininess`]: Self::shininess
+/// [`normal_map_texture`]: Self::normal_map_texture
 #[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
 #[reflect(Default, Debug, Clone)]
 #[uniform(0, PhongMaterialUniform)]
@@ -80,8 +95,36 @@ pub struct PhongMaterial {
     pub specular_model: SpecularModel,
     /// Color added without lighting, linear RGB. Default black.
     pub emissive: LinearRgba,
-    /// How the output alpha is used. Default [`AlphaMode::Opaque`].
+    /// How the output alpha (`base_color.a`, times the base color map's alpha) is used.
+    /// `Opaque`, `Mask(cutoff)` (fragments below the cutoff are discarded) and `Blend` are
+    /// the ones a lit surface needs; with the others the color is written as computed.
+    /// Default [`AlphaMode::Opaque`].
     pub alpha_mode: AlphaMode,
+    /// Multiplies `base_color` (all four channels). Default none.
+    #[texture(3)]
+    #[sampler(4)]
+    #[dependency]
+    pub base_color_texture: Option<Handle<Image>>,
+    /// Multiplies `specular_color`. Default none.
+    #[texture(5)]
+    #[sampler(6)]
+    #[dependency]
+    pub specular_texture: Option<Handle<Image>>,
+    /// Multiplies `emissive`. Default none.
+    #[texture(7)]
+    #[sampler(8)]
+    #[dependency]
+    pub emissive_texture: Option<Handle<Image>>,
+    /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
+    /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
+    /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
+    #[texture(9)]
+    #[sampler(10)]
+    #[dependency]
+    pub normal_map_texture: Option<Handle<Image>>,
+    /// Negates the normal map's green channel, for maps made with the other convention
+    /// (Direct3D's, green pointing down). Default `false`.
+    pub flip_normal_map_y: bool,
     /// The scene's light buffer, which the plugin fills every frame. Leave it at its
     /// default, [`PHONG_LIGHT_BUFFER`].
     #[storage(1, read_only)]
@@ -103,6 +146,11 @@ impl Default for PhongMaterial {
             specular_model: SpecularModel::Phong,
             emissive: LinearRgba::BLACK,
             alpha_mode: AlphaMode::Opaque,
+            base_color_texture: None,
+            specular_texture: None,
+            emissive_texture: None,
+            normal_map_texture: None,
+            flip_normal_map_y: false,
             lights: PHONG_LIGHT_BUFFER,
             light_grid: PHONG_LIGHT_GRID_BUFFER,
         }
@@ -132,8 +180,15 @@ pub struct PhongMaterialUniform {
     pub emissive: Vec3,
     /// `k_a`.
     pub ambient_factor: f32,
-    /// The specular model in bits 0..1.
+    /// The specular model in bits 0..1; [`FLIP_NORMAL_MAP_Y`](Self::FLIP_NORMAL_MAP_Y).
     pub flags: u32,
+    /// Fragments whose alpha is below this are discarded (with `AlphaMode::Mask`).
+    pub alpha_cutoff: f32,
+}
+
+impl PhongMaterialUniform {
+    /// Flag bit: negate the normal map's green channel.
+    pub const FLIP_NORMAL_MAP_Y: u32 = 4;
 }
 
 /// `value` if it is finite and non-negative, else `0` (see [`crate::validation`]).
@@ -164,7 +219,16 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
             shininess: finite_non_negative(material.shininess),
             emissive: finite_non_negative_rgb(material.emissive.to_vec3()),
             ambient_factor: finite_non_negative(material.ambient_factor),
-            flags: material.specular_model.shader_flag(),
+            flags: material.specular_model.shader_flag()
+                | if material.flip_normal_map_y {
+                    Self::FLIP_NORMAL_MAP_Y
+                } else {
+                    0
+                },
+            alpha_cutoff: match material.alpha_mode {
+                AlphaMode::Mask(cutoff) => cutoff,
+                _ => 0.0,
+            },
         }
     }
 }
@@ -178,17 +242,88 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
 /// for the meshes that wait for it. To avoid that gap when a material switches its
 /// highlight on or off while the game runs, create a material of each kind at load time:
 /// compiled pipelines are kept.
+///
+/// Each texture map the material has adds its own shader def (`PHONG_BASE_COLOR_TEXTURE`,
+/// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_NORMAL_MAP`), and
+/// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PhongMaterialKey {
     /// Whether the material has a specular term.
     pub specular: bool,
+    /// Whether it has a base color map.
+    pub base_color_texture: bool,
+    /// Whether it has a specular map (only sampled with a specular term).
+    pub specular_texture: bool,
+    /// Whether it has an emissive map.
+    pub emissive_texture: bool,
+    /// Whether it has a normal map.
+    pub normal_map: bool,
+    /// Whether it discards fragments below an alpha cutoff.
+    pub alpha_mask: bool,
 }
 
 impl From<&PhongMaterial> for PhongMaterialKey {
     fn from(material: &PhongMaterial) -> Self {
+        let specular = PhongMaterialUniform::from(material).specular != Vec3::ZERO;
         Self {
-            specular: PhongMaterialUniform::from(material).specular != Vec3::ZERO,
+            specular,
+            base_color_texture: material.base_color_texture.is_some(),
+            specular_texture: specular && material.specular_texture.is_some(),
+            emissive_texture: material.emissive_texture.is_some(),
+            normal_map: material.normal_map_texture.is_some(),
+            alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
         }
+    }
+}
+
+impl PhongMaterialKey {
+    /// The fragment shader defs of this variant on a mesh with `layout`: maps need UVs (the
+    /// normal map tangents too); without them they are left out, with a warning.
+    fn shader_defs(&self, layout: &MeshVertexBufferLayoutRef) -> Vec<&'static str> {
+        let has_uvs = layout.0.contains(Mesh::ATTRIBUTE_UV_0);
+        let has_tangents = layout.0.contains(Mesh::ATTRIBUTE_TANGENT);
+        let maps = [
+            (
+                self.base_color_texture,
+                "PHONG_BASE_COLOR_TEXTURE",
+                "base_color_texture",
+            ),
+            (
+                self.specular_texture,
+                "PHONG_SPECULAR_TEXTURE",
+                "specular_texture",
+            ),
+            (
+                self.emissive_texture,
+                "PHONG_EMISSIVE_TEXTURE",
+                "emissive_texture",
+            ),
+        ];
+        let mut defs = Vec::new();
+        if !self.specular {
+            defs.push("PHONG_NO_SPECULAR");
+        }
+        if self.alpha_mask {
+            defs.push("PHONG_ALPHA_MASK");
+        }
+        for (used, def, field) in maps {
+            if used && has_uvs {
+                defs.push(def);
+            } else if used {
+                warn!(
+                    "PhongMaterial.{field} is ignored on a mesh without UVs (Mesh::ATTRIBUTE_UV_0)"
+                );
+            }
+        }
+        if self.normal_map && has_uvs && has_tangents {
+            defs.push("PHONG_NORMAL_MAP");
+        } else if self.normal_map {
+            warn!(
+                "PhongMaterial.normal_map_texture is ignored on a mesh without UVs and tangents \
+                 (Mesh::ATTRIBUTE_UV_0, Mesh::ATTRIBUTE_TANGENT: Mesh::with_generated_tangents)"
+            );
+        }
+        defs
     }
 }
 
@@ -200,13 +335,14 @@ impl Material for PhongMaterial {
     fn specialize(
         _pipeline: &MaterialPipeline,
         descriptor: &mut RenderPipelineDescriptor,
-        _layout: &MeshVertexBufferLayoutRef,
+        layout: &MeshVertexBufferLayoutRef,
         key: MaterialPipelineKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
-        if !key.bind_group_data.specular
-            && let Some(fragment) = descriptor.fragment.as_mut()
-        {
-            fragment.shader_defs.push("PHONG_NO_SPECULAR".into());
+        if let Some(fragment) = descriptor.fragment.as_mut() {
+            let defs = key.bind_group_data.shader_defs(layout);
+            fragment
+                .shader_defs
+                .extend(defs.into_iter().map(Into::into));
         }
         Ok(())
     }

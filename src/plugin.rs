@@ -5,11 +5,15 @@ use crate::{
     lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
     material::{PhongMaterial, SpecularModel},
     render::{LightBufferResized, PhongLightBuffer, gather_lights, refresh_material_bind_groups},
+    scene::{
+        PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
+        spawn_phong_scenes,
+    },
     surface_inputs::SurfaceInputsMaterial,
     validation::{InvalidInput, validate_ambient_light, validate_lights, validate_materials},
 };
 use bevy::{
-    app::{App, Plugin, PostUpdate},
+    app::{App, Plugin, PostUpdate, PreUpdate},
     asset::{AssetApp, AssetEventSystems, embedded_asset},
     camera::visibility::VisibilitySystems,
     ecs::schedule::{IntoScheduleConfigs, SystemSet},
@@ -21,7 +25,8 @@ use bevy::{
 use core::hash::Hash;
 
 /// Adds Phong lighting to an app: the light components and [`PhongAmbientLight`], the
-/// gather system that writes them into the light buffer each frame, and [`PhongMaterial`].
+/// gather system that writes them into the light buffer each frame, [`PhongMaterial`], and
+/// the loaders of scene and material files ([`crate::scene`]).
 ///
 /// Add it after Bevy's `DefaultPlugins` (it needs the render plugin to draw; without a
 /// render app, as under `MinimalPlugins`, it still gathers lights, which is what ECS-only
@@ -57,6 +62,11 @@ impl Plugin for PhongPlugin {
             .register_type::<PhongSpotLight>()
             .register_type::<Decay>()
             .register_type::<SpecularModel>()
+            .register_type::<PhongSceneRoot>()
+            .register_type::<PhongSceneCamera>()
+            .init_asset::<PhongScene>()
+            .register_asset_loader(PhongSceneLoader)
+            .add_systems(PreUpdate, spawn_phong_scenes)
             .register_asset_reflect::<PhongMaterial>()
             .configure_sets(
                 PostUpdate,
@@ -85,16 +95,19 @@ impl Plugin for PhongPlugin {
             .add_systems(PostUpdate, gather_lights.in_set(PhongSystems::GatherLights));
 
         if app.get_sub_app(RenderApp).is_none() {
-            app.init_asset::<PhongMaterial>();
+            app.init_asset::<PhongMaterial>()
+                .register_asset_loader(PhongMaterialLoader);
             return;
         }
         load_shader_library!(app, "shaders/types.wgsl");
         load_shader_library!(app, "shaders/lighting.wgsl");
         load_shader_library!(app, "shaders/bindings.wgsl");
         load_shader_library!(app, "shaders/shading.wgsl");
+        load_shader_library!(app, "shaders/texture_maps.wgsl");
         embedded_asset!(app, "shaders/phong_material.wgsl");
         embedded_asset!(app, "shaders/surface_inputs.wgsl");
         app.add_phong_material::<PhongMaterial>()
+            .register_asset_loader(PhongMaterialLoader)
             .add_plugins(MaterialPlugin::<SurfaceInputsMaterial>::default());
     }
 }

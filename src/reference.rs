@@ -4,7 +4,8 @@
 //! The shader computes the same equation in `f32`; the tests render a scene, read back each
 //! pixel's color together with the world position and normal it was lit with (see
 //! [`SurfaceInputsMaterial`](crate::SurfaceInputsMaterial)), and compare the color with
-//! [`shade`] evaluated on those inputs.
+//! [`shade`] evaluated on those inputs. A textured material is first given the texels of
+//! the fragment ([`Material::mapped`], [`mapped_normal`]).
 //!
 //! Every function follows the shader's rules for degenerate input, so that the two can be
 //! compared anywhere:
@@ -26,6 +27,9 @@ use bevy::{
     transform::components::GlobalTransform,
 };
 use glam::DVec3;
+
+mod texture_maps;
+pub use texture_maps::{Texels, mapped_normal};
 
 /// Vectors whose squared length is at or below this count as zero (no direction), here and
 /// in the shader.

@@ -14,11 +14,17 @@ pub(crate) const SURFACE_INPUTS_SHADER: &str = "embedded://bevy_phong/shaders/su
 /// Which input of the lighting equation a [`SurfaceInputsMaterial`] writes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
 pub enum SurfaceInput {
-    /// The world-space surface point `P` (xyz; alpha 1).
+    /// The world-space surface point `P` (xyz).
     #[default]
     WorldPosition,
-    /// The interpolated world-space mesh normal, before normalization (xyz; alpha 1).
+    /// The interpolated world-space mesh normal, before normalization (xyz).
     WorldNormal,
+    /// The mesh's first UV set (xy) and the handedness `w` of its tangent (z); zeros where
+    /// the mesh has none.
+    UvAndTangentSign,
+    /// The interpolated world-space tangent, before normalization (xyz); zero where the
+    /// mesh has none.
+    WorldTangent,
 }
 
 /// A material that writes, instead of a lit color, the world position or normal that
@@ -42,6 +48,8 @@ impl SurfaceInputsMaterial {
         let output = match input {
             SurfaceInput::WorldPosition => 0,
             SurfaceInput::WorldNormal => 1,
+            SurfaceInput::UvAndTangentSign => 2,
+            SurfaceInput::WorldTangent => 3,
         };
         Self {
             output: SurfaceInputUniform { output, tag },
@@ -52,7 +60,7 @@ impl SurfaceInputsMaterial {
 /// The uniform of [`SurfaceInputsMaterial`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, ShaderType)]
 pub struct SurfaceInputUniform {
-    /// `0`: world position; `1`: world normal.
+    /// `0`: world position; `1`: world normal; `2`: UV and tangent sign; `3`: world tangent.
     pub output: u32,
     /// Written to alpha.
     pub tag: u32,

@@ -15,9 +15,18 @@ use bevy_phong::PhongPlugin;
 /// [`PhongPlugin`], plus what `add_plugins` adds, built and ready to `update`. Rendering
 /// happens inside `update`, so the render world can be read between updates.
 pub fn headless_app(add_plugins: impl FnOnce(&mut App)) -> App {
+    headless_app_with_assets(AssetPlugin::default().file_path, add_plugins)
+}
+
+/// [`headless_app`] whose assets load from `asset_root` (relative to the crate, or absolute).
+pub fn headless_app_with_assets(asset_root: String, add_plugins: impl FnOnce(&mut App)) -> App {
     let mut app = App::new();
     app.add_plugins(
         DefaultPlugins
+            .set(AssetPlugin {
+                file_path: asset_root,
+                ..default()
+            })
             .set(WindowPlugin {
                 primary_window: None,
                 exit_condition: ExitCondition::DontExit,

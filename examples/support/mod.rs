@@ -241,3 +241,36 @@ pub fn switch_specular_model(materials: &mut Assets<bevy_phong::PhongMaterial>) 
     }
     println!("specular model switched");
 }
+
+/// Shows `keys` as a line of help in the window's top-left corner (windowed runs only; the
+/// PNG of a headless run shows the scene alone) and prints it.
+#[allow(dead_code, reason = "only the examples that take keys use it")]
+pub fn show_key_help(app: &mut App, keys: &'static str) {
+    println!("keys: {keys}");
+    if matches!(app.world().resource::<RunMode>(), RunMode::Windowed) {
+        app.add_systems(Startup, move |mut commands: Commands| {
+            commands.spawn((
+                Text::new(keys),
+                TextFont::from_font_size(16.0),
+                Node {
+                    position_type: PositionType::Absolute,
+                    top: px(8.0),
+                    left: px(8.0),
+                    ..default()
+                },
+            ));
+        });
+    }
+}
+
+/// Toggles the visibility of every entity with `L` (a light kind): hidden lights give no
+/// light.
+#[allow(dead_code, reason = "only the examples that take keys use it")]
+pub fn toggle_visibility<L: Component>(lights: &mut Query<&mut Visibility, With<L>>) {
+    for mut visibility in lights.iter_mut() {
+        *visibility = match *visibility {
+            Visibility::Hidden => Visibility::Inherited,
+            _ => Visibility::Hidden,
+        };
+    }
+}

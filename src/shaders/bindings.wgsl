@@ -6,3 +6,11 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> material: PhongMaterialUniform;
 @group(#{MATERIAL_BIND_GROUP}) @binding(1) var<storage, read> lights: PhongLights;
 @group(#{MATERIAL_BIND_GROUP}) @binding(2) var<storage, read> light_grid: PhongLightGrid;
+@group(#{MATERIAL_BIND_GROUP}) @binding(3) var base_color_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(4) var base_color_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(5) var specular_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(6) var specular_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(7) var emissive_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(8) var emissive_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(9) var normal_map_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(10) var normal_map_sampler: sampler;

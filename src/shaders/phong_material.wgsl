@@ -2,10 +2,26 @@
 #import bevy_pbr::forward_io::VertexOutput
 #import bevy_pbr::mesh_view_bindings::view
 #import bevy_phong::bindings::material
-#import bevy_phong::shading::{material_surface, phong_shade}
+#import bevy_phong::lighting::phong_surface
+#import bevy_phong::shading::lit_color
+#import bevy_phong::texture_maps::mapped_material
 
 @fragment
 fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
-    let surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
-    return vec4<f32>(phong_shade(surface), material.base_color.a);
+    let mapped = mapped_material(in);
+#ifdef PHONG_ALPHA_MASK
+    if mapped.base_color.a < material.alpha_cutoff {
+        discard;
+    }
+#endif
+    let surface = phong_surface(
+        in.world_position.xyz,
+        mapped.normal,
+        view.world_position,
+        mapped.base_color.rgb,
+        mapped.specular,
+        material.shininess,
+        material.flags & 3u,
+    );
+    return vec4<f32>(lit_color(surface, mapped.emissive), mapped.base_color.a);
 }

@@ -67,7 +67,12 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     return color;
 }
 
-// SPEC.md's whole equation: emissive + ambient + Σ lights.
+// SPEC.md's whole equation: emissive + ambient + Σ lights, with the given emissive color.
+fn lit_color(surface: PhongSurface, emissive: vec3<f32>) -> vec3<f32> {
+    return emissive + ambient_light(surface) + direct_lights(surface);
+}
+
+// SPEC.md's whole equation for the bound material without its texture maps.
 fn phong_shade(surface: PhongSurface) -> vec3<f32> {
-    return material.emissive + ambient_light(surface) + direct_lights(surface);
+    return lit_color(surface, material.emissive);
 }

@@ -3,7 +3,8 @@
 #import bevy_pbr::forward_io::VertexOutput
 
 struct SurfaceInputsUniform {
-    // 0: world position P; 1: interpolated world normal (not normalized).
+    // 0: world position P; 1: interpolated world normal (not normalized); 2: UV and the
+    // tangent's handedness; 3: interpolated world tangent (not normalized).
     output: u32,
     // Written to alpha.
     tag: u32,
@@ -13,8 +14,20 @@ struct SurfaceInputsUniform {
 
 @fragment
 fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
-    if inputs.output == 1u {
-        return vec4<f32>(in.world_normal, f32(inputs.tag));
+    let tag = f32(inputs.tag);
+    var uv_and_sign = vec3<f32>(0.0);
+    var tangent = vec3<f32>(0.0);
+#ifdef VERTEX_UVS_A
+    uv_and_sign = vec3<f32>(in.uv, 0.0);
+#endif
+#ifdef VERTEX_TANGENTS
+    uv_and_sign.z = in.world_tangent.w;
+    tangent = in.world_tangent.xyz;
+#endif
+    switch inputs.output {
+        case 1u: { return vec4<f32>(in.world_normal, tag); }
+        case 2u: { return vec4<f32>(uv_and_sign, tag); }
+        case 3u: { return vec4<f32>(tangent, tag); }
+        default: { return vec4<f32>(in.world_position.xyz, tag); }
     }
-    return vec4<f32>(in.world_position.xyz, f32(inputs.tag));
 }

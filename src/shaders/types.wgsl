@@ -67,8 +67,10 @@ struct PhongMaterialUniform {
     emissive: vec3<f32>,
     // k_a.
     ambient_factor: f32,
-    // SPECULAR_MODEL_* in bits 0..1.
+    // SPECULAR_MODEL_* in bits 0..1; FLIP_NORMAL_MAP_Y.
     flags: u32,
+    // With PHONG_ALPHA_MASK, fragments whose alpha is below this are discarded.
+    alpha_cutoff: f32,
 }
 
 // A surface point, ready to be lit.
@@ -92,3 +94,5 @@ struct PhongSurface {
 
 const SPECULAR_MODEL_PHONG: u32 = 0u;
 const SPECULAR_MODEL_BLINN_PHONG: u32 = 1u;
+// Flag bit of PhongMaterialUniform.flags: negate the normal map's green channel.
+const FLIP_NORMAL_MAP_Y: u32 = 4u;

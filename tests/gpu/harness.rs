@@ -2,6 +2,7 @@
 //! inputs each pixel was lit with, and compares them with the f64 reference model.
 
 use bevy::{
+    asset::RecursiveDependencyLoadState,
     camera::RenderTarget,
     core_pipeline::tonemapping::{DebandDither, Tonemapping},
     image::Image,
@@ -21,7 +22,7 @@ use bevy_phong::{
 };
 use glam::DVec3;
 
-pub use crate::headless::headless_app;
+use crate::headless::headless_app_with_assets;
 use std::{
     collections::HashMap,
     path::PathBuf,
@@ -33,6 +34,8 @@ pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
 
 /// Frames to wait for pipelines to compile before giving up.
 const MAX_SETTLE_FRAMES: u32 = 600;
+/// Frames to wait for a scene file and what it names to load before giving up.
+const MAX_LOAD_FRAMES: u32 = 2_000;
 /// Frames to wait for a readback to arrive before giving up.
 const MAX_READBACK_FRAMES: u32 = 60;
 
@@ -62,11 +65,16 @@ impl FloatImage {
     }
 }
 
-/// Per-pixel inputs of the lighting equation: world position and normal, and in alpha the
-/// tag of the material that covers the pixel (0 for background).
+/// Per-pixel inputs of the lighting equation: world position and normal (with texture maps
+/// also UV and tangent), and in alpha the tag of the material that covers the pixel (0 for
+/// background).
 pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub positions: FloatImage,
     pub normals: FloatImage,
+    /// UV in xy, the tangent's handedness in z (see `SurfaceInput::UvAndTangentSign`).
+    pub uvs: Option<FloatImage>,
+    /// The interpolated tangent's xyz.
+    pub tangents: Option<FloatImage>,
     pub materials: HashMap<u32, Handle<M>>,
 }
 
@@ -92,7 +100,17 @@ impl Harness {
     /// Lights are culled only past their range ([`PhongLightCulling::EXACT`]), so that
     /// renders follow SPEC.md exactly; tests of ε culling insert their own setting.
     pub fn with_plugins(width: u32, height: u32, add_plugins: impl FnOnce(&mut App)) -> Self {
-        let mut app = headless_app(|app| {
+        Self::with_assets(width, height, AssetPlugin::default().file_path, add_plugins)
+    }
+
+    /// [`Self::with_plugins`] with assets loaded from `asset_root`.
+    pub fn with_assets(
+        width: u32,
+        height: u32,
+        asset_root: String,
+        add_plugins: impl FnOnce(&mut App),
+    ) -> Self {
+        let mut app = headless_app_with_assets(asset_root, |app| {
             app.insert_resource(PhongLightCulling::EXACT);
             add_plugins(app);
         });
@@ -131,6 +149,57 @@ impl Harness {
 
     pub fn world_mut(&mut self) -> &mut World {
         self.app.world_mut()
+    }
+
+    /// Loads the scene file at `path` (in the asset folder), spawns it, waits until it and
+    /// every file it names have loaded, and sees it from its own camera
+    /// ([`Self::adopt_scene_camera`]). A file that fails to load is an error with its message.
+    #[allow(dead_code, reason = "not used by the benchmark")]
+    pub fn load_scene(&mut self, path: &str) -> Result<Handle<PhongScene>, String> {
+        let world = self.app.world_mut();
+        let handle: Handle<PhongScene> = world.resource::<AssetServer>().load(path.to_owned());
+        world.spawn(PhongSceneRoot(handle.clone()));
+        for _ in 0..MAX_LOAD_FRAMES {
+            self.app.update();
+            let server = self.app.world().resource::<AssetServer>();
+            match server.recursive_dependency_load_state(&handle) {
+                RecursiveDependencyLoadState::Loaded => {
+                    // One more frame for the scene to spawn.
+                    self.app.update();
+                    self.adopt_scene_camera();
+                    return Ok(handle);
+                }
+                RecursiveDependencyLoadState::Failed(error) => return Err(error.to_string()),
+                _ => std::thread::sleep(std::time::Duration::from_millis(5)),
+            }
+        }
+        Err(format!(
+            "{path} did not load within {MAX_LOAD_FRAMES} frames"
+        ))
+    }
+
+    /// Gives the harness camera the transform and projection of the camera a scene file
+    /// spawned ([`PhongSceneCamera`]), which is then removed: the scene is seen as its file
+    /// says, rendered into the harness's float target. Without one, nothing changes.
+    pub fn adopt_scene_camera(&mut self) {
+        let world = self.app.world_mut();
+        let scene_camera = world
+            .query_filtered::<(Entity, &GlobalTransform, &Projection), With<PhongSceneCamera>>()
+            .iter(world)
+            .next()
+            .map(|(entity, transform, projection)| {
+                (entity, transform.compute_transform(), projection.clone())
+            });
+        let Some((entity, transform, projection)) = scene_camera else {
+            return;
+        };
+        world.despawn(entity);
+        let mut cameras =
+            world.query_filtered::<(&mut Transform, &mut Projection), With<Camera3d>>();
+        for (mut camera_transform, mut camera_projection) in cameras.iter_mut(world) {
+            *camera_transform = transform;
+            *camera_projection = projection.clone();
+        }
     }
 
     /// Moves the camera to `position`, looking at the origin (before `capture_inputs`).
@@ -190,6 +259,19 @@ impl Harness {
 
     /// Renders the world position and normal of every mesh made of `M` instead of its color.
     pub fn capture_inputs_of<M: Material>(&mut self) -> SurfaceInputs<M> {
+        self.capture::<M>(false)
+    }
+
+    /// As [`Self::capture_inputs`], with the UVs and tangents that texture maps need.
+    #[allow(
+        dead_code,
+        reason = "used by the texture tests, not by the benchmark example that includes this file"
+    )]
+    pub fn capture_inputs_with_maps(&mut self) -> SurfaceInputs {
+        self.capture::<PhongMaterial>(true)
+    }
+
+    fn capture<M: Material>(&mut self, with_maps: bool) -> SurfaceInputs<M> {
         let world = self.app.world_mut();
         let meshes: Vec<(Entity, Handle<M>)> = world
             .query::<(Entity, &MeshMaterial3d<M>)>()
@@ -202,8 +284,12 @@ impl Harness {
             tags.entry(handle.clone()).or_insert(next);
         }
 
+        let mut passes = vec![SurfaceInput::WorldPosition, SurfaceInput::WorldNormal];
+        if with_maps {
+            passes.extend([SurfaceInput::UvAndTangentSign, SurfaceInput::WorldTangent]);
+        }
         let mut images = Vec::new();
-        for input in [SurfaceInput::WorldPosition, SurfaceInput::WorldNormal] {
+        for input in passes {
             let world = self.app.world_mut();
             for (entity, handle) in &meshes {
                 let material = world
@@ -225,11 +311,12 @@ impl Harness {
                 .insert(MeshMaterial3d(handle.clone()));
         }
         self.settle();
-        let normals = images.pop().unwrap();
-        let positions = images.pop().unwrap();
+        let mut images = images.into_iter();
         SurfaceInputs {
-            positions,
-            normals,
+            positions: images.next().unwrap(),
+            normals: images.next().unwrap(),
+            uvs: images.next(),
+            tangents: images.next(),
             materials: tags
                 .into_iter()
                 .map(|(handle, tag)| (tag, handle))
@@ -290,6 +377,18 @@ impl Harness {
         inputs: &SurfaceInputs<M>,
         expected: impl Fn(&M, &SurfacePoint) -> Option<DVec3>,
     ) -> Comparison {
+        self.compare_pixels(rendered, inputs, |material, surface, _| {
+            expected(material, surface)
+        })
+    }
+
+    /// As [`Self::compare_with`], with `expected` also given the pixel's index into `inputs`.
+    pub fn compare_pixels<M: Material>(
+        &mut self,
+        rendered: &FloatImage,
+        inputs: &SurfaceInputs<M>,
+        expected: impl Fn(&M, &SurfacePoint, usize) -> Option<DVec3>,
+    ) -> Comparison {
         let camera = self.camera_position();
         let assets = self.app.world().resource::<Assets<M>>();
         let mut comparison = Comparison::new(rendered.width, rendered.height);
@@ -313,7 +412,7 @@ impl Harness {
                 normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
                 camera,
             };
-            match expected(material, &surface) {
+            match expected(material, &surface, index) {
                 Some(expected) => comparison.record(index, *color, expected),
                 None => comparison.skipped_pixels += 1,
             }

@@ -6,6 +6,9 @@
 //! - `culling`: the light grid and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
+//! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
+//!   the reference model given each pixel's texels;
+//! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel.
 
 mod contract;
@@ -16,7 +19,9 @@ mod harness;
 mod headless;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
+mod scene_files;
 mod searchlight;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
 mod stress;
+mod texture_maps;

@@ -1,7 +1,7 @@
 //! Runs `kernel.wgsl` (the material's lighting functions in a compute shader) on the render
 //! device and reads the results back.
 
-use crate::harness::headless_app;
+use crate::headless::headless_app;
 use bevy::{
     prelude::*,
     render::{

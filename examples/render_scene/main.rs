@@ -1,0 +1,176 @@
+//! Renders a scene file headless and writes what is needed to check it against the lighting
+//! model outside this crate:
+//!
+//! - `color.png`: the picture, sRGB, 8 bits (values above 1 clipped, no alpha);
+//! - `color.exr`: the shader's output, linear, 32-bit float, unclipped;
+//! - `position.exr`, `normal.exr`: per pixel, the world position and the interpolated world
+//!   normal (not normalized) it was lit with; alpha is the object's material number (0 for
+//!   background, where RGB is 0 too).
+//!
+//! It also prints the largest difference from `bevy_phong::reference` on those inputs.
+//!
+//! `cargo run --example render_scene -- assets/scenes/showcase.phong_scene.ron --out DIR`;
+//! `--help` lists the options.
+
+#[allow(
+    dead_code,
+    reason = "the render tests' harness, of which this uses a part"
+)]
+#[path = "../../tests/gpu/harness.rs"]
+mod harness;
+#[allow(dead_code, reason = "shared with the tests, of which this uses a part")]
+#[path = "../support/headless.rs"]
+mod headless;
+mod output;
+
+use harness::Harness;
+use std::{path::PathBuf, process::ExitCode};
+
+const HELP: &str = "\
+render_scene: render a *.phong_scene.ron file headless to PNG and OpenEXR files
+
+USAGE:
+    cargo run --example render_scene -- SCENE [OPTIONS]
+
+ARGUMENTS:
+    SCENE              the scene file (*.phong_scene.ron)
+
+OPTIONS:
+    --out DIR          where to write color.png, color.exr, position.exr, normal.exr
+                       [default: target/render_scene]
+    --size WxH         image size in pixels [default: 512x512]
+    --assets DIR       the asset folder: files the scene names (material files, textures)
+                       must be inside it [default: the nearest folder named `assets`
+                       that holds the scene file, else the scene file's folder]
+    -h, --help         print this help
+
+The render device is the first Vulkan adapter (WGPU_ADAPTER_NAME=llvmpipe picks Mesa's
+software renderer). The scene's camera is used; without one the camera is at (0, 2.5, 7)
+looking at the origin.";
+
+struct Options {
+    scene: PathBuf,
+    out: PathBuf,
+    width: u32,
+    height: u32,
+    assets: Option<PathBuf>,
+}
+
+fn parse_options() -> Result<Option<Options>, String> {
+    let mut args = std::env::args().skip(1);
+    let mut scene = None;
+    let mut out = PathBuf::from("target/render_scene");
+    let (mut width, mut height) = (512, 512);
+    let mut assets = None;
+    while let Some(arg) = args.next() {
+        let mut value = |name: &str| args.next().ok_or(format!("{name} needs a value"));
+        match arg.as_str() {
+            "-h" | "--help" => return Ok(None),
+            "--out" => out = value("--out")?.into(),
+            "--assets" => assets = Some(value("--assets")?.into()),
+            "--size" => {
+                let size = value("--size")?;
+                let parsed = size
+                    .split_once('x')
+                    .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+                    .filter(|&(w, h): &(u32, u32)| {
+                        (1..=8192).contains(&w) && (1..=8192).contains(&h)
+                    });
+                (width, height) =
+                    parsed.ok_or(format!("--size {size}: expected WxH, each 1 to 8192"))?;
+            }
+            other if other.starts_with('-') => return Err(format!("unknown option {other}")),
+            other if scene.is_none() => scene = Some(PathBuf::from(other)),
+            other => return Err(format!("unexpected argument {other}")),
+        }
+    }
+    let scene = scene.ok_or("no scene file given")?;
+    Ok(Some(Options {
+        scene,
+        out,
+        width,
+        height,
+        assets,
+    }))
+}
+
+fn main() -> ExitCode {
+    let options = match parse_options() {
+        Ok(Some(options)) => options,
+        Ok(None) => {
+            println!("{HELP}");
+            return ExitCode::SUCCESS;
+        }
+        Err(message) => {
+            eprintln!("render_scene: {message}\n\n{HELP}");
+            return ExitCode::from(2);
+        }
+    };
+    match render(&options) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("render_scene: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn render(options: &Options) -> Result<(), String> {
+    let scene = std::path::absolute(&options.scene)
+        .map_err(|error| format!("{}: {error}", options.scene.display()))?;
+    if !scene.is_file() {
+        return Err(format!("{}: no such file", scene.display()));
+    }
+    let root = match &options.assets {
+        Some(root) => std::path::absolute(root).map_err(|error| error.to_string())?,
+        None => scene
+            .ancestors()
+            .skip(1)
+            .find(|folder| folder.file_name().is_some_and(|name| name == "assets"))
+            .unwrap_or_else(|| scene.parent().expect("a file has a folder"))
+            .to_path_buf(),
+    };
+    let relative = scene
+        .strip_prefix(&root)
+        .map_err(|_| {
+            format!(
+                "{} is not inside --assets {}",
+                scene.display(),
+                root.display()
+            )
+        })?
+        .to_string_lossy()
+        .into_owned();
+
+    let mut harness = Harness::with_assets(
+        options.width,
+        options.height,
+        root.to_string_lossy().into_owned(),
+        |_| {},
+    );
+    harness.load_scene(&relative)?;
+
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs();
+    let comparison = harness.compare(&rendered, &inputs);
+    println!(
+        "{} lit pixels; largest difference from the reference model {:.2e} (relative to max(1, |expected|))",
+        comparison.lit_pixels, comparison.max_error
+    );
+    std::fs::create_dir_all(&options.out)
+        .map_err(|error| format!("{}: {error}", options.out.display()))?;
+    for (name, image) in [
+        ("color.exr", &rendered),
+        ("position.exr", &inputs.positions),
+        ("normal.exr", &inputs.normals),
+    ] {
+        output::write_exr(&options.out.join(name), image)?;
+    }
+    output::write_png(&options.out.join("color.png"), &rendered)?;
+    println!(
+        "wrote color.png, color.exr, position.exr, normal.exr in {}",
+        options.out.display()
+    );
+    Ok(())
+}

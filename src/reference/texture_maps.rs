@@ -1,0 +1,102 @@
+//! A material's texture maps in the reference model: what a fragment's texels do to the
+//! terms of the equation (SPEC.md, "Texture maps").
+
+use super::Material;
+use glam::{DVec3, DVec4};
+
+/// The values a fragment's maps gave it, as the sampler returns them (linear; `None` for a
+/// map the material does not have).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Texels {
+    /// The base color map's RGBA; RGB multiplies `k_d` (alpha only the output alpha).
+    pub base_color: Option<DVec4>,
+    /// The specular map's RGB; multiplies `k_s`.
+    pub specular: Option<DVec3>,
+    /// The emissive map's RGB; multiplies the emissive color.
+    pub emissive: Option<DVec3>,
+    /// The normal map's RGB, in `[0, 1]`.
+    pub normal: Option<DVec3>,
+}
+
+impl Material {
+    /// This material at a fragment whose maps gave `texels`: each present map multiplies
+    /// its color, channel by channel.
+    pub fn mapped(&self, texels: &Texels) -> Material {
+        let times = |color: DVec3, texel: Option<DVec3>| texel.map_or(color, |t| color * t);
+        Material {
+            diffuse: times(self.diffuse, texels.base_color.map(|t| t.truncate())),
+            specular: times(self.specular, texels.specular),
+            emissive: times(self.emissive, texels.emissive),
+            ..*self
+        }
+    }
+}
+
+/// The normal a normal map gives: `n.x·T + n.y·B + n.z·N`, with `n = 2·texel − 1` (its `y`
+/// negated when `flip_y`), `T = tangent.xyz`, `B = tangent.w · N × T`, from the
+/// interpolated, unnormalized `normal` and `tangent` (MikkTSpace's frame). Any length; the
+/// lighting normalizes it.
+pub fn mapped_normal(normal: DVec3, tangent: DVec4, texel: DVec3, flip_y: bool) -> DVec3 {
+    let mut n = texel * 2.0 - 1.0;
+    if flip_y {
+        n.y = -n.y;
+    }
+    let tangent_xyz = tangent.truncate();
+    let bitangent = tangent.w * normal.cross(tangent_xyz);
+    n.x * tangent_xyz + n.y * bitangent + n.z * normal
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::SpecularModel;
+
+    fn material() -> Material {
+        Material {
+            diffuse: DVec3::new(0.5, 0.6, 0.7),
+            ambient_factor: 1.0,
+            specular: DVec3::ONE,
+            specular_strength: 2.0,
+            shininess: 32.0,
+            specular_model: SpecularModel::Phong,
+            emissive: DVec3::splat(0.1),
+        }
+    }
+
+    #[test]
+    fn no_texels_leave_the_material_as_it_is() {
+        assert_eq!(material().mapped(&Texels::default()), material());
+    }
+
+    #[test]
+    fn each_texel_multiplies_its_own_color() {
+        let texels = Texels {
+            base_color: Some(DVec4::new(0.5, 0.5, 1.0, 0.25)),
+            specular: Some(DVec3::new(0.0, 1.0, 0.5)),
+            emissive: Some(DVec3::splat(2.0)),
+            normal: None,
+        };
+        let mapped = material().mapped(&texels);
+        assert_eq!(mapped.diffuse, DVec3::new(0.25, 0.3, 0.7));
+        assert_eq!(mapped.specular, DVec3::new(0.0, 1.0, 0.5));
+        assert_eq!(mapped.emissive, DVec3::splat(0.2));
+        assert_eq!(mapped.specular_strength, 2.0);
+    }
+
+    #[test]
+    fn the_flat_texel_keeps_the_normal_and_the_others_tilt_it_in_the_tangent_frame() {
+        let normal = DVec3::Z * 2.0;
+        let tangent = DVec4::new(1.0, 0.0, 0.0, 1.0);
+        let flat = DVec3::new(0.5, 0.5, 1.0);
+        assert_eq!(mapped_normal(normal, tangent, flat, false), normal);
+        // Green up: toward B = N × T = +Y (times |N| = 2); flipped: toward -Y.
+        let up = DVec3::new(0.5, 1.0, 0.5);
+        assert_eq!(mapped_normal(normal, tangent, up, false), DVec3::Y * 2.0);
+        assert_eq!(mapped_normal(normal, tangent, up, true), -DVec3::Y * 2.0);
+        // A left-handed tangent (w = -1) mirrors the bitangent.
+        let mirrored = DVec4::new(1.0, 0.0, 0.0, -1.0);
+        assert_eq!(mapped_normal(normal, mirrored, up, false), -DVec3::Y * 2.0);
+        let right = DVec3::new(1.0, 0.5, 0.5);
+        assert_eq!(mapped_normal(normal, tangent, right, false), DVec3::X);
+    }
+}

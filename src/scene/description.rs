@@ -1,0 +1,241 @@
+//! A scene as written in a `*.phong_scene.ron` file.
+
+use super::{PhongMaterialDescription, SceneColor};
+use crate::lights::Decay;
+use bevy::math::{EulerRot, Quat, Vec2, Vec3};
+use bevy::transform::components::Transform;
+use serde::{Deserialize, Serialize};
+
+/// A whole scene: a camera, the ambient light, lights, and objects made of Bevy's mesh
+/// primitives. Every field is optional.
+///
+/// ```ron
+/// (
+///     camera: Some((position: (0.0, 2.5, 7.0), looking_at: (0.0, 0.0, 0.0))),
+///     ambient: Linear(0.1, 0.1, 0.1),
+///     lights: [
+///         Directional(direction: (-1.0, -1.0, -1.0)),
+///         Point(position: (0.0, 3.0, 0.0), color: Srgb(1.0, 0.5, 0.2),
+///               decay: (constant: 1.0, linear: 0.09, quadratic: 0.032)),
+///     ],
+///     objects: [
+///         (mesh: Sphere(radius: 1.0), material: Inline((shininess: 50.0))),
+///         (mesh: Cuboid(size: (1.0, 1.0, 1.0)),
+///          transform: (translation: (2.0, 0.0, 0.0), rotation: (0.0, 30.0, 0.0)),
+///          material: File("crate.phong.ron")),
+///     ],
+/// )
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhongSceneDescription {
+    /// Where the scene is seen from; none spawns no camera.
+    pub camera: Option<CameraDescription>,
+    /// The ambient light (the `PhongAmbientLight` resource is set to it when the scene is
+    /// spawned). Default linear gray `0.1`, as `PhongAmbientLight::default()`.
+    pub ambient: Option<SceneColor>,
+    /// The lights.
+    pub lights: Vec<LightDescription>,
+    /// The objects.
+    pub objects: Vec<ObjectDescription>,
+}
+
+/// A perspective camera.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDescription {
+    /// Camera position, world units.
+    pub position: Vec3,
+    /// The point it looks at, with +Y up. Default the origin.
+    #[serde(default)]
+    pub looking_at: Vec3,
+    /// Vertical field of view, degrees. Default 45.
+    #[serde(default = "default_fov_degrees")]
+    pub fov_degrees: f32,
+}
+
+fn default_fov_degrees() -> f32 {
+    45.0
+}
+
+/// One light; colors default to white, `specular` to `color`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum LightDescription {
+    /// Parallel light travelling along `direction`.
+    Directional {
+        /// Diffuse intensity.
+        #[serde(default = "SceneColor::white")]
+        color: SceneColor,
+        /// Specular intensity.
+        #[serde(default)]
+        specular: Option<SceneColor>,
+        /// Direction the light travels (any length).
+        direction: Vec3,
+    },
+    /// Light from a point in all directions.
+    Point {
+        /// Diffuse intensity.
+        #[serde(default = "SceneColor::white")]
+        color: SceneColor,
+        /// Specular intensity.
+        #[serde(default)]
+        specular: Option<SceneColor>,
+        /// Position, world units.
+        position: Vec3,
+        /// Distance fall-off. Default none.
+        #[serde(default)]
+        decay: Decay,
+        /// Distance past which it gives no light. Default unlimited.
+        #[serde(default)]
+        range: Option<f32>,
+    },
+    /// Light from a point in a cone around `direction`.
+    Spot {
+        /// Diffuse intensity.
+        #[serde(default = "SceneColor::white")]
+        color: SceneColor,
+        /// Specular intensity.
+        #[serde(default)]
+        specular: Option<SceneColor>,
+        /// Position, world units.
+        position: Vec3,
+        /// The cone's axis (any length).
+        direction: Vec3,
+        /// Distance fall-off. Default none.
+        #[serde(default)]
+        decay: Decay,
+        /// Distance past which it gives no light. Default unlimited.
+        #[serde(default)]
+        range: Option<f32>,
+        /// Half-angle of the fully lit core, degrees. Default 12.5.
+        #[serde(default = "default_inner_angle_degrees")]
+        inner_angle_degrees: f32,
+        /// Half-angle where the light reaches zero, degrees. Default 17.5.
+        #[serde(default = "default_outer_angle_degrees")]
+        outer_angle_degrees: f32,
+        /// Rim darkening exponent. Default 0.
+        #[serde(default)]
+        exponent: f32,
+    },
+}
+
+fn default_inner_angle_degrees() -> f32 {
+    12.5
+}
+
+fn default_outer_angle_degrees() -> f32 {
+    17.5
+}
+
+/// A mesh with a transform and a material.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectDescription {
+    /// The shape.
+    pub mesh: MeshDescription,
+    /// Where it is. Default identity.
+    #[serde(default)]
+    pub transform: TransformDescription,
+    /// What it is made of. Default `Inline(())`, the default material.
+    #[serde(default)]
+    pub material: MaterialSource,
+}
+
+/// A material written in place or in its own `*.phong.ron` file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum MaterialSource {
+    /// Written in the scene file.
+    Inline(PhongMaterialDescription),
+    /// A `*.phong.ron` file, relative to the scene file.
+    File(String),
+}
+
+impl Default for MaterialSource {
+    fn default() -> Self {
+        MaterialSource::Inline(PhongMaterialDescription::default())
+    }
+}
+
+/// Translation, rotation (Euler angles in degrees, applied Y, then X, then Z) and scale.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TransformDescription {
+    /// World units. Default zero.
+    pub translation: Vec3,
+    /// Degrees about X, Y, Z. Default zero.
+    pub rotation: Vec3,
+    /// Default one.
+    pub scale: Vec3,
+}
+
+impl Default for TransformDescription {
+    fn default() -> Self {
+        Self {
+            translation: Vec3::ZERO,
+            rotation: Vec3::ZERO,
+            scale: Vec3::ONE,
+        }
+    }
+}
+
+impl From<&TransformDescription> for Transform {
+    fn from(description: &TransformDescription) -> Self {
+        let radians = description.rotation * (std::f32::consts::PI / 180.0);
+        Transform {
+            translation: description.translation,
+            rotation: Quat::from_euler(EulerRot::YXZ, radians.y, radians.x, radians.z),
+            scale: description.scale,
+        }
+    }
+}
+
+/// One of Bevy's mesh primitives, with UVs and tangents (for texture and normal maps).
+/// Sizes are world units and must be positive.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum MeshDescription {
+    /// A UV sphere (64 × 32 segments).
+    Sphere {
+        /// Radius.
+        radius: f32,
+    },
+    /// A box centred on the origin.
+    Cuboid {
+        /// Edge lengths along X, Y, Z.
+        size: Vec3,
+    },
+    /// A plane through the origin facing +Y.
+    Plane {
+        /// Extent along X and Z.
+        size: Vec2,
+    },
+    /// A torus around the Y axis.
+    Torus {
+        /// Radius of the tube.
+        minor_radius: f32,
+        /// Distance from the centre to the middle of the tube.
+        major_radius: f32,
+    },
+    /// A cylinder along Y.
+    Cylinder {
+        /// Radius.
+        radius: f32,
+        /// Height.
+        height: f32,
+    },
+    /// A capsule along Y.
+    Capsule {
+        /// Radius of the caps and the body.
+        radius: f32,
+        /// Length of the body between the caps.
+        length: f32,
+    },
+    /// A cone along Y, tip up.
+    Cone {
+        /// Radius of the base.
+        radius: f32,
+        /// Height.
+        height: f32,
+    },
+}

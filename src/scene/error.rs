@@ -1,0 +1,84 @@
+//! What goes wrong with a scene or material file.
+
+use bevy::asset::{LoadContext, io::Reader};
+use serde::de::DeserializeOwned;
+use thiserror::Error;
+
+/// Why a scene or material file did not load. The app keeps what it had (a hot-reloaded
+/// scene stays as it last loaded) and Bevy's asset server logs this message.
+#[derive(Debug, Error)]
+pub enum SceneFileError {
+    /// The file could not be read.
+    #[error("{path}: could not read the file: {source}")]
+    Read {
+        /// The asset path.
+        path: String,
+        /// What the reader said.
+        source: std::io::Error,
+    },
+    /// The file is not valid RON for its type: the position of the problem and what was
+    /// expected there.
+    #[error("{path}:{line}:{column}: {message}")]
+    Syntax {
+        /// The asset path.
+        path: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// A value parsed but cannot be used (a negative radius, an unknown color).
+    #[error("{path}: {field}: {message}")]
+    Invalid {
+        /// The asset path.
+        path: String,
+        /// Where the value sits, as `objects[2].mesh.radius`.
+        field: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+}
+
+impl SceneFileError {
+    /// An [`Invalid`](Self::Invalid) error for the file being loaded.
+    pub(crate) fn invalid(
+        load_context: &LoadContext,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        SceneFileError::Invalid {
+            path: load_context.path().to_string(),
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+}
+
+/// Parses `text` as RON into `T`; a syntax or type error says where (`path:line:column`).
+pub fn parse_ron<T: DeserializeOwned>(path: &str, text: &[u8]) -> Result<T, SceneFileError> {
+    ron::de::from_bytes(text).map_err(|error| SceneFileError::Syntax {
+        path: path.to_owned(),
+        line: error.span.start.line,
+        column: error.span.start.col,
+        message: error.code.to_string(),
+    })
+}
+
+/// Reads the file being loaded and parses it as RON into `T`.
+pub(crate) async fn read_ron<T: DeserializeOwned>(
+    reader: &mut dyn Reader,
+    load_context: &LoadContext<'_>,
+) -> Result<T, SceneFileError> {
+    let path = load_context.path().to_string();
+    let mut bytes = Vec::new();
+    reader
+        .read_to_end(&mut bytes)
+        .await
+        .map_err(|source| SceneFileError::Read {
+            path: path.clone(),
+            source,
+        })?;
+    parse_ron(&path, &bytes)
+}

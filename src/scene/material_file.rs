@@ -1,0 +1,185 @@
+//! `PhongMaterial` as a file: [`PhongMaterialDescription`] and the `*.phong.ron` loader.
+
+use super::{SceneColor, SceneFileError};
+use crate::material::{PhongMaterial, SpecularModel};
+use bevy::{
+    asset::{AssetLoader, LoadContext, io::Reader},
+    image::{Image, ImageLoaderSettings},
+    prelude::{AlphaMode, Handle},
+    reflect::TypePath,
+};
+use serde::{Deserialize, Serialize};
+
+/// A [`PhongMaterial`] as written in a file; every field is optional and defaults to
+/// `PhongMaterial::default()`'s value.
+///
+/// ```ron
+/// (
+///     base_color: Srgb(1.0, 0.0, 1.0),
+///     specular_strength: 2.0,
+///     shininess: 50.0,
+///     base_color_texture: Some("textures/crate.png"),
+/// )
+/// ```
+///
+/// Texture paths are relative to the file that names them. Specular and normal maps are
+/// loaded as linear data (`is_srgb: false`), base color and emissive maps as sRGB.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhongMaterialDescription {
+    /// `k_d` and alpha. Default white.
+    pub base_color: SceneColor,
+    /// `k_a`. Default `1`.
+    pub ambient_factor: f32,
+    /// `k_s`. Default white.
+    pub specular_color: SceneColor,
+    /// Multiplier on `k_s`. Default `1`.
+    pub specular_strength: f32,
+    /// `α`. Default `32`.
+    pub shininess: f32,
+    /// `Phong` or `BlinnPhong`. Default `Phong`.
+    pub specular_model: SpecularModel,
+    /// Unlit color. Default black.
+    pub emissive: SceneColor,
+    /// `Opaque`, `Mask(cutoff)` or `Blend`. Default `Opaque`.
+    pub alpha_mode: AlphaModeDescription,
+    /// Path of the base color map. Default none.
+    pub base_color_texture: Option<String>,
+    /// Path of the specular map. Default none.
+    pub specular_texture: Option<String>,
+    /// Path of the emissive map. Default none.
+    pub emissive_texture: Option<String>,
+    /// Path of the tangent-space normal map. Default none.
+    pub normal_map_texture: Option<String>,
+    /// Negate the normal map's green channel. Default `false`.
+    pub flip_normal_map_y: bool,
+}
+
+/// The alpha modes a file can name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub enum AlphaModeDescription {
+    /// Alpha is ignored.
+    #[default]
+    Opaque,
+    /// Fragments with alpha below the cutoff are discarded.
+    Mask(f32),
+    /// Blended over what is behind.
+    Blend,
+}
+
+impl Default for PhongMaterialDescription {
+    fn default() -> Self {
+        let material = PhongMaterial::default();
+        Self {
+            base_color: SceneColor::white(),
+            ambient_factor: material.ambient_factor,
+            specular_color: SceneColor::white(),
+            specular_strength: material.specular_strength,
+            shininess: material.shininess,
+            specular_model: material.specular_model,
+            emissive: SceneColor::black(),
+            alpha_mode: AlphaModeDescription::Opaque,
+            base_color_texture: None,
+            specular_texture: None,
+            emissive_texture: None,
+            normal_map_texture: None,
+            flip_normal_map_y: false,
+        }
+    }
+}
+
+impl PhongMaterialDescription {
+    /// The material, its textures loaded relative to the file being loaded. `field` names
+    /// where the description sits in that file, for errors.
+    pub(crate) fn to_material(
+        &self,
+        field: &str,
+        load_context: &mut LoadContext,
+    ) -> Result<PhongMaterial, SceneFileError> {
+        let color = |name: &str, color: &SceneColor| {
+            color.to_color().map_err(|message| {
+                SceneFileError::invalid(load_context, format!("{field}{name}"), message)
+            })
+        };
+        let base_color = color(".base_color", &self.base_color)?;
+        let specular_color = color(".specular_color", &self.specular_color)?;
+        let emissive = color(".emissive", &self.emissive)?.to_linear();
+        let mut map = |path: &Option<String>, name: &str, srgb: bool| {
+            load_texture(
+                load_context,
+                path.as_deref(),
+                &format!("{field}{name}"),
+                srgb,
+            )
+        };
+        Ok(PhongMaterial {
+            base_color,
+            ambient_factor: self.ambient_factor,
+            specular_color,
+            specular_strength: self.specular_strength,
+            shininess: self.shininess,
+            specular_model: self.specular_model,
+            emissive,
+            alpha_mode: match self.alpha_mode {
+                AlphaModeDescription::Opaque => AlphaMode::Opaque,
+                AlphaModeDescription::Mask(cutoff) => AlphaMode::Mask(cutoff),
+                AlphaModeDescription::Blend => AlphaMode::Blend,
+            },
+            base_color_texture: map(&self.base_color_texture, ".base_color_texture", true)?,
+            specular_texture: map(&self.specular_texture, ".specular_texture", false)?,
+            emissive_texture: map(&self.emissive_texture, ".emissive_texture", true)?,
+            normal_map_texture: map(&self.normal_map_texture, ".normal_map_texture", false)?,
+            flip_normal_map_y: self.flip_normal_map_y,
+            ..PhongMaterial::default()
+        })
+    }
+}
+
+/// Starts loading the image at `path` (relative to the file being loaded), as sRGB or
+/// linear data.
+fn load_texture(
+    load_context: &mut LoadContext,
+    path: Option<&str>,
+    field: &str,
+    srgb: bool,
+) -> Result<Option<Handle<Image>>, SceneFileError> {
+    let Some(path) = path else {
+        return Ok(None);
+    };
+    let resolved = load_context
+        .path()
+        .resolve_embed_str(path)
+        .map_err(|error| {
+            SceneFileError::invalid(load_context, field, format!("{path:?}: {error}"))
+        })?;
+    Ok(Some(
+        load_context
+            .load_builder()
+            .with_settings(move |settings: &mut ImageLoaderSettings| settings.is_srgb = srgb)
+            .load(resolved),
+    ))
+}
+
+/// Loads a [`PhongMaterial`] from a `*.phong.ron` file ([`PhongMaterialDescription`]).
+#[derive(Default, TypePath)]
+pub struct PhongMaterialLoader;
+
+impl AssetLoader for PhongMaterialLoader {
+    type Asset = PhongMaterial;
+    type Settings = ();
+    type Error = SceneFileError;
+
+    async fn load(
+        &self,
+        reader: &mut dyn Reader,
+        _settings: &(),
+        load_context: &mut LoadContext<'_>,
+    ) -> Result<PhongMaterial, SceneFileError> {
+        let description: PhongMaterialDescription = super::read_ron(reader, load_context).await?;
+        description.to_material("", load_context)
+    }
+
+    fn extensions(&self) -> &[&str] {
+        &["phong.ron"]
+    }
+}

@@ -1,0 +1,258 @@
+//! Texture maps: meshes with base color, specular, emissive and normal maps rendered on the
+//! render device and compared with the reference model given each pixel's texels
+//! (`reference::Material::mapped`, `reference::mapped_normal`).
+//!
+//! The maps are small `Rgba32Float` images sampled with nearest filtering, so the texel a
+//! pixel received is known exactly from its UV (read back by `SurfaceInputsMaterial`);
+//! pixels within 1/100 texel of a texel's edge, where the GPU's rounding of `uv · size` may
+//! pick the neighbour, are left out. Tolerance: as the frame tests ([`TOLERANCE`]): the
+//! texel products add one `f32` rounding each, and the mapped normal a few more before
+//! it is normalized.
+
+use crate::frames::{SIZE, TOLERANCE};
+use crate::harness::{Harness, SurfaceInputs};
+use bevy::{
+    asset::RenderAssetUsages,
+    image::{Image, ImageSampler},
+    prelude::*,
+    render::render_resource::{Extent3d, TextureDimension, TextureFormat},
+};
+use bevy_phong::{prelude::*, reference};
+use glam::{DVec3, DVec4};
+use std::collections::HashMap;
+
+/// Texels per side of every test map.
+const TEXELS: u32 = 4;
+
+/// A `TEXELS`² float map with nearest filtering whose texel `(x, y)` is `texel(x, y)`.
+fn float_map(texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
+    let data: Vec<u8> = (0..TEXELS * TEXELS)
+        .flat_map(|index| texel(index % TEXELS, index / TEXELS))
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let mut image = Image::new(
+        Extent3d {
+            width: TEXELS,
+            height: TEXELS,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data,
+        TextureFormat::Rgba32Float,
+        RenderAssetUsages::default(),
+    );
+    image.sampler = ImageSampler::nearest();
+    image
+}
+
+/// A value in `[low, high]` that varies from texel to texel and channel to channel.
+fn scatter(x: u32, y: u32, channel: u32, low: f32, high: f32) -> f32 {
+    let hash = (x * 7 + y * 13 + channel * 5 + 3) % 11;
+    low + (high - low) * hash as f32 / 10.0
+}
+
+fn color_map(low: f32, high: f32) -> Image {
+    float_map(|x, y| [0, 1, 2, 3].map(|channel| scatter(x, y, channel, low, high)))
+}
+
+/// Tangent-space normals tilted up to ~50° from the surface normal, encoded as `(n + 1) / 2`.
+fn normal_map() -> Image {
+    float_map(|x, y| {
+        let n = Vec3::new(
+            scatter(x, y, 0, -0.6, 0.6),
+            scatter(x, y, 1, -0.6, 0.6),
+            1.0,
+        )
+        .normalize();
+        let encoded = (n + 1.0) / 2.0;
+        [encoded.x, encoded.y, encoded.z, 1.0]
+    })
+}
+
+/// The texel of `image` that nearest filtering gives at `uv` (clamped to the edge), or
+/// `None` within 1/100 texel of a texel's edge.
+fn texel_at(image: &Image, uv: [f32; 2]) -> Option<DVec4> {
+    let mut texel = [0usize; 2];
+    for axis in 0..2 {
+        let scaled = f64::from(uv[axis]) * f64::from(TEXELS);
+        let fraction = scaled - scaled.floor();
+        if (0.01..=0.99).contains(&fraction) || scaled <= 0.0 || scaled >= f64::from(TEXELS) {
+            texel[axis] = (scaled.floor().max(0.0) as usize).min(TEXELS as usize - 1);
+        } else {
+            return None;
+        }
+    }
+    let data = image.data.as_ref().expect("test maps keep their data");
+    let start = (texel[1] * TEXELS as usize + texel[0]) * 16;
+    let channels: Vec<f64> = data[start..start + 16]
+        .chunks_exact(4)
+        .map(|bytes| f64::from(f32::from_le_bytes(bytes.try_into().unwrap())))
+        .collect();
+    Some(DVec4::from_slice(&channels))
+}
+
+/// The reference color of a pixel of `material`, given its captured inputs; `None` on a
+/// texel edge.
+fn expected_color(
+    material: &PhongMaterial,
+    surface: &reference::SurfacePoint,
+    pixel: usize,
+    inputs: &SurfaceInputs,
+    images: &HashMap<AssetId<Image>, Image>,
+    lights: &reference::Lights,
+) -> Option<DVec3> {
+    let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
+    let tangent = inputs.tangents.as_ref().unwrap().pixels[pixel];
+    let uv = [uv_and_sign[0], uv_and_sign[1]];
+    let sample = |map: &Option<Handle<Image>>| -> Result<Option<DVec4>, ()> {
+        match map {
+            None => Ok(None),
+            Some(handle) => texel_at(&images[&handle.id()], uv).map(Some).ok_or(()),
+        }
+    };
+    let texels = reference::Texels {
+        base_color: sample(&material.base_color_texture).ok()?,
+        specular: sample(&material.specular_texture)
+            .ok()?
+            .map(DVec4::truncate),
+        emissive: sample(&material.emissive_texture)
+            .ok()?
+            .map(DVec4::truncate),
+        normal: sample(&material.normal_map_texture)
+            .ok()?
+            .map(DVec4::truncate),
+    };
+    if let AlphaMode::Mask(cutoff) = material.alpha_mode {
+        let alpha = texels.base_color.map_or(1.0, |t| t.w) * f64::from(material.base_color.alpha());
+        // Discarded: the clear color. Too close to the cutoff to say: not judged.
+        if (alpha - f64::from(cutoff)).abs() < 1e-6 {
+            return None;
+        }
+        if alpha < f64::from(cutoff) {
+            return Some(DVec3::ZERO);
+        }
+    }
+    let tangent = DVec4::new(
+        tangent[0].into(),
+        tangent[1].into(),
+        tangent[2].into(),
+        uv_and_sign[2].into(),
+    );
+    // A normal map is applied only where the mesh has tangents (`w` is ±1 there, 0 without).
+    let normal = match texels.normal {
+        Some(texel) if tangent.w != 0.0 => {
+            reference::mapped_normal(surface.normal, tangent, texel, material.flip_normal_map_y)
+        }
+        _ => surface.normal,
+    };
+    let surface = reference::SurfacePoint { normal, ..*surface };
+    let mapped = reference::Material::from(material).mapped(&texels);
+    Some(reference::shade(&surface, &mapped, lights))
+}
+
+#[test]
+fn texture_maps_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::srgb(0.2, 0.2, 0.25),
+    });
+    world.spawn((
+        PhongDirectionalLight {
+            color: Color::srgb(0.7, 0.7, 0.6),
+            ..default()
+        },
+        Transform::from_xyz(1.0, 2.0, 1.5).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    world.spawn((
+        PhongPointLight {
+            color: Color::srgb(0.9, 0.5, 0.3),
+            decay: Decay::new(1.0, 0.09, 0.032),
+            ..default()
+        },
+        Transform::from_xyz(-1.5, 1.5, 2.5),
+    ));
+
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let base_color = images.add(color_map(0.2, 1.0));
+    let specular = images.add(color_map(0.0, 1.0));
+    let emissive = images.add(color_map(0.0, 0.3));
+    let normals = images.add(normal_map());
+    let cutout = images.add(float_map(|x, y| {
+        [0.9, 0.6, 0.3, scatter(x, y, 3, 0.0, 1.0)]
+    }));
+
+    let every_map = PhongMaterial {
+        base_color_texture: Some(base_color.clone()),
+        specular_texture: Some(specular),
+        emissive_texture: Some(emissive),
+        normal_map_texture: Some(normals.clone()),
+        flip_normal_map_y: true,
+        specular_strength: 2.0,
+        shininess: 40.0,
+        emissive: LinearRgba::WHITE,
+        ..default()
+    };
+    let base_color_and_normals = PhongMaterial {
+        base_color_texture: Some(base_color),
+        normal_map_texture: Some(normals),
+        shininess: 20.0,
+        ..default()
+    };
+    let masked = PhongMaterial {
+        base_color_texture: Some(cutout),
+        alpha_mode: AlphaMode::Mask(0.5),
+        emissive: LinearRgba::rgb(0.1, 0.1, 0.1),
+        ..default()
+    };
+    let objects = [
+        // Tangents: the normal map applies.
+        (
+            Sphere::new(1.2)
+                .mesh()
+                .uv(48, 32)
+                .with_generated_tangents()
+                .unwrap(),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            every_map,
+        ),
+        // No tangents: the normal map is left out (with a warning), the base color map not.
+        (
+            Cuboid::new(1.2, 1.2, 1.2).into(),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            base_color_and_normals,
+        ),
+        // Alpha mask: texels below 0.5 are holes.
+        (
+            Cuboid::new(1.2, 1.2, 1.2).into(),
+            Transform::from_xyz(2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(-0.6)),
+            masked,
+        ),
+    ];
+    for (mesh, transform, material) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let lights = harness.reference_lights();
+    let images: HashMap<AssetId<Image>, Image> = harness
+        .world_mut()
+        .resource::<Assets<Image>>()
+        .iter()
+        .map(|(id, image)| (id, image.clone()))
+        .collect();
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        expected_color(material, surface, pixel, &inputs, &images, &lights)
+    });
+    comparison.assert_within("texture maps", TOLERANCE);
+    assert!(
+        comparison.skipped_pixels < comparison.lit_pixels / 5,
+        "too few pixels judged: {} lit, {} on texel edges",
+        comparison.lit_pixels,
+        comparison.skipped_pixels
+    );
+}
