@@ -32,15 +32,19 @@ struct Orbit {
 struct Paused(bool);
 
 fn main() {
-    support::example_app("many_lights")
-        .add_plugins((PhongPlugin, FrameTimeDiagnosticsPlugin::default()))
-        .insert_resource(PhongAmbientLight {
-            color: Color::linear_rgb(0.02, 0.02, 0.02),
-        })
-        .init_resource::<Paused>()
-        .add_systems(Startup, setup)
-        .add_systems(Update, (move_lights, keys, report_frame_time))
-        .run();
+    let mut app = support::example_app("many_lights");
+    support::show_key_help(
+        &mut app,
+        "G light grid on/off, B Phong / Blinn-Phong, Space pause",
+    )
+    .add_plugins((PhongPlugin, FrameTimeDiagnosticsPlugin::default()))
+    .insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.02, 0.02, 0.02),
+    })
+    .init_resource::<Paused>()
+    .add_systems(Startup, setup)
+    .add_systems(Update, (move_lights, keys, report_frame_time))
+    .run();
 }
 
 fn setup(
@@ -48,7 +52,6 @@ fn setup(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<PhongMaterial>>,
 ) {
-    println!("keys: G light grid on/off, B Phong / Blinn-Phong, Space pause");
     commands.spawn((
         Mesh3d(
             meshes.add(

@@ -34,7 +34,8 @@ struct Orbiting;
 struct Paused(bool);
 
 fn main() {
-    support::example_app("orbiting_light")
+    let mut app = support::example_app("orbiting_light");
+    support::show_key_help(&mut app, "B Blinn-Phong / Phong, Space pause")
         .add_plugins(PhongPlugin)
         .insert_resource(PhongAmbientLight::NONE)
         .init_resource::<Paused>()
@@ -62,7 +63,6 @@ fn setup(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<PhongMaterial>>,
 ) {
-    println!("keys: B Blinn-Phong / Phong, Space pause");
     let objects: [(Mesh, Vec3, Vec3); 4] = [
         (
             Plane3d::default().mesh().size(60.0, 60.0).into(),

@@ -24,16 +24,19 @@ use light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, Sea
 const EDGE_WIDTHS: [f32; 3] = [0.0, 0.25, 0.8];
 
 fn main() {
-    println!("keys: 1-4 select a searchlight, S shape, E edge softness, Space pause");
-    support::example_app("searchlight")
-        .add_plugins((PhongPlugin, SearchlightPlugin))
-        .insert_resource(PhongAmbientLight {
-            color: Color::linear_rgb(0.06, 0.06, 0.08),
-        })
-        .init_resource::<Controls>()
-        .add_systems(Startup, setup)
-        .add_systems(Update, (handle_keys, sweep).chain())
-        .run();
+    let mut app = support::example_app("searchlight");
+    support::show_key_help(
+        &mut app,
+        "1-4 select a searchlight, S shape, E edge softness, Space pause",
+    )
+    .add_plugins((PhongPlugin, SearchlightPlugin))
+    .insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.06, 0.06, 0.08),
+    })
+    .init_resource::<Controls>()
+    .add_systems(Startup, setup)
+    .add_systems(Update, (handle_keys, sweep).chain())
+    .run();
 }
 
 /// Which searchlight the keys change, and whether the beams move.

@@ -41,14 +41,14 @@ fn main() {
     support::show_key_help(
         &mut app,
         "D directional, P point, S spot light on/off; N normal maps; B Phong / Blinn-Phong",
-    );
-    app.add_plugins(PhongPlugin)
-        .insert_resource(PhongAmbientLight {
-            color: Color::linear_rgb(0.2, 0.2, 0.2),
-        })
-        .add_systems(Startup, setup)
-        .add_systems(Update, keys)
-        .run();
+    )
+    .add_plugins(PhongPlugin)
+    .insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.2, 0.2, 0.2),
+    })
+    .add_systems(Startup, setup)
+    .add_systems(Update, keys)
+    .run();
 }
 
 fn setup(
