@@ -245,7 +245,7 @@ pub fn switch_specular_model(materials: &mut Assets<bevy_phong::PhongMaterial>) 
 /// Shows `keys` as a line of help in the window's top-left corner (windowed runs only; the
 /// PNG of a headless run shows the scene alone) and prints it.
 #[allow(dead_code, reason = "only the examples that take keys use it")]
-pub fn show_key_help(app: &mut App, keys: &'static str) -> &mut App {
+pub fn show_key_help<'a>(app: &'a mut App, keys: &'static str) -> &'a mut App {
     println!("keys: {keys}");
     if matches!(app.world().resource::<RunMode>(), RunMode::Windowed) {
         app.add_systems(Startup, move |mut commands: Commands| {
