@@ -1,6 +1,10 @@
 //! What goes wrong with a scene or material file.
 
-use bevy::asset::{LoadContext, io::Reader};
+use super::SceneColor;
+use bevy::{
+    asset::{AssetPath, LoadContext, io::Reader},
+    color::Color,
+};
 use serde::de::DeserializeOwned;
 use thiserror::Error;
 
@@ -54,6 +58,31 @@ impl SceneFileError {
             message: message.into(),
         }
     }
+}
+
+/// `color` as a Bevy color; one that cannot be used is an [`Invalid`](SceneFileError::Invalid)
+/// error at `field` of the file being loaded.
+pub(crate) fn scene_color(
+    load_context: &LoadContext,
+    color: &SceneColor,
+    field: impl Into<String>,
+) -> Result<Color, SceneFileError> {
+    color
+        .to_color()
+        .map_err(|message| SceneFileError::invalid(load_context, field, message))
+}
+
+/// `path`, relative to the file being loaded, as an asset path; a malformed one is an
+/// [`Invalid`](SceneFileError::Invalid) error at `field`.
+pub(crate) fn relative_path(
+    load_context: &LoadContext,
+    path: &str,
+    field: impl Into<String>,
+) -> Result<AssetPath<'static>, SceneFileError> {
+    load_context
+        .path()
+        .resolve_embed_str(path)
+        .map_err(|error| SceneFileError::invalid(load_context, field, format!("{path:?}: {error}")))
 }
 
 /// Parses `text` as RON into `T`; a syntax or type error says where (`path:line:column`).

@@ -3,7 +3,7 @@
 
 use super::{
     LightDescription, MaterialSource, MeshDescription, PhongSceneDescription, SceneFileError,
-    read_ron,
+    read_ron, relative_path, scene_color,
 };
 use crate::{
     lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
@@ -90,9 +90,7 @@ fn build_scene(
     let ambient = match &description.ambient {
         None => None,
         Some(color) => Some(PhongAmbientLight {
-            color: color
-                .to_color()
-                .map_err(|message| SceneFileError::invalid(load_context, "ambient", message))?,
+            color: scene_color(load_context, color, "ambient")?,
         }),
     };
     let lights = description
@@ -114,16 +112,7 @@ fn build_scene(
                 load_context.add_labeled_asset(format!("object{index}/material"), material)
             }
             MaterialSource::File(path) => {
-                let resolved = load_context
-                    .path()
-                    .resolve_embed_str(path)
-                    .map_err(|error| {
-                        SceneFileError::invalid(
-                            load_context,
-                            format!("{field}.material"),
-                            error.to_string(),
-                        )
-                    })?;
+                let resolved = relative_path(load_context, path, format!("{field}.material"))?;
                 load_context.load(resolved)
             }
         };
@@ -143,9 +132,7 @@ fn scene_light(
     load_context: &LoadContext,
 ) -> Result<(SceneLight, Transform), SceneFileError> {
     let color = |name: &str, color: &super::SceneColor| {
-        color.to_color().map_err(|message| {
-            SceneFileError::invalid(load_context, format!("{field}.{name}"), message)
-        })
+        scene_color(load_context, color, format!("{field}.{name}"))
     };
     let specular = |color_of: &Option<super::SceneColor>| match color_of {
         None => Ok(None),

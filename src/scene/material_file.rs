@@ -1,6 +1,6 @@
 //! `PhongMaterial` as a file: [`PhongMaterialDescription`] and the `*.phong.ron` loader.
 
-use super::{SceneColor, SceneFileError};
+use super::{SceneColor, SceneFileError, relative_path, scene_color};
 use crate::material::{PhongMaterial, SpecularModel};
 use bevy::{
     asset::{AssetLoader, LoadContext, io::Reader},
@@ -97,9 +97,7 @@ impl PhongMaterialDescription {
         load_context: &mut LoadContext,
     ) -> Result<PhongMaterial, SceneFileError> {
         let color = |name: &str, color: &SceneColor| {
-            color.to_color().map_err(|message| {
-                SceneFileError::invalid(load_context, format!("{field}{name}"), message)
-            })
+            scene_color(load_context, color, format!("{field}{name}"))
         };
         let base_color = color(".base_color", &self.base_color)?;
         let specular_color = color(".specular_color", &self.specular_color)?;
@@ -146,12 +144,7 @@ fn load_texture(
     let Some(path) = path else {
         return Ok(None);
     };
-    let resolved = load_context
-        .path()
-        .resolve_embed_str(path)
-        .map_err(|error| {
-            SceneFileError::invalid(load_context, field, format!("{path:?}: {error}"))
-        })?;
+    let resolved = relative_path(load_context, path, field)?;
     Ok(Some(
         load_context
             .load_builder()

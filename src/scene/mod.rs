@@ -28,8 +28,8 @@ pub use description::{
     CameraDescription, LightDescription, MaterialSource, MeshDescription, ObjectDescription,
     PhongSceneDescription, TransformDescription,
 };
-pub(crate) use error::read_ron;
 pub use error::{SceneFileError, parse_ron};
+pub(crate) use error::{read_ron, relative_path, scene_color};
 pub use loader::{PhongScene, PhongSceneLoader, SceneLight};
 pub use material_file::{AlphaModeDescription, PhongMaterialDescription, PhongMaterialLoader};
 pub(crate) use spawn::spawn_phong_scenes;
