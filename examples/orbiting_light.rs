@@ -4,8 +4,9 @@
 //! The seed's values carry over directly: `k_d = 0.6` times each object's color, `k_s = 0.8`
 //! (white), shininess 160, and its uncolored ambient `k_a · 0.6 = 0.12` as emissive (this
 //! crate's ambient term is tinted by `k_d`, the seed's is not). The seed ray-marches a box
-//! with rounded edges and casts shadows; here the box is a plain cuboid and there are no
-//! shadows. The seed's diffuse term reads `materialColor / r * r`, which cancels to no
+//! with rounded edges; here the box is a plain cuboid. The seed's shadows are the light's
+//! shadow maps with the seed's look, [`PhongShadows::SEED_003`]: a shadowed point keeps 10 %
+//! of the diffuse term and the whole highlight. The seed's diffuse term reads `materialColor / r * r`, which cancels to no
 //! fall-off, so the light has none either. The seed's coordinates are left-handed (x to the
 //! right while looking along +z); x is mirrored here so that the picture is the seed's.
 //!
@@ -14,7 +15,7 @@
 //! cargo run --example orbiting_light -- --headless out.png # a PNG, and exit
 //! ```
 //!
-//! Keys: B switches Blinn-Phong / Phong, Space pauses the light.
+//! Keys: B switches Blinn-Phong / Phong, S the shadows on and off, Space pauses the light.
 
 mod support;
 
@@ -35,7 +36,7 @@ struct Paused(bool);
 
 fn main() {
     let mut app = support::example_app("orbiting_light");
-    support::show_key_help(&mut app, "B Blinn-Phong / Phong, Space pause")
+    support::show_key_help(&mut app, "B Blinn-Phong / Phong, S shadows, Space pause")
         .add_plugins(PhongPlugin)
         .insert_resource(PhongAmbientLight::NONE)
         .init_resource::<Paused>()
@@ -99,7 +100,13 @@ fn setup(
     }
 
     commands.spawn((
-        PhongPointLight::default(),
+        PhongPointLight {
+            shadows: PhongShadows {
+                resolution: 2048,
+                ..PhongShadows::SEED_003
+            },
+            ..default()
+        },
         Transform::from_translation(light_position(0.0)),
         Orbiting,
     ));
@@ -140,9 +147,15 @@ fn keys(
     keys: Res<ButtonInput<KeyCode>>,
     mut paused: ResMut<Paused>,
     mut materials: ResMut<Assets<PhongMaterial>>,
+    mut lights: Query<&mut PhongPointLight, With<Orbiting>>,
 ) {
     if keys.just_pressed(KeyCode::KeyB) {
         support::switch_specular_model(&mut materials);
+    }
+    if keys.just_pressed(KeyCode::KeyS) {
+        for mut light in &mut lights {
+            light.shadows.enabled = !light.shadows.enabled;
+        }
     }
     if keys.just_pressed(KeyCode::Space) {
         paused.0 = !paused.0;

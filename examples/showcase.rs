@@ -4,25 +4,52 @@
 //! As in the seed, whose highlight is an uncolored `2.0 * pow(eyeCos, 50.0)`, every light's
 //! specular intensity is white.
 //!
+//! Below the shapes, a floor receives the shadows of the two point lights (the directional
+//! light shines along the floor, so its shadows fall on the shapes themselves, and would
+//! hide the sphere's third highlight behind the cylinder: it casts none here).
+//!
 //! ```sh
 //! cargo run --example showcase                       # a window, where a display exists
 //! cargo run --example showcase -- --headless out.png # a PNG, and exit
 //! ```
+//!
+//! Keys: S switches the shadows on and off.
 
 mod support;
 
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
 
+/// The floor's height, below the lowest shape.
+const FLOOR_HEIGHT: f32 = -1.6;
+
 fn main() {
-    support::example_app("showcase")
+    let mut app = support::example_app("showcase");
+    support::show_key_help(&mut app, "S shadows on / off")
         .add_plugins(PhongPlugin)
         // Seed 000's default ambient light.
         .insert_resource(PhongAmbientLight {
             color: Color::linear_rgb(0.5, 0.5, 0.5),
         })
         .add_systems(Startup, setup)
+        .add_systems(Update, toggle_shadows)
         .run();
+}
+
+/// Shadows of the two point lights, at a resolution that keeps their edges crisp on the floor.
+fn point_light_shadows() -> PhongShadows {
+    PhongShadows {
+        resolution: 1024,
+        ..PhongShadows::ON
+    }
+}
+
+fn toggle_shadows(keys: Res<ButtonInput<KeyCode>>, mut lights: Query<&mut PhongPointLight>) {
+    if keys.just_pressed(KeyCode::KeyS) {
+        for mut light in &mut lights {
+            light.shadows.enabled = !light.shadows.enabled;
+        }
+    }
 }
 
 fn setup(
@@ -72,6 +99,16 @@ fn setup(
     }
 
     commands.spawn((
+        Mesh3d(meshes.add(Plane3d::default().mesh().size(30.0, 30.0))),
+        MeshMaterial3d(materials.add(PhongMaterial {
+            base_color: Color::srgb(0.6, 0.6, 0.6),
+            specular_strength: 0.0,
+            ..default()
+        })),
+        Transform::from_xyz(0.0, FLOOR_HEIGHT, 0.0),
+    ));
+
+    commands.spawn((
         PhongDirectionalLight::default(),
         Transform::default().looking_to(Vec3::NEG_X, Vec3::Y),
     ));
@@ -79,6 +116,7 @@ fn setup(
         PhongPointLight {
             color: Color::linear_rgb(1.0, 0.0, 0.0),
             specular: Some(Color::WHITE),
+            shadows: point_light_shadows(),
             ..default()
         },
         Transform::from_xyz(-3.0, 3.0, 0.0),
@@ -87,6 +125,7 @@ fn setup(
         PhongPointLight {
             color: Color::linear_rgb(0.0, 0.0, 1.0),
             specular: Some(Color::WHITE),
+            shadows: point_light_shadows(),
             ..default()
         },
         Transform::from_xyz(3.0, 3.0, 0.0),

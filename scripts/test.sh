@@ -17,6 +17,8 @@ done
 # A scene file rendered to PNG and OpenEXR, as the README shows.
 cargo run --quiet --example render_scene -- assets/scenes/shapes.phong_scene.ron \
     --out target/examples/render_scene --size 480x270
+cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \
+    --out target/examples/render_scene_shadows --size 480x270
 cargo run --quiet --example render_scene -- --help >/dev/null
 # The benchmark still runs (a small scene, two frames).
 cargo run --quiet --example bench -- --quick

@@ -152,6 +152,27 @@
 //! the searchlight example's reference model is built on it, and its render test compares
 //! the extended material with it pixel by pixel, as the crate's own tests do.
 //!
+//! ## 6. Shadows
+//!
+//! A kind casts shadows by describing its rays in [`PhongLightKind::shadow`], a
+//! [`PhongShadowRequest`] with one of the
+//! [`PhongShadowProjection`](crate::shadows::PhongShadowProjection) shapes (sunlight, a
+//! parallel beam, a cone, all directions) and [`PhongShadows`](crate::PhongShadows)
+//! settings. The plugin renders the maps with the built-in lights' and hands each light its
+//! slot through [`PhongLightKind::set_shadow`]: store it in a `u32` of the record. The
+//! shader turns the slot into the factors on the two terms:
+//!
+//! ```wgsl
+//! #import bevy_phong::shadows::shadow_factors
+//! // In the fragment shader, before lighting: honour `NotShadowReceiver`.
+//! surface.receives_shadows = receives_shadows(in.instance_index);
+//! // Per light: (diffuse factor, specular factor).
+//! let shadow = shadow_factors(lamp.shadow, surface, to_light, lamp.position);
+//! color += phong_light(surface, to_light, shadow.x * lamp.color, shadow.y * lamp.color);
+//! ```
+//!
+//! The searchlight's beams each request a `Beam`: one orthographic map along the beam.
+//!
 //! ## What it costs the built-in lights
 //!
 //! Nothing per pixel: `PhongMaterial`'s shader is not changed by an extension; only meshes
@@ -163,13 +184,19 @@ use crate::{
     render::{
         LightBuffer, LightBufferResized, LightChanges, LightQuery, MIN_CAPACITY, push_visible,
     },
+    shadows::{PhongShadowRequest, ShadowRequests, ShadowSlots},
+    validation::is_finite_transform,
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
     asset::{Assets, Handle},
     ecs::{
-        component::Component, message::MessageWriter, resource::Resource,
-        schedule::IntoScheduleConfigs, system::ResMut,
+        change_detection::DetectChanges,
+        component::Component,
+        message::MessageWriter,
+        resource::Resource,
+        schedule::IntoScheduleConfigs,
+        system::{Res, ResMut},
     },
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
@@ -185,6 +212,23 @@ pub trait PhongLightKind: Component {
 
     /// The record of this light, placed by its entity's transform.
     fn to_gpu(&self, transform: &GlobalTransform) -> Self::Gpu;
+
+    /// The shadow this light casts, placed by its entity's transform; `None` (the default),
+    /// or a request whose settings are off, casts none. See
+    /// [`PhongShadowProjection`](crate::shadows::PhongShadowProjection) for
+    /// the shapes of light that get maps.
+    fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
+        let _ = transform;
+        None
+    }
+
+    /// Stores the light's shadow slot in its record: the index of its first shadow view plus
+    /// one, or `0` when it casts no shadow this frame. The shader passes it to
+    /// `bevy_phong::shadows::light_visibility`. Kinds without shadows keep the default,
+    /// which stores nothing.
+    fn set_shadow(record: &mut Self::Gpu, shadow: u32) {
+        let _ = (record, shadow);
+    }
 }
 
 /// The 16-byte header of an extension's light buffer: the number of records that follow.
@@ -246,26 +290,55 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
         })
         .add_systems(
             PostUpdate,
-            gather_light_kind::<L>.in_set(PhongSystems::GatherLights),
+            (
+                request_kind_shadows::<L>.in_set(PhongSystems::RequestShadows),
+                gather_light_kind::<L>.in_set(PhongSystems::GatherLights),
+            ),
         );
     }
 }
 
-/// Writes every visible `L` into its buffer when any of them changed (and on the first run).
-pub fn gather_light_kind<L: PhongLightKind>(
+/// Adds the shadow request of every visible `L` that casts one.
+fn request_kind_shadows<L: PhongLightKind>(
     lights: LightQuery<L>,
+    mut requests: ResMut<ShadowRequests>,
+) {
+    for (entity, light, transform, visibility) in &lights {
+        if !visibility.get() || !is_finite_transform(transform) {
+            continue;
+        }
+        if let Some(request) = light.shadow(transform) {
+            requests.push(entity, request);
+        }
+    }
+}
+
+/// Writes every visible `L` into its buffer when any of them or their shadow slots changed
+/// (and on the first run).
+pub(crate) fn gather_light_kind<L: PhongLightKind>(
+    lights: LightQuery<L>,
+    slots: Res<ShadowSlots>,
     mut changes: LightChanges<L>,
     mut state: ResMut<PhongLightKindBuffer<L>>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
     mut resized: MessageWriter<LightBufferResized>,
 ) {
-    let changed = changes.any();
+    let changed = changes.any() || slots.is_changed();
     if !changed && state.buffer.capacity() > 0 {
         return;
     }
     let state = &mut *state;
     state.records.clear();
-    let count = push_visible(&lights, &mut state.records, L::to_gpu);
+    let count = push_visible(
+        &lights,
+        &slots,
+        &mut state.records,
+        |light, transform, shadow| {
+            let mut record = light.to_gpu(transform);
+            L::set_shadow(&mut record, shadow);
+            record
+        },
+    );
     let header = GpuLightCount {
         count,
         padding: [0; 3],

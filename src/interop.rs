@@ -24,15 +24,25 @@
 //! What does not carry over: Bevy fades a light smoothly to zero toward its `range`, a Phong
 //! light is cut off there; Bevy's spot edge is `smoothstep`-like (a squared ramp), a Phong
 //! spot's is linear; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
-//! specular intensity is its diffuse color, shaped by the material's shininess. Shadows
-//! are not cast. Per-camera `AmbientLight` overrides are not mirrored.
+//! specular intensity is its diffuse color, shaped by the material's shininess.
+//! Per-camera `AmbientLight` overrides are not mirrored.
+//!
+//! Shadows carry over as settings: a Bevy light's `shadow_maps_enabled`, `shadow_depth_bias`
+//! and `shadow_normal_bias` (the same units) and, for point and spot lights,
+//! `shadow_map_near_z` become the mirror's [`PhongShadows`]; the Phong light then renders
+//! its own maps, which `PhongMaterial` meshes read (Bevy's maps serve its own materials). A
+//! directional light's cascades are [`PhongCascades::default`], not Bevy's
+//! `CascadeShadowConfig`; resolution and softness are the defaults.
 //!
 //! A mirrored light is updated whenever its Bevy light changes, and removed with it. Do not
 //! also put a Phong light of the same kind on a Bevy light's entity: the mirror owns it.
 
 use crate::{
     PhongSystems,
-    lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    lights::{
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
+        PhongShadows, PhongSpotLight,
+    },
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
@@ -92,6 +102,13 @@ impl BevyLightExposure {
         PhongDirectionalLight {
             color: scaled(light.color, self.factor() * light.illuminance / PI),
             specular: None,
+            shadows: PhongShadows {
+                enabled: light.shadow_maps_enabled,
+                depth_bias: light.shadow_depth_bias,
+                normal_bias: light.shadow_normal_bias,
+                ..PhongShadows::default()
+            },
+            cascades: PhongCascades::default(),
         }
     }
 
@@ -102,6 +119,12 @@ impl BevyLightExposure {
             specular: None,
             decay: Decay::new(0.0, 0.0, BEVY_FALL_OFF),
             range: Some(light.range),
+            shadows: point_shadows(
+                light.shadow_maps_enabled,
+                light.shadow_depth_bias,
+                light.shadow_normal_bias,
+                light.shadow_map_near_z,
+            ),
         }
     }
 
@@ -115,6 +138,12 @@ impl BevyLightExposure {
             inner_angle: light.inner_angle,
             outer_angle: light.outer_angle,
             exponent: 0.0,
+            shadows: point_shadows(
+                light.shadow_maps_enabled,
+                light.shadow_depth_bias,
+                light.shadow_normal_bias,
+                light.shadow_map_near_z,
+            ),
         }
     }
 
@@ -132,6 +161,18 @@ impl BevyLightExposure {
             color,
             self.factor() * lumens / (4.0 * PI * PI) * BEVY_FALL_OFF,
         )
+    }
+}
+
+/// The shadow settings of a Bevy point or spot light: on and off, both biases (Bevy's have
+/// the same units) and the near plane.
+fn point_shadows(enabled: bool, depth_bias: f32, normal_bias: f32, near_z: f32) -> PhongShadows {
+    PhongShadows {
+        enabled,
+        depth_bias,
+        normal_bias,
+        near_distance: near_z,
+        ..PhongShadows::default()
     }
 }
 

@@ -71,6 +71,10 @@
 //!   hot-reloaded; a material alone in a `*.phong.ron` file.
 //! - **Texture maps**: base color, specular, emissive and normal maps on [`PhongMaterial`],
 //!   each sampled only by the materials that have it.
+//! - **Shadows** ([`shadows`]): each light's [`PhongShadows`] turns on shadow maps that the
+//!   plugin renders (cascades for directional lights, a cube for point lights, one map for
+//!   spot lights), filtered with percentage-closer soft shadows; `NotShadowCaster` and
+//!   `NotShadowReceiver` work as on Bevy's meshes.
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
 
@@ -83,6 +87,7 @@ mod plugin;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod shadows;
 mod surface_inputs;
 #[cfg(test)]
 mod test_app;
@@ -91,18 +96,21 @@ pub mod validation;
 pub use culling::PhongLightCulling;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
 pub use lights::{
-    Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
+    Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight, PhongShadows,
+    PhongSpotLight,
 };
 pub use material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel};
 pub use plugin::{PhongMaterialAppExt, PhongPlugin, PhongSystems};
-pub use render::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER};
-pub use surface_inputs::{SurfaceInput, SurfaceInputUniform, SurfaceInputsMaterial};
+pub use surface_inputs::{
+    SurfaceInput, SurfaceInputUniform, SurfaceInputsMaterial, SurfaceInputsPlugin,
+};
 
 /// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
 pub mod prelude {
     pub use crate::{
-        Decay, PhongAmbientLight, PhongDirectionalLight, PhongLightCulling, PhongMaterial,
-        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSpotLight, SpecularModel,
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCulling,
+        PhongMaterial, PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongShadows,
+        PhongSpotLight, SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 }

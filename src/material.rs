@@ -1,6 +1,5 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
-use crate::render::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER};
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
@@ -11,12 +10,7 @@ use bevy::{
     pbr::{Material, MaterialPipeline, MaterialPipelineKey},
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
-    render::{
-        render_resource::{
-            AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
-        },
-        storage::ShaderBuffer,
-    },
+    render::render_resource::{RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError},
     shader::ShaderRef,
 };
 use serde::{Deserialize, Serialize};
@@ -74,10 +68,13 @@ impl SpecularModel {
 /// [`specular_model`]: Self::specular_model
 /// [`shininess`]: Self::shininess
 /// [`normal_map_texture`]: Self::normal_map_texture
-#[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
+/// # Lights and shadows
+///
+/// The material holds only surface data. The lights, the light grid and the shadow maps
+/// are the plugin's: its bind group gets them from the render world when it is built (see
+/// [`crate::render`]).
+#[derive(Asset, Clone, Debug, Reflect)]
 #[reflect(Default, Debug, Clone)]
-#[uniform(0, PhongMaterialUniform)]
-#[bind_group_data(PhongMaterialKey)]
 pub struct PhongMaterial {
     /// Diffuse reflectance `k_d`; its alpha is the output alpha (see
     /// [`alpha_mode`](Self::alpha_mode)). Default white.
@@ -101,38 +98,22 @@ pub struct PhongMaterial {
     /// Default [`AlphaMode::Opaque`].
     pub alpha_mode: AlphaMode,
     /// Multiplies `base_color` (all four channels). Default none.
-    #[texture(3)]
-    #[sampler(4)]
     #[dependency]
     pub base_color_texture: Option<Handle<Image>>,
     /// Multiplies `specular_color`. Default none.
-    #[texture(5)]
-    #[sampler(6)]
     #[dependency]
     pub specular_texture: Option<Handle<Image>>,
     /// Multiplies `emissive`. Default none.
-    #[texture(7)]
-    #[sampler(8)]
     #[dependency]
     pub emissive_texture: Option<Handle<Image>>,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
     /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
     /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
-    #[texture(9)]
-    #[sampler(10)]
     #[dependency]
     pub normal_map_texture: Option<Handle<Image>>,
     /// Negates the normal map's green channel, for maps made with the other convention
     /// (Direct3D's, green pointing down). Default `false`.
     pub flip_normal_map_y: bool,
-    /// The scene's light buffer, which the plugin fills every frame. Leave it at its
-    /// default, [`PHONG_LIGHT_BUFFER`].
-    #[storage(1, read_only)]
-    pub lights: Handle<ShaderBuffer>,
-    /// The scene's light grid, which the plugin fills with the lights of finite reach. Leave
-    /// it at its default, [`PHONG_LIGHT_GRID_BUFFER`].
-    #[storage(2, read_only)]
-    pub light_grid: Handle<ShaderBuffer>,
 }
 
 impl Default for PhongMaterial {
@@ -151,8 +132,6 @@ impl Default for PhongMaterial {
             emissive_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
-            lights: PHONG_LIGHT_BUFFER,
-            light_grid: PHONG_LIGHT_GRID_BUFFER,
         }
     }
 }

@@ -2,14 +2,16 @@
 
 use crate::{
     culling::PhongLightCulling,
-    lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    lights::{
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
+        PhongShadows, PhongSpotLight,
+    },
     material::{PhongMaterial, SpecularModel},
     render::{LightBufferResized, PhongLightBuffer, gather_lights, refresh_material_bind_groups},
     scene::{
         PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
         spawn_phong_scenes,
     },
-    surface_inputs::SurfaceInputsMaterial,
     validation::{InvalidInput, validate_ambient_light, validate_lights, validate_materials},
 };
 use bevy::{
@@ -41,6 +43,11 @@ pub enum PhongSystems {
     /// After this set, every light component, the ambient light and every material changed
     /// this frame holds only valid values (see [`crate::validation`]).
     Validate,
+    /// Each light kind asks for the shadows its lights cast this frame.
+    RequestShadows,
+    /// After this set, the shadow maps of this frame are laid out: each shadow-casting light
+    /// has its views, and each view its casters.
+    GatherShadows,
     /// After this set, the light buffer holds every visible light of this frame.
     GatherLights,
     /// After this set, every material whose light buffer was reallocated this frame is
@@ -61,6 +68,8 @@ impl Plugin for PhongPlugin {
             .register_type::<PhongPointLight>()
             .register_type::<PhongSpotLight>()
             .register_type::<Decay>()
+            .register_type::<PhongShadows>()
+            .register_type::<PhongCascades>()
             .register_type::<SpecularModel>()
             .register_type::<PhongSceneRoot>()
             .register_type::<PhongSceneCamera>()
@@ -72,6 +81,8 @@ impl Plugin for PhongPlugin {
                 PostUpdate,
                 (
                     PhongSystems::Validate,
+                    PhongSystems::RequestShadows,
+                    PhongSystems::GatherShadows,
                     PhongSystems::GatherLights,
                     PhongSystems::RefreshMaterials,
                 )
@@ -93,6 +104,7 @@ impl Plugin for PhongPlugin {
                     .in_set(PhongSystems::Validate),
             )
             .add_systems(PostUpdate, gather_lights.in_set(PhongSystems::GatherLights));
+        crate::shadows::add_shadow_gather(app);
 
         if app.get_sub_app(RenderApp).is_none() {
             app.init_asset::<PhongMaterial>()
@@ -104,16 +116,18 @@ impl Plugin for PhongPlugin {
         load_shader_library!(app, "shaders/bindings.wgsl");
         load_shader_library!(app, "shaders/shading.wgsl");
         load_shader_library!(app, "shaders/texture_maps.wgsl");
+        load_shader_library!(app, "shaders/shadows.wgsl");
         embedded_asset!(app, "shaders/phong_material.wgsl");
-        embedded_asset!(app, "shaders/surface_inputs.wgsl");
+        embedded_asset!(app, "shaders/shadow_caster.wgsl");
+        crate::shadows::add_shadow_rendering(app);
         app.add_phong_material::<PhongMaterial>()
-            .register_asset_loader(PhongMaterialLoader)
-            .add_plugins(MaterialPlugin::<SurfaceInputsMaterial>::default());
+            .register_asset_loader(PhongMaterialLoader);
     }
 }
 
-/// Registers a material that binds a light buffer, such as [`PhongMaterial`] or an
-/// `ExtendedMaterial<PhongMaterial, _>`.
+/// Registers a material that binds the plugin's scene data (see
+/// [`PhongSceneBindings`](crate::render::PhongSceneBindings)) or an extension's light
+/// buffer, such as [`PhongMaterial`] or an `ExtendedMaterial<PhongMaterial, _>`.
 pub trait PhongMaterialAppExt {
     /// Adds `MaterialPlugin::<M>` and keeps `M`'s bind groups on the current light buffers:
     /// when a buffer is reallocated, every `M` is rebuilt in the same frame, after the new

@@ -196,6 +196,55 @@ pub fn shade(surface: &SurfacePoint, material: &Material, lights: &Lights) -> DV
         .fold(material.emissive + ambient, |sum, term| sum + term)
 }
 
+/// How much of one light reaches a surface point (SPEC.md, "Shadows").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shadowing {
+    /// `V ∈ [0, 1]`: 1 where nothing is in the way, 0 where the light is blocked.
+    pub visibility: f64,
+    /// `f_d`: the fraction of the diffuse term left in full shadow.
+    pub diffuse_in_shadow: f64,
+    /// `f_s`: the fraction of the highlight left in full shadow.
+    pub specular_in_shadow: f64,
+}
+
+impl Shadowing {
+    /// Nothing in the way.
+    pub const LIT: Self = Self {
+        visibility: 1.0,
+        diffuse_in_shadow: 0.0,
+        specular_in_shadow: 0.0,
+    };
+
+    /// The factors on the diffuse term and the highlight: `f + (1 − f)·V` each.
+    pub fn factors(&self) -> (f64, f64) {
+        let factor = |fraction: f64| fraction + (1.0 - fraction) * self.visibility;
+        (
+            factor(self.diffuse_in_shadow),
+            factor(self.specular_in_shadow),
+        )
+    }
+}
+
+/// [`shade`] with each light's share scaled by its [`Shadowing`] (`shadowing[i]` for
+/// `lights.lights[i]`; lights past the end of `shadowing` are lit).
+pub fn shade_shadowed(
+    surface: &SurfacePoint,
+    material: &Material,
+    lights: &Lights,
+    shadowing: &[Shadowing],
+) -> DVec3 {
+    let ambient = lights.ambient * material.ambient_factor * material.diffuse;
+    lights
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(index, light)| {
+            let (diffuse, specular) = shadowing.get(index).unwrap_or(&Shadowing::LIT).factors();
+            light_contribution(surface, material, &light.scaled(diffuse, specular))
+        })
+        .fold(material.emissive + ambient, |sum, term| sum + term)
+}
+
 /// One light's `A · S · [diffuse + specular]` at `surface`.
 pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &Light) -> DVec3 {
     match *light {
@@ -396,6 +445,32 @@ fn decay_of(decay: crate::Decay) -> [f64; 3] {
 }
 
 impl Light {
+    /// This light with its diffuse intensity times `diffuse` and its specular intensity times
+    /// `specular` (each term of the equation is linear in its intensity).
+    pub fn scaled(mut self, diffuse: f64, specular: f64) -> Self {
+        match &mut self {
+            Light::Directional {
+                color,
+                specular: specular_color,
+                ..
+            }
+            | Light::Point {
+                color,
+                specular: specular_color,
+                ..
+            }
+            | Light::Spot {
+                color,
+                specular: specular_color,
+                ..
+            } => {
+                *color *= diffuse;
+                *specular_color *= specular;
+            }
+        }
+        self
+    }
+
     /// The reference form of a directional light entity.
     pub fn directional(light: &PhongDirectionalLight, transform: &GlobalTransform) -> Self {
         Light::Directional {
@@ -452,6 +527,53 @@ mod tests {
             specular_model: SpecularModel::Phong,
             emissive: DVec3::ZERO,
         }
+    }
+
+    #[test]
+    fn visibility_scales_the_diffuse_term_and_the_highlight_by_their_shadow_fractions() {
+        let surface = SurfacePoint {
+            position: DVec3::ZERO,
+            normal: DVec3::Y,
+            camera: DVec3::new(-1.0, 1.0, 0.0),
+        };
+        let material = Material {
+            specular_strength: 1.0,
+            shininess: 8.0,
+            emissive: DVec3::splat(0.01),
+            ..matte(DVec3::splat(0.5))
+        };
+        let lights = Lights {
+            ambient: DVec3::splat(0.1),
+            lights: vec![Light::Directional {
+                direction: DVec3::new(-1.0, -1.0, 0.0),
+                color: DVec3::ONE,
+                specular: DVec3::ONE,
+            }],
+        };
+        let diffuse_only = Material {
+            specular_strength: 0.0,
+            ..material
+        };
+        let base = material.emissive + lights.ambient * 0.5;
+        let diffuse = shade(&surface, &diffuse_only, &lights) - base;
+        let specular = shade(&surface, &material, &lights) - base - diffuse;
+        let shaded = |visibility, diffuse_in_shadow, specular_in_shadow| {
+            let shadowing = Shadowing {
+                visibility,
+                diffuse_in_shadow,
+                specular_in_shadow,
+            };
+            shade_shadowed(&surface, &material, &lights, &[shadowing])
+        };
+        assert!((shaded(1.0, 0.0, 0.0) - shade(&surface, &material, &lights)).length() < EPSILON);
+        assert!(
+            (shaded(0.0, 0.0, 0.0) - base).length() < EPSILON,
+            "blocked: ambient only"
+        );
+        let seed_003 = base + 0.1 * diffuse + specular;
+        assert!((shaded(0.0, 0.1, 1.0) - seed_003).length() < EPSILON);
+        let half = base + 0.5 * (diffuse + specular);
+        assert!((shaded(0.5, 0.0, 0.0) - half).length() < EPSILON);
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! [`SurfaceInputsMaterial`]: renders the per-pixel inputs of the lighting equation.
 
 use bevy::{
-    asset::Asset,
-    pbr::Material,
+    app::{App, Plugin},
+    asset::{Asset, embedded_asset},
+    pbr::{Material, MaterialPlugin},
     reflect::Reflect,
     render::render_resource::{AsBindGroup, ShaderType},
     shader::ShaderRef,
@@ -10,6 +11,18 @@ use bevy::{
 
 /// Path of the material's fragment shader among the crate's embedded assets.
 pub(crate) const SURFACE_INPUTS_SHADER: &str = "embedded://bevy_phong/shaders/surface_inputs.wgsl";
+
+/// Adds [`SurfaceInputsMaterial`]: for tests and tools that check a render against the
+/// reference model. Games don't need it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SurfaceInputsPlugin;
+
+impl Plugin for SurfaceInputsPlugin {
+    fn build(&self, app: &mut App) {
+        embedded_asset!(app, "shaders/surface_inputs.wgsl");
+        app.add_plugins(MaterialPlugin::<SurfaceInputsMaterial>::default());
+    }
+}
 
 /// Which input of the lighting equation a [`SurfaceInputsMaterial`] writes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
@@ -32,7 +45,7 @@ pub enum SurfaceInput {
 /// alpha (so that objects, and the background a camera clears to 0, can be told apart).
 ///
 /// It runs Bevy's mesh vertex shader like `PhongMaterial` does, so the same mesh, camera
-/// and render target give bit-identical inputs. Render a scene once lit and once with this
+/// and render target give bit-identical inputs. Add [`SurfaceInputsPlugin`] to use it. Render a scene once lit and once with this
 /// material on every mesh (into an `Rgba32Float` target) to evaluate the reference model
 /// ([`crate::reference`]) on exactly the inputs the shader saw.
 #[derive(Asset, AsBindGroup, Clone, Debug, Default, Reflect)]

@@ -49,7 +49,7 @@ fn gpu_light_matches_wgsl_phong_light() {
         ("specular", offset_of!(GpuLight, specular)),
         ("spot_exponent", offset_of!(GpuLight, spot_exponent)),
         ("decay", offset_of!(GpuLight, decay)),
-        ("padding", offset_of!(GpuLight, padding)),
+        ("shadow", offset_of!(GpuLight, shadow)),
     ];
     let rust: Vec<(String, u32)> = rust
         .iter()

@@ -5,7 +5,8 @@
 #import bevy_phong::{
     bindings::material,
     lighting::{distance_attenuation, phong_light},
-    shading::{material_surface, phong_shade},
+    shading::{material_surface, phong_shade, receives_shadows},
+    shadows::shadow_factors,
     types::PhongSurface,
 }
 
@@ -21,7 +22,8 @@ struct Searchlight {
     // 0 circle, 1 triangle, 2 diamond, 3 square.
     shape: u32,
     color: vec3<f32>,
-    padding0: f32,
+    // Shadow slot: the first shadow view plus one, 0 without shadows.
+    shadow: u32,
     specular: vec3<f32>,
     padding1: f32,
     decay: vec3<f32>,
@@ -80,12 +82,15 @@ fn searchlight(surface: PhongSurface, light: Searchlight) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     let attenuation = distance_attenuation(along, light.decay, 3.4028235e38);
-    return (coverage * attenuation) * phong_light(surface, -light.direction, light.color, light.specular);
+    let shadow = shadow_factors(light.shadow, surface, -light.direction, light.position);
+    return (coverage * attenuation)
+        * phong_light(surface, -light.direction, shadow.x * light.color, shadow.y * light.specular);
 }
 
 @fragment
 fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
-    let surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
+    var surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
+    surface.receives_shadows = receives_shadows(in.instance_index);
     var color = phong_shade(surface);
     for (var index = 0u; index < searchlights.count; index += 1u) {
         color += searchlight(surface, searchlights.lights[index]);

@@ -12,10 +12,11 @@ use bevy::{
     shader::ShaderRef,
 };
 use bevy_phong::{
-    Decay, PhongMaterial,
+    Decay, PhongMaterial, PhongShadows,
     extension::{PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin},
     prelude::PhongMaterialAppExt,
     render::{light_direction, linear_rgb},
+    shadows::{PhongShadowProjection, PhongShadowRequest},
 };
 use bytemuck::{Pod, Zeroable};
 use serde::{Deserialize, Serialize};
@@ -88,6 +89,11 @@ pub struct Searchlight {
     pub edge: f32,
     /// Fall-off with the distance along the beam. Default none.
     pub decay: Decay,
+    /// Shadow settings: the beam's parallel rays get one orthographic shadow map. Default
+    /// off.
+    pub shadows: PhongShadows,
+    /// How far along the beam its shadow map reaches, world units. Default 50.
+    pub shadow_distance: f32,
 }
 
 impl Default for Searchlight {
@@ -99,6 +105,8 @@ impl Default for Searchlight {
             shape: BeamShape::Circle,
             edge: 0.0,
             decay: Decay::NONE,
+            shadows: PhongShadows::default(),
+            shadow_distance: 50.0,
         }
     }
 }
@@ -114,7 +122,8 @@ pub struct GpuSearchlight {
     pub up: [f32; 3],
     pub shape: u32,
     pub color: [f32; 3],
-    pub padding0: f32,
+    /// The shadow slot (`PhongLightKind::set_shadow`).
+    pub shadow: u32,
     pub specular: [f32; 3],
     pub padding1: f32,
     pub decay: [f32; 3],
@@ -144,6 +153,27 @@ impl PhongLightKind for Searchlight {
             decay: self.decay.to_array(),
             ..default()
         }
+    }
+
+    fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
+        let direction = light_direction(transform);
+        let up = beam_up(transform, direction);
+        let half_size = self.radius + self.edge;
+        Some(PhongShadowRequest {
+            projection: PhongShadowProjection::Beam {
+                origin: transform.translation(),
+                direction,
+                right: direction.cross(up),
+                half_size: Vec2::splat(half_size),
+                length: self.shadow_distance,
+            },
+            settings: self.shadows,
+            reach: self.shadow_distance,
+        })
+    }
+
+    fn set_shadow(record: &mut GpuSearchlight, shadow: u32) {
+        record.shadow = shadow;
     }
 }
 

@@ -130,6 +130,8 @@ fn setup(
                 radius: 1.1,
                 shape,
                 edge: EDGE_WIDTHS[index % 2],
+                // The beam's parallel rays cast one orthographic shadow map.
+                shadows: PhongShadows::ON,
                 ..default()
             },
             Sweep {

@@ -88,6 +88,7 @@ fn setup(
         PhongDirectionalLight {
             color: Color::linear_rgb(0.4, 0.4, 0.4),
             specular: Some(Color::linear_rgb(0.5, 0.5, 0.5)),
+            ..default()
         },
         Transform::default().looking_to(Vec3::new(-0.2, -1.0, -0.3), Vec3::Z),
     ));
@@ -97,6 +98,7 @@ fn setup(
             specular: Some(Color::WHITE),
             decay: Decay::new(1.0, 0.09, 0.032),
             range: None,
+            ..default()
         },
         Transform::from_xyz(0.7, 0.2, 2.0),
     ));

@@ -1,5 +1,6 @@
 //! Directional lights: parallel rays from infinitely far away.
 
+use super::{PhongCascades, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,
@@ -24,6 +25,10 @@ pub struct PhongDirectionalLight {
     pub color: Color,
     /// Specular intensity; `None` (the default) uses [`color`](Self::color).
     pub specular: Option<Color>,
+    /// Shadow settings. Default off.
+    pub shadows: PhongShadows,
+    /// How the shadow is split along the camera's view. Default four cascades to 100 units.
+    pub cascades: PhongCascades,
 }
 
 impl Default for PhongDirectionalLight {
@@ -31,6 +36,8 @@ impl Default for PhongDirectionalLight {
         Self {
             color: Color::WHITE,
             specular: None,
+            shadows: PhongShadows::default(),
+            cascades: PhongCascades::default(),
         }
     }
 }

@@ -8,10 +8,12 @@ mod ambient;
 mod decay;
 mod directional;
 mod point;
+mod shadows;
 mod spot;
 
 pub use ambient::PhongAmbientLight;
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
 pub use point::PhongPointLight;
+pub use shadows::{PhongCascades, PhongShadows};
 pub use spot::PhongSpotLight;

@@ -1,6 +1,6 @@
 //! Point lights: light from one position in every direction.
 
-use super::Decay;
+use super::{Decay, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,
@@ -29,6 +29,8 @@ pub struct PhongPointLight {
     /// Distance (world units, `> 0`) past which the light contributes nothing;
     /// `None` (the default) means unlimited.
     pub range: Option<f32>,
+    /// Shadow settings. Default off.
+    pub shadows: PhongShadows,
 }
 
 impl Default for PhongPointLight {
@@ -38,6 +40,7 @@ impl Default for PhongPointLight {
             specular: None,
             decay: Decay::NONE,
             range: None,
+            shadows: PhongShadows::default(),
         }
     }
 }

@@ -1,6 +1,6 @@
 //! Spot lights: a point light limited to a cone.
 
-use super::Decay;
+use super::{Decay, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,
@@ -33,6 +33,8 @@ pub struct PhongSpotLight {
     /// Distance (world units, `> 0`) past which the light contributes nothing;
     /// `None` (the default) means unlimited.
     pub range: Option<f32>,
+    /// Shadow settings. Default off.
+    pub shadows: PhongShadows,
     /// Half-angle of the fully lit core, in radians, `0 ≤ inner ≤ outer`.
     /// Default 12.5° (seed 004).
     pub inner_angle: f32,
@@ -50,6 +52,7 @@ impl Default for PhongSpotLight {
             specular: None,
             decay: Decay::NONE,
             range: None,
+            shadows: PhongShadows::default(),
             inner_angle: 12.5_f32.to_radians(),
             outer_angle: 17.5_f32.to_radians(),
             exponent: 0.0,

@@ -10,6 +10,7 @@ use super::{
 };
 use crate::culling::PhongLightCulling;
 use crate::lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::shadows::ShadowSlots;
 use crate::validation::is_finite_transform;
 use bevy::{
     asset::Assets,
@@ -17,6 +18,7 @@ use bevy::{
     ecs::{
         change_detection::DetectChanges,
         component::Component,
+        entity::Entity,
         lifecycle::RemovedComponents,
         message::MessageWriter,
         query::{Changed, Or, With},
@@ -98,11 +100,13 @@ impl<L: Component> LightChanges<'_, '_, L> {
     }
 }
 
-/// The lights of kind `L` with the transform and visibility their record is made from.
+/// The lights of kind `L` with the entity, transform and visibility their record is made
+/// from.
 pub type LightQuery<'w, 's, L> = Query<
     'w,
     's,
     (
+        Entity,
         &'static L,
         &'static GlobalTransform,
         &'static InheritedVisibility,
@@ -110,20 +114,34 @@ pub type LightQuery<'w, 's, L> = Query<
 >;
 
 /// Appends the record of every visible light in `lights` to `records`, skipping lights with
-/// a non-finite transform; returns how many.
+/// a non-finite transform; `to_gpu` gets each light's shadow slot (see [`ShadowSlots`]).
+/// Returns how many.
 pub fn push_visible<L: Component, R>(
     lights: &LightQuery<L>,
+    slots: &ShadowSlots,
     records: &mut Vec<R>,
-    to_gpu: impl Fn(&L, &GlobalTransform) -> R,
+    to_gpu: impl Fn(&L, &GlobalTransform, u32) -> R,
 ) -> u32 {
     let start = records.len();
     records.extend(
         lights
             .iter()
-            .filter(|(_, transform, visibility)| visibility.get() && is_finite_transform(transform))
-            .map(|(light, transform, _)| to_gpu(light, transform)),
+            .filter(|(_, _, transform, visibility)| {
+                visibility.get() && is_finite_transform(transform)
+            })
+            .map(|(entity, light, transform, _)| to_gpu(light, transform, slots.get(entity))),
     );
     (records.len() - start) as u32
+}
+
+/// A built-in light's record with its shadow slot.
+fn with_shadow<L>(
+    to_gpu: impl Fn(&L, &GlobalTransform) -> GpuLight,
+) -> impl Fn(&L, &GlobalTransform, u32) -> GpuLight {
+    move |light, transform, shadow| GpuLight {
+        shadow,
+        ..to_gpu(light, transform)
+    }
 }
 
 /// Writes every visible built-in light into [`PhongLightBuffer`], and those of finite reach
@@ -136,6 +154,7 @@ pub fn gather_lights(
     directional: LightQuery<PhongDirectionalLight>,
     point: LightQuery<PhongPointLight>,
     spot: LightQuery<PhongSpotLight>,
+    slots: Res<ShadowSlots>,
     mut directional_changes: LightChanges<PhongDirectionalLight>,
     mut point_changes: LightChanges<PhongPointLight>,
     mut spot_changes: LightChanges<PhongSpotLight>,
@@ -150,6 +169,7 @@ pub fn gather_lights(
         spot_changes.any(),
         ambient.is_changed(),
         culling.is_changed(),
+        slots.is_changed(),
         state.capacity() == 0,
     ];
     if !changes.contains(&true) {
@@ -162,11 +182,22 @@ pub fn gather_lights(
     state.spots.clear();
     let directional_count = push_visible(
         &directional,
+        &slots,
         &mut state.records,
-        PhongDirectionalLight::to_gpu,
+        with_shadow(PhongDirectionalLight::to_gpu),
     );
-    push_visible(&point, &mut state.points, PhongPointLight::to_gpu);
-    push_visible(&spot, &mut state.spots, PhongSpotLight::to_gpu);
+    push_visible(
+        &point,
+        &slots,
+        &mut state.points,
+        with_shadow(PhongPointLight::to_gpu),
+    );
+    push_visible(
+        &spot,
+        &slots,
+        &mut state.spots,
+        with_shadow(PhongSpotLight::to_gpu),
+    );
     // ε bounds the sum of what every skipped light leaves out: each gets ε / count.
     let count = state.points.len() + state.spots.len();
     let per_light_epsilon = culling.epsilon / count.max(1) as f32;

@@ -32,8 +32,9 @@ pub struct GpuLight {
     pub spot_exponent: f32,
     /// `[constant, linear, quadratic]` distance fall-off (point, spot).
     pub decay: [f32; 3],
-    /// Unused; keeps the record a multiple of 16 bytes.
-    pub padding: f32,
+    /// The index of the light's first shadow view plus one, or `0` for a light that casts no
+    /// shadow this frame.
+    pub shadow: u32,
 }
 
 /// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its

@@ -108,7 +108,7 @@ impl PhongSpotLight {
             specular,
             spot_exponent: self.exponent,
             decay: self.decay.to_array(),
-            padding: 0.0,
+            shadow: 0,
         }
     }
 }

@@ -15,7 +15,7 @@ use bevy::{
 /// so that the render world rebuilds their bind groups around the new GPU buffer.
 ///
 /// Runs in [`PhongSystems::RefreshMaterials`](crate::PhongSystems::RefreshMaterials).
-pub fn refresh_material_bind_groups<M: Material>(
+pub(crate) fn refresh_material_bind_groups<M: Material>(
     mut resized: MessageReader<LightBufferResized>,
     mut materials: ResMut<Assets<M>>,
 ) {
@@ -27,11 +27,12 @@ pub fn refresh_material_bind_groups<M: Material>(
 }
 
 /// Does nothing; it exists for its place in the render schedule: after the light buffers
-/// are uploaded (`prepare_assets::<GpuShaderBuffer>`) and before the bind groups of `M` are
+/// are uploaded (`prepare_assets::<GpuShaderBuffer>`) and the shadow map array is sized,
+/// and before the bind groups of `M` are
 /// built (`prepare_erased_assets::<MeshMaterial3d<M>>`), which Bevy otherwise leaves
 /// unordered. Without it a material rebuilt in the frame its buffer was reallocated could
 /// bind the old GPU buffer.
-pub fn order_after_light_buffers<M: Material>() {}
+pub(crate) fn order_after_light_buffers<M: Material>() {}
 
 /// Adds [`order_after_light_buffers::<M>`] to the render app's schedule.
 pub(crate) fn schedule_light_buffers_before<M: Material>(render_app: &mut bevy::app::SubApp)
@@ -42,6 +43,7 @@ where
         bevy::render::Render,
         order_after_light_buffers::<M>
             .after(prepare_assets::<GpuShaderBuffer>)
+            .after(crate::shadows::prepare_shadow_atlas)
             .before(prepare_erased_assets::<MeshMaterial3d<M>>),
     );
 }

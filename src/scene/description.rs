@@ -1,7 +1,7 @@
 //! A scene as written in a `*.phong_scene.ron` file.
 
 use super::{PhongMaterialDescription, SceneColor};
-use crate::lights::Decay;
+use crate::lights::{Decay, PhongCascades, PhongShadows};
 use bevy::math::{EulerRot, Quat, Vec2, Vec3};
 use bevy::transform::components::Transform;
 use serde::{Deserialize, Serialize};
@@ -72,6 +72,12 @@ pub enum LightDescription {
         specular: Option<SceneColor>,
         /// Direction the light travels (any length).
         direction: Vec3,
+        /// Shadow settings, as `PhongShadows`. Default off.
+        #[serde(default)]
+        shadows: PhongShadows,
+        /// Shadow cascades, as `PhongCascades`.
+        #[serde(default)]
+        cascades: PhongCascades,
     },
     /// Light from a point in all directions.
     Point {
@@ -89,6 +95,9 @@ pub enum LightDescription {
         /// Distance past which it gives no light. Default unlimited.
         #[serde(default)]
         range: Option<f32>,
+        /// Shadow settings, as `PhongShadows`. Default off.
+        #[serde(default)]
+        shadows: PhongShadows,
     },
     /// Light from a point in a cone around `direction`.
     Spot {
@@ -117,6 +126,9 @@ pub enum LightDescription {
         /// Rim darkening exponent. Default 0.
         #[serde(default)]
         exponent: f32,
+        /// Shadow settings, as `PhongShadows`. Default off.
+        #[serde(default)]
+        shadows: PhongShadows,
     },
 }
 

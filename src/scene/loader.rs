@@ -154,10 +154,14 @@ fn scene_light(
             color: diffuse,
             specular: specular_color,
             direction,
+            shadows,
+            cascades,
         } => (
             SceneLight::Directional(PhongDirectionalLight {
                 color: color("color", diffuse)?,
                 specular: specular(specular_color)?,
+                shadows: *shadows,
+                cascades: *cascades,
             }),
             aimed(Vec3::ZERO, *direction)?,
         ),
@@ -167,12 +171,14 @@ fn scene_light(
             position,
             decay,
             range,
+            shadows,
         } => (
             SceneLight::Point(PhongPointLight {
                 color: color("color", diffuse)?,
                 specular: specular(specular_color)?,
                 decay: *decay,
                 range: *range,
+                shadows: *shadows,
             }),
             Transform::from_translation(*position),
         ),
@@ -186,6 +192,7 @@ fn scene_light(
             inner_angle_degrees,
             outer_angle_degrees,
             exponent,
+            shadows,
         } => (
             SceneLight::Spot(PhongSpotLight {
                 color: color("color", diffuse)?,
@@ -195,6 +202,7 @@ fn scene_light(
                 inner_angle: inner_angle_degrees.to_radians(),
                 outer_angle: outer_angle_degrees.to_radians(),
                 exponent: *exponent,
+                shadows: *shadows,
             }),
             aimed(*position, *direction)?,
         ),

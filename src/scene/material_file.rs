@@ -128,7 +128,6 @@ impl PhongMaterialDescription {
             emissive_texture: map(&self.emissive_texture, ".emissive_texture", true)?,
             normal_map_texture: map(&self.normal_map_texture, ".normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
-            ..PhongMaterial::default()
         })
     }
 }

@@ -1,7 +1,8 @@
-// The bindings of `PhongMaterial` in the material bind group.
+// The bindings of `PhongMaterial` in the material bind group: the material's own (0, 3–10)
+// and the plugin's scene data (1, 2, 11–13; `PhongSceneBindings`).
 #define_import_path bevy_phong::bindings
 
-#import bevy_phong::types::{PhongLightGrid, PhongLights, PhongMaterialUniform}
+#import bevy_phong::types::{PhongLightGrid, PhongLights, PhongMaterialUniform, PhongShadowViews}
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> material: PhongMaterialUniform;
 @group(#{MATERIAL_BIND_GROUP}) @binding(1) var<storage, read> lights: PhongLights;
@@ -14,3 +15,6 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(8) var emissive_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(9) var normal_map_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(10) var normal_map_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(11) var<storage, read> shadow_views: PhongShadowViews;
+@group(#{MATERIAL_BIND_GROUP}) @binding(12) var shadow_maps: texture_depth_2d_array;
+@group(#{MATERIAL_BIND_GROUP}) @binding(13) var shadow_sampler: sampler_comparison;

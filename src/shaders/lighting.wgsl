@@ -72,6 +72,7 @@ fn phong_surface(
         specular,
         shininess,
         specular_model,
+        true,
     );
 }
 

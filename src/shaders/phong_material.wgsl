@@ -3,7 +3,7 @@
 #import bevy_pbr::mesh_view_bindings::view
 #import bevy_phong::bindings::material
 #import bevy_phong::lighting::phong_surface
-#import bevy_phong::shading::lit_color
+#import bevy_phong::shading::{lit_color, receives_shadows}
 #import bevy_phong::texture_maps::mapped_material
 
 @fragment
@@ -14,7 +14,7 @@ fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
         discard;
     }
 #endif
-    let surface = phong_surface(
+    var surface = phong_surface(
         in.world_position.xyz,
         mapped.normal,
         view.world_position,
@@ -23,5 +23,6 @@ fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
         material.shininess,
         material.flags & 3u,
     );
+    surface.receives_shadows = receives_shadows(in.instance_index);
     return vec4<f32>(lit_color(surface, mapped.emissive), mapped.base_color.a);
 }

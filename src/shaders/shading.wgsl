@@ -2,8 +2,11 @@
 #define_import_path bevy_phong::shading
 
 #import bevy_phong::bindings::{light_grid, lights, material}
-#import bevy_phong::lighting::{directional_light, phong_surface, point_light, spot_light}
-#import bevy_phong::types::PhongSurface
+#import bevy_phong::lighting::{directional_light, normalize_or_zero, phong_surface, point_light, spot_light}
+#import bevy_phong::shadows::shadowed
+#import bevy_pbr::mesh_bindings::mesh
+#import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
+#import bevy_phong::types::{PhongLight, PhongSurface}
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -19,9 +22,23 @@ fn material_surface(position: vec3<f32>, normal: vec3<f32>, camera: vec3<f32>) -
     );
 }
 
+// Whether the mesh drawn as `instance_index` receives shadows (it has no
+// `NotShadowReceiver`); a fragment shader sets `PhongSurface.receives_shadows` from it.
+fn receives_shadows(instance_index: u32) -> bool {
+    return (mesh[instance_index].flags & MESH_FLAGS_SHADOW_RECEIVER_BIT) != 0u;
+}
+
 // ambient ⊙ k_a ⊙ k_d
 fn ambient_light(surface: PhongSurface) -> vec3<f32> {
     return lights.ambient * material.ambient_factor * surface.diffuse;
+}
+
+// A point or spot light with its shadow applied (see `bevy_phong::shadows::shadowed`).
+fn shadowed_at_point(light: PhongLight, surface: PhongSurface) -> PhongLight {
+    if light.shadow == 0u {
+        return light;
+    }
+    return shadowed(light, surface, normalize_or_zero(light.position - surface.position));
 }
 
 // Σ over every light that reaches the surface point: the directional lights, the point and
@@ -31,15 +48,16 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     var index = 0u;
     let directional_end = lights.directional_count;
     for (; index < directional_end; index += 1u) {
-        color += directional_light(surface, lights.lights[index]);
+        let light = lights.lights[index];
+        color += directional_light(surface, shadowed(light, surface, -light.direction));
     }
     let point_end = directional_end + lights.point_count;
     for (; index < point_end; index += 1u) {
-        color += point_light(surface, lights.lights[index]);
+        color += point_light(surface, shadowed_at_point(lights.lights[index], surface));
     }
     let spot_end = point_end + lights.spot_count;
     for (; index < spot_end; index += 1u) {
-        color += spot_light(surface, lights.lights[index]);
+        color += spot_light(surface, shadowed_at_point(lights.lights[index], surface));
     }
     return color + grid_lights(surface);
 }
@@ -59,10 +77,10 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     let spot_end = point_end + light_grid.data[record + 2u];
     var color = vec3<f32>(0.0);
     for (; slot < point_end; slot += 1u) {
-        color += point_light(surface, lights.lights[light_grid.data[slot]]);
+        color += point_light(surface, shadowed_at_point(lights.lights[light_grid.data[slot]], surface));
     }
     for (; slot < spot_end; slot += 1u) {
-        color += spot_light(surface, lights.lights[light_grid.data[slot]]);
+        color += spot_light(surface, shadowed_at_point(lights.lights[light_grid.data[slot]], surface));
     }
     return color;
 }

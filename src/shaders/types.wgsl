@@ -23,7 +23,8 @@ struct PhongLight {
     spot_exponent: f32,
     // (constant, linear, quadratic) distance fall-off (point, spot).
     decay: vec3<f32>,
-    padding: f32,
+    // Index of the light's first shadow view plus one; 0 when it casts no shadow.
+    shadow: u32,
 }
 
 // The light buffer: the ambient light, then `directional_count` directional lights,
@@ -54,6 +55,53 @@ struct PhongLightGrid {
     padding: u32,
     data: array<u32>,
 }
+
+// One shadow map (`GpuShadowView` in src/shadows/gpu_types.rs). A light's views are
+// consecutive; its first holds the count and the settings they share. Depth is reversed.
+struct PhongShadowView {
+    // World space to the map's clip space.
+    clip_from_world: mat4x4<f32>,
+    // Directional cascades: dot(xyz, P) + w is P's view depth from the fitted camera.
+    view_plane: vec4<f32>,
+    // SHADOW_PROJECTION_ORTHOGRAPHIC or SHADOW_PROJECTION_PERSPECTIVE.
+    projection: u32,
+    // Layer of `shadow_maps`.
+    layer: u32,
+    // In a light's first view: how many views it has.
+    view_count: u32,
+    // The map's resolution over the layer's.
+    uv_scale: f32,
+    // World size of a texel: orthographic, everywhere; perspective, at distance 1.
+    texel_size: f32,
+    // Orthographic: world units from depth 1 to depth 0.
+    depth_range: f32,
+    // Perspective: the near distance (depth = near / distance along the view axis).
+    near: f32,
+    // World units the comparison point moves toward the light.
+    depth_bias: f32,
+    // Texels the comparison point moves along the normal.
+    normal_bias: f32,
+    // Soft shadows: perspective, the light's radius; orthographic, tan(angular radius).
+    light_size: f32,
+    // Directional cascades: the view depth where this cascade ends, and where it starts
+    // blending into the next.
+    cascade_far: f32,
+    cascade_blend_start: f32,
+    // Fractions of the diffuse term and of the highlight left in full shadow.
+    diffuse_in_shadow: f32,
+    specular_in_shadow: f32,
+    padding: vec2<u32>,
+}
+
+// The shadow view buffer: `count` views.
+struct PhongShadowViews {
+    count: u32,
+    padding: array<u32, 3>,
+    views: array<PhongShadowView>,
+}
+
+const SHADOW_PROJECTION_ORTHOGRAPHIC: u32 = 0u;
+const SHADOW_PROJECTION_PERSPECTIVE: u32 = 1u;
 
 // `PhongMaterial` as the shader reads it.
 struct PhongMaterialUniform {
@@ -90,6 +138,8 @@ struct PhongSurface {
     shininess: f32,
     // SPECULAR_MODEL_PHONG or SPECULAR_MODEL_BLINN_PHONG.
     specular_model: u32,
+    // Whether shadows darken it (false for meshes with `NotShadowReceiver`).
+    receives_shadows: bool,
 }
 
 const SPECULAR_MODEL_PHONG: u32 = 0u;

@@ -122,6 +122,7 @@ fn directional_light() -> (PhongDirectionalLight, Transform) {
         PhongDirectionalLight {
             color: Color::linear_rgb(0.6, 0.6, 0.5),
             specular: Some(Color::WHITE),
+            ..default()
         },
         Transform::default().looking_to(Vec3::new(-1.0, -0.6, -0.4), Vec3::Y),
     )

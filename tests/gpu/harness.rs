@@ -15,7 +15,7 @@ use bevy::{
     },
 };
 use bevy_phong::{
-    SurfaceInput, SurfaceInputsMaterial,
+    SurfaceInput, SurfaceInputsMaterial, SurfaceInputsPlugin,
     prelude::*,
     reference::{self, SurfacePoint},
     validation::is_finite_transform,
@@ -111,7 +111,8 @@ impl Harness {
         add_plugins: impl FnOnce(&mut App),
     ) -> Self {
         let mut app = headless_app_with_assets(asset_root, |app| {
-            app.insert_resource(PhongLightCulling::EXACT);
+            app.insert_resource(PhongLightCulling::EXACT)
+                .add_plugins(SurfaceInputsPlugin);
             add_plugins(app);
         });
         let received = Received::default();
@@ -347,7 +348,7 @@ impl Harness {
     }
 
     /// The camera position, as the shader's view uniform holds it.
-    fn camera_position(&mut self) -> DVec3 {
+    pub fn camera_position(&mut self) -> DVec3 {
         let world = self.app.world_mut();
         world
             .query_filtered::<&GlobalTransform, With<Camera3d>>()

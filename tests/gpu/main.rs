@@ -9,6 +9,8 @@
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
 //!   the reference model given each pixel's texels;
 //! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
+//! - `shadows`: every pixel's shadowing against rays cast in `f64` to each light, within a
+//!   band around the exact shadow's edge;
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel.
 
 mod contract;
@@ -23,5 +25,6 @@ mod scene_files;
 mod searchlight;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
+mod shadows;
 mod stress;
 mod texture_maps;

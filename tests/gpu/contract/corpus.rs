@@ -228,7 +228,11 @@ fn random_light(random: &mut Random, position: Vec3, normal: Vec3, distance: f32
         .then(|| distance * random.range(0.5, 2.0));
     match random.next_u64() % 3 {
         0 => AnyLight::Directional(
-            PhongDirectionalLight { color, specular },
+            PhongDirectionalLight {
+                color,
+                specular,
+                ..default()
+            },
             Transform::default().looking_to(-toward, perpendicular(toward)),
         ),
         1 => AnyLight::Point(
@@ -237,6 +241,7 @@ fn random_light(random: &mut Random, position: Vec3, normal: Vec3, distance: f32
                 specular,
                 decay: random_decay(random),
                 range,
+                ..default()
             },
             Transform::from_translation(light_position),
         ),
@@ -254,6 +259,7 @@ fn random_light(random: &mut Random, position: Vec3, normal: Vec3, distance: f32
                     inner_angle: inner,
                     outer_angle: outer,
                     exponent: random.range(0.0, 8.0),
+                    ..default()
                 },
                 Transform::from_translation(light_position).looking_to(aim, perpendicular(aim)),
             )

@@ -15,7 +15,7 @@ use bevy::{
         },
         renderer::{RenderDevice, RenderQueue},
     },
-    shader::Shader,
+    shader::{Shader, ShaderCacheError},
 };
 use bevy_phong::render::GpuLight;
 use bytemuck::{Pod, Zeroable};
@@ -95,6 +95,11 @@ impl ContractKernel {
                         layout,
                     };
                 }
+                // Bevy retries these: a shader or one of its imports is still loading.
+                CachedPipelineState::Err(
+                    ShaderCacheError::ShaderNotLoaded(_)
+                    | ShaderCacheError::ShaderImportNotYetAvailable,
+                ) => {}
                 CachedPipelineState::Err(error) => panic!("contract kernel: {error}"),
                 _ => {}
             }

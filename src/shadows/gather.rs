@@ -1,0 +1,480 @@
+//! The shadow gather (main world, every frame with a shadow-casting light): which lights get
+//! shadow maps, where each map looks from, and which casters each map draws.
+
+use super::{
+    MAX_SHADOW_VIEWS,
+    gpu_types::{GpuShadowView, GpuShadowViewsHeader},
+    request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
+    views::{
+        Bounds, CascadeCamera, MAX_SPOT_MAP_ANGLE, ShadowLightView, beam_view, cascade_views,
+        cube_views, spot_view,
+    },
+};
+use crate::lights::PhongShadows;
+use crate::render::{LightBuffer, LightBufferResized};
+use bevy::{
+    asset::{AssetId, Assets, Handle, uuid_handle},
+    camera::{
+        Camera, Camera3d, Projection,
+        primitives::{Aabb, Frustum, Sphere},
+        visibility::InheritedVisibility,
+    },
+    ecs::{
+        entity::{Entity, EntityHashMap},
+        message::MessageWriter,
+        query::{With, Without},
+        resource::Resource,
+        system::{Query, ResMut},
+    },
+    light::NotShadowCaster,
+    log::warn,
+    math::{Mat4, Vec3, Vec3A, Vec4},
+    mesh::{Mesh, Mesh3d},
+    render::storage::ShaderBuffer,
+    transform::components::GlobalTransform,
+};
+use core::ops::Range;
+
+/// The storage buffer of the shadow views, bound by every Phong material.
+pub(crate) const PHONG_SHADOW_VIEW_BUFFER: Handle<ShaderBuffer> =
+    uuid_handle!("3b7e4f0a-8d21-4c6e-9a55-1e2f7c9d0b34");
+
+/// Each shadow-casting light's slot this frame: the index of its first view in
+/// [`PhongShadowViews::views`] plus one (`0`: no shadow maps), which the light gathers write
+/// into the light records.
+#[derive(Resource, Default, Debug, PartialEq)]
+pub struct ShadowSlots(EntityHashMap<u32>);
+
+impl ShadowSlots {
+    /// The slot of `entity`.
+    pub fn get(&self, entity: Entity) -> u32 {
+        self.0.get(&entity).copied().unwrap_or(0)
+    }
+}
+
+/// The size of the shadow map array: square layers of `size` texels, `layers` of them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct AtlasLayout {
+    /// Edge length of a layer, texels.
+    pub size: u32,
+    /// Number of layers.
+    pub layers: u32,
+}
+
+/// One shadow map to render: a layer, the part of it the map covers, and its casters.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ShadowPass {
+    /// The array layer.
+    pub layer: u32,
+    /// Edge length of the map, texels (the rest of the layer is unused).
+    pub resolution: u32,
+    /// The casters it draws, in [`ShadowFrame::instances`].
+    pub instances: Range<usize>,
+}
+
+/// A caster drawn into one map.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ShadowInstance {
+    /// Its mesh.
+    pub mesh: AssetId<Mesh>,
+    /// The mesh's local space to the map's clip space.
+    pub clip_from_local: Mat4,
+}
+
+/// The shadow maps of this frame, which the render world draws.
+#[derive(Resource, Clone, Debug, Default)]
+pub(crate) struct ShadowFrame {
+    /// The shadow map array this frame needs.
+    pub layout: AtlasLayout,
+    /// The maps, in layer order.
+    pub passes: Vec<ShadowPass>,
+    /// The casters of every map.
+    pub instances: Vec<ShadowInstance>,
+}
+
+/// A visible mesh that casts shadows.
+struct Caster {
+    mesh: AssetId<Mesh>,
+    world_from_local: Mat4,
+    bounds: Bounds,
+}
+
+/// The shadow views of the current frame (one per shadow map, as the shader reads them),
+/// with the gather's buffers and scratch space, kept between frames.
+#[derive(Resource)]
+pub struct PhongShadowViews {
+    views_buffer: LightBuffer,
+    records: Vec<GpuShadowView>,
+    casters: Vec<Caster>,
+    warned_over_capacity: bool,
+}
+
+impl PhongShadowViews {
+    /// The views last written, in layer order: each shadow-casting light's views are
+    /// consecutive, the first holding their count (see [`GpuShadowView`]).
+    pub fn views(&self) -> &[GpuShadowView] {
+        &self.records
+    }
+}
+
+impl Default for PhongShadowViews {
+    fn default() -> Self {
+        Self {
+            views_buffer: LightBuffer::new(PHONG_SHADOW_VIEW_BUFFER),
+            records: Vec::new(),
+            casters: Vec::new(),
+            warned_over_capacity: false,
+        }
+    }
+}
+
+/// Lays out every requested shadow map of this frame: the maps' views (written into the
+/// shadow view buffer), their casters (for the render world), and each light's first view
+/// (for its light record).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn gather_shadows(
+    mut requests: ResMut<ShadowRequests>,
+    cameras: Query<(&Camera, &GlobalTransform, &Projection, &Frustum), With<Camera3d>>,
+    casters: Query<
+        (&Mesh3d, &GlobalTransform, &Aabb, &InheritedVisibility),
+        Without<NotShadowCaster>,
+    >,
+    mut state: ResMut<PhongShadowViews>,
+    mut frame: ResMut<ShadowFrame>,
+    mut slots: ResMut<ShadowSlots>,
+    mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut resized: MessageWriter<LightBufferResized>,
+) {
+    let camera = cameras
+        .iter()
+        .filter(|(camera, ..)| camera.is_active)
+        .min_by_key(|(camera, ..)| camera.order);
+    let eye = camera.map_or(Vec3::ZERO, |(_, transform, ..)| transform.translation());
+    let mut requests = core::mem::take(&mut requests.0);
+    requests.retain(|request| match camera {
+        Some((_, _, _, frustum)) => reaches_view(request, frustum),
+        None => true,
+    });
+    requests.sort_by(|a, b| priority(a, eye).total_cmp(&priority(b, eye)));
+
+    let state = &mut *state;
+    state.records.clear();
+    state.casters.clear();
+    if !requests.is_empty() {
+        state.casters.extend(
+            casters
+                .iter()
+                .filter(|(.., visibility)| visibility.get())
+                .map(|(mesh, transform, aabb, _)| Caster {
+                    mesh: mesh.id(),
+                    world_from_local: transform.to_matrix(),
+                    bounds: bounds(transform, aabb),
+                }),
+        );
+    }
+    let caster_bounds: Vec<Bounds> = state.casters.iter().map(|caster| caster.bounds).collect();
+    let cascade_camera =
+        camera.map(|(_, transform, projection, _)| cascade_camera(transform, projection));
+
+    let mut new_slots = EntityHashMap::default();
+    let mut next = ShadowFrame::default();
+    for request in &requests {
+        let resolution = request
+            .settings
+            .resolution
+            .clamp(PhongShadows::MIN_RESOLUTION, PhongShadows::MAX_RESOLUTION);
+        let views = light_views(request, cascade_camera.as_ref(), resolution, &caster_bounds);
+        if views.is_empty() {
+            continue;
+        }
+        if state.records.len() + views.len() > MAX_SHADOW_VIEWS {
+            if !state.warned_over_capacity {
+                warn!(
+                    "more than {MAX_SHADOW_VIEWS} shadow maps requested: light {} and the lights \
+                     farther from the camera cast no shadow",
+                    request.entity
+                );
+                state.warned_over_capacity = true;
+            }
+            break;
+        }
+        let first = state.records.len();
+        new_slots.insert(request.entity, first as u32 + 1);
+        for view in &views {
+            let layer = state.records.len() as u32;
+            let start = next.instances.len();
+            next.instances.extend(
+                state
+                    .casters
+                    .iter()
+                    .filter(|caster| in_view(&view.clip_from_world, &caster.bounds))
+                    .map(|caster| ShadowInstance {
+                        mesh: caster.mesh,
+                        clip_from_local: view.clip_from_world * caster.world_from_local,
+                    }),
+            );
+            next.passes.push(ShadowPass {
+                layer,
+                resolution,
+                instances: start..next.instances.len(),
+            });
+            state
+                .records
+                .push(view_record(view, layer, resolution, &request.settings));
+        }
+        state.records[first].view_count = views.len() as u32;
+    }
+
+    let size = next
+        .passes
+        .iter()
+        .map(|pass| pass.resolution)
+        .max()
+        .unwrap_or(1);
+    for record in &mut state.records {
+        record.uv_scale /= size as f32;
+    }
+    next.layout = atlas_layout(frame.layout, size, state.records.len() as u32);
+    let header = GpuShadowViewsHeader {
+        count: state.records.len() as u32,
+        padding: [0; 3],
+    };
+    let buffer_resized = state
+        .views_buffer
+        .write(&mut buffers, &header, &state.records);
+    if buffer_resized || next.layout != frame.layout {
+        resized.write(LightBufferResized {
+            buffer: PHONG_SHADOW_VIEW_BUFFER,
+        });
+    }
+    *frame = next;
+    if slots.0 != new_slots {
+        slots.0 = new_slots;
+    }
+}
+
+/// Directional lights first; the others nearest to the camera first.
+fn priority(request: &ShadowRequest, eye: Vec3) -> f32 {
+    match request.projection {
+        PhongShadowProjection::Directional { .. } | PhongShadowProjection::Beam { .. } => -1.0,
+        PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position } => {
+            position.distance_squared(eye)
+        }
+    }
+}
+
+/// Whether a light's reach meets the camera's view (lights out of view cast into nothing the
+/// camera sees).
+fn reaches_view(request: &ShadowRequest, frustum: &Frustum) -> bool {
+    match request.projection {
+        PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position }
+            if request.reach.is_finite() =>
+        {
+            frustum.intersects_sphere(
+                &Sphere {
+                    center: Vec3A::from(position),
+                    radius: request.reach,
+                },
+                true,
+            )
+        }
+        _ => true,
+    }
+}
+
+/// The views of one light's maps.
+fn light_views(
+    request: &ShadowRequest,
+    camera: Option<&CascadeCamera>,
+    resolution: u32,
+    casters: &[Bounds],
+) -> Vec<ShadowLightView> {
+    let near = if request.settings.near_distance.is_finite() && request.settings.near_distance > 0.0
+    {
+        request.settings.near_distance
+    } else {
+        PhongShadows::default().near_distance
+    };
+    match request.projection {
+        PhongShadowProjection::Directional {
+            direction,
+            cascades,
+        } => camera.map_or_else(Vec::new, |camera| {
+            cascade_views(direction, camera, &cascades, resolution, casters)
+        }),
+        PhongShadowProjection::Beam {
+            origin,
+            direction,
+            right,
+            half_size,
+            length,
+        } => vec![beam_view(
+            origin,
+            direction,
+            right,
+            half_size.to_array(),
+            length,
+            resolution,
+        )],
+        PhongShadowProjection::Cone {
+            position,
+            direction,
+            half_angle,
+        } if half_angle <= MAX_SPOT_MAP_ANGLE => {
+            vec![spot_view(position, direction, half_angle, near, resolution)]
+        }
+        PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position } => {
+            cube_views(position, near, resolution).to_vec()
+        }
+    }
+}
+
+/// The record of one view. `uv_scale` holds the resolution until the array's size is known.
+fn view_record(
+    view: &ShadowLightView,
+    layer: u32,
+    resolution: u32,
+    settings: &PhongShadows,
+) -> GpuShadowView {
+    let non_negative = |value: f32| {
+        if value.is_finite() {
+            value.max(0.0)
+        } else {
+            0.0
+        }
+    };
+    let fraction = |value: f32| {
+        if value.is_finite() {
+            value.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    let light_size = match view.projection {
+        GpuShadowView::ORTHOGRAPHIC => non_negative(settings.softness).min(45.0).to_radians().tan(),
+        _ => non_negative(settings.softness),
+    };
+    GpuShadowView {
+        clip_from_world: view.clip_from_world.to_cols_array_2d(),
+        view_plane: view.view_plane.to_array(),
+        projection: view.projection,
+        layer,
+        view_count: 0,
+        uv_scale: resolution as f32,
+        texel_size: view.texel_size,
+        depth_range: view.depth_range,
+        near: view.near,
+        depth_bias: non_negative(settings.depth_bias),
+        normal_bias: non_negative(settings.normal_bias),
+        light_size,
+        cascade_far: view.cascade_far,
+        cascade_blend_start: view.cascade_blend_start,
+        diffuse_in_shadow: fraction(settings.diffuse_in_shadow),
+        specular_in_shadow: fraction(settings.specular_in_shadow),
+        padding: [0; 2],
+    }
+}
+
+/// The array for `layers` maps of at most `size`²: the current one while it fits and is
+/// more than a quarter used, else room for the next power of two of layers.
+fn atlas_layout(current: AtlasLayout, size: u32, layers: u32) -> AtlasLayout {
+    let fits = current.size == size && layers <= current.layers && layers * 4 > current.layers;
+    if fits {
+        current
+    } else {
+        AtlasLayout {
+            size,
+            layers: layers.max(1).next_power_of_two(),
+        }
+    }
+}
+
+/// A sphere around a mesh's bounding box, in world space.
+fn bounds(transform: &GlobalTransform, aabb: &Aabb) -> Bounds {
+    let matrix = transform.affine().matrix3;
+    let scale = matrix
+        .x_axis
+        .length()
+        .max(matrix.y_axis.length())
+        .max(matrix.z_axis.length());
+    Bounds {
+        center: transform.transform_point(Vec3::from(aabb.center)),
+        radius: Vec3::from(aabb.half_extents).length() * scale,
+    }
+}
+
+/// Whether a sphere meets the view volume of `clip_from_world` (reversed depth: the near
+/// plane at depth 1, the far plane at 0).
+fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
+    let [x, y, z, w] = [0, 1, 2, 3].map(|row| clip_from_world.row(row));
+    let point = bounds.center.extend(1.0);
+    [w + x, w - x, w + y, w - y, z, w - z]
+        .into_iter()
+        .all(|plane: Vec4| {
+            let length = plane.truncate().length();
+            length == 0.0 || plane.dot(point) >= -bounds.radius * length
+        })
+}
+
+/// The camera's shape, for fitting cascades to it.
+fn cascade_camera(transform: &GlobalTransform, projection: &Projection) -> CascadeCamera {
+    let near = match projection {
+        Projection::Perspective(perspective) => perspective.near,
+        Projection::Orthographic(orthographic) => orthographic.near.max(0.0),
+        Projection::Custom(_) => 0.0,
+    };
+    let projection = projection.clone();
+    CascadeCamera {
+        world_from_view: transform.to_matrix(),
+        slice_corners: Box::new(move |near, far| {
+            projection.get_frustum_corners(-near, -far).map(Vec3::from)
+        }),
+        near,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_array_grows_by_powers_of_two_and_holds_while_a_quarter_is_used() {
+        let empty = AtlasLayout::default();
+        let four = atlas_layout(empty, 1024, 3);
+        assert_eq!(
+            four,
+            AtlasLayout {
+                size: 1024,
+                layers: 4
+            }
+        );
+        assert_eq!(atlas_layout(four, 1024, 2), four);
+        assert_eq!(atlas_layout(four, 1024, 5).layers, 8);
+        assert_eq!(atlas_layout(four, 2048, 2).size, 2048);
+        let sixteen = AtlasLayout {
+            size: 1024,
+            layers: 16,
+        };
+        assert_eq!(atlas_layout(sixteen, 1024, 4).layers, 4);
+    }
+
+    #[test]
+    fn a_sphere_is_in_view_when_it_meets_the_volume() {
+        let clip_from_world = Mat4::orthographic_rh(-1.0, 1.0, -1.0, 1.0, 10.0, 0.0);
+        let sphere = |x: f32, z: f32, radius: f32| Bounds {
+            center: Vec3::new(x, 0.0, z),
+            radius,
+        };
+        assert!(in_view(&clip_from_world, &sphere(0.0, -5.0, 0.1)));
+        assert!(in_view(&clip_from_world, &sphere(1.05, -5.0, 0.1)));
+        assert!(!in_view(&clip_from_world, &sphere(1.2, -5.0, 0.1)));
+        assert!(
+            !in_view(&clip_from_world, &sphere(0.0, 0.5, 0.1)),
+            "behind the near plane"
+        );
+        assert!(
+            !in_view(&clip_from_world, &sphere(0.0, -10.5, 0.1)),
+            "past the far plane"
+        );
+    }
+}

@@ -1,0 +1,117 @@
+//! Shadow maps: which lights cast shadows, where their maps look from, how they are drawn,
+//! and how a surface reads them (SPEC.md, "Shadows").
+//!
+//! ```text
+//!  main world (PostUpdate, PhongSystems::GatherLights)
+//!  ──────────────────────────────────────────────────
+//!  lights with shadows on ──request──▶ ShadowRequests
+//!  (built-in kinds, extension kinds)        │
+//!  camera, casters (Mesh3d + Aabb,          ▼
+//!  no NotShadowCaster) ─────────────▶ gather_shadows ──▶ ShadowSlots: first view per light
+//!                                           │               │ (into the light records)
+//!                                           │               ▼
+//!                                           │         gather_lights / extension gathers
+//!                                           ├──▶ shadow view buffer (one record per map)
+//!                                           ▼
+//!                                     ShadowFrame: layers, passes, casters per pass
+//!  render world                             │ extract
+//!  ────────────                             ▼
+//!  PrepareAssets:     prepare_shadow_atlas (the Depth32Float array, resized as needed)
+//!  PrepareResources:  prepare_shadow_draws (pipelines per vertex layout, instance matrices)
+//!  RenderGraph:       render_shadow_maps (one depth pass per map, before any camera)
+//!  materials:         PhongSceneBindings binds the view buffer, the array and a comparison
+//!                     sampler beside the lights; the shader's `light_visibility` reads them
+//! ```
+//!
+//! Only visible lights with [`PhongShadows::enabled`](crate::PhongShadows) get maps, and of
+//! point and spot lights only those whose range meets the camera's view. A frame has at most
+//! [`MAX_SHADOW_VIEWS`] maps: directional lights first, then the others nearest to the camera
+//! first; past it the rest cast nothing, with one warning.
+//!
+//! Casters are the visible meshes without `NotShadowCaster`, culled per map by their
+//! bounding spheres. They are drawn from their vertex positions as stored: skinned and
+//! morphed meshes cast the shadow of their rest pose.
+
+mod gather;
+mod gpu_types;
+mod render;
+mod request;
+mod sources;
+mod views;
+
+pub(crate) use gather::{PHONG_SHADOW_VIEW_BUFFER, ShadowFrame, gather_shadows};
+pub use gather::{PhongShadowViews, ShadowSlots};
+pub use gpu_types::{GpuShadowView, GpuShadowViewsHeader};
+pub(crate) use render::{
+    ShadowAtlas, ShadowCasterPipeline, ShadowDraws, extract_shadow_frame, prepare_shadow_atlas,
+    prepare_shadow_draws, render_shadow_maps,
+};
+pub(crate) use request::ShadowRequests;
+pub use request::{PhongShadowProjection, PhongShadowRequest};
+pub(crate) use sources::request_shadows;
+
+/// Most shadow maps a frame holds (layers of the shadow map array, which WebGL2 caps at
+/// 256): a directional light takes one per cascade, a point light six, a spot light one
+/// (six past a 60° cone).
+pub const MAX_SHADOW_VIEWS: usize = 256;
+
+use crate::{
+    lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    plugin::PhongSystems,
+};
+use bevy::{
+    app::{App, PostUpdate},
+    core_pipeline::schedule::camera_driver,
+    ecs::schedule::IntoScheduleConfigs,
+    render::{
+        ExtractSchedule, GpuResourceAppExt, Render, RenderApp, RenderSystems,
+        render_resource::SpecializedMeshPipelines,
+        renderer::{RenderGraph, RenderGraphSystems},
+    },
+};
+
+/// The main world's part: the requests of the built-in lights and the gather.
+pub(crate) fn add_shadow_gather(app: &mut App) {
+    app.init_resource::<ShadowRequests>()
+        .init_resource::<ShadowSlots>()
+        .init_resource::<ShadowFrame>()
+        .init_resource::<PhongShadowViews>()
+        .add_systems(
+            PostUpdate,
+            (
+                (
+                    request_shadows::<PhongDirectionalLight>,
+                    request_shadows::<PhongPointLight>,
+                    request_shadows::<PhongSpotLight>,
+                )
+                    .in_set(PhongSystems::RequestShadows),
+                gather_shadows.in_set(PhongSystems::GatherShadows),
+            ),
+        );
+}
+
+/// The render world's part: the shadow map array, the caster pipeline and the pass.
+pub(crate) fn add_shadow_rendering(app: &mut App) {
+    let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
+        return;
+    };
+    render_app
+        .init_gpu_resource::<ShadowAtlas>()
+        .init_gpu_resource::<ShadowCasterPipeline>()
+        .init_resource::<ShadowDraws>()
+        .init_resource::<SpecializedMeshPipelines<ShadowCasterPipeline>>()
+        .add_systems(ExtractSchedule, extract_shadow_frame)
+        .add_systems(
+            Render,
+            (
+                prepare_shadow_atlas.in_set(RenderSystems::PrepareAssets),
+                prepare_shadow_draws.in_set(RenderSystems::PrepareResources),
+            ),
+        )
+        .add_systems(
+            RenderGraph,
+            render_shadow_maps
+                .in_set(RenderGraphSystems::Render)
+                .before(camera_driver),
+        );
+}

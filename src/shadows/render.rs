@@ -1,0 +1,380 @@
+//! The render world's part of the shadows: the shadow map array, the depth-only pipeline
+//! that draws casters into it, and the pass that draws every map of the frame before the
+//! cameras render.
+
+use super::gather::{AtlasLayout, ShadowFrame};
+use bevy::{
+    asset::{AssetId, AssetServer, Handle},
+    ecs::{
+        resource::Resource,
+        system::{Commands, Res, ResMut},
+        world::{FromWorld, World},
+    },
+    log::error,
+    mesh::{Mesh, MeshVertexBufferLayoutRef, PrimitiveTopology, VertexBufferLayout},
+    prelude::default,
+    render::{
+        Extract,
+        mesh::{RenderMesh, RenderMeshBufferInfo, allocator::MeshAllocator},
+        render_asset::RenderAssets,
+        render_resource::{
+            AddressMode, BufferUsages, CachedRenderPipelineId, CompareFunction, DepthBiasState,
+            DepthStencilState, Extent3d, FilterMode, LoadOp, Operations, PipelineCache,
+            PrimitiveState, RawBufferVec, RenderPassDepthStencilAttachment, RenderPassDescriptor,
+            RenderPipelineDescriptor, Sampler, SamplerDescriptor, SpecializedMeshPipeline,
+            SpecializedMeshPipelineError, SpecializedMeshPipelines, StoreOp, Texture,
+            TextureDescriptor, TextureDimension, TextureFormat, TextureUsages, TextureView,
+            TextureViewDescriptor, TextureViewDimension, VertexAttribute, VertexFormat,
+            VertexState, VertexStepMode,
+        },
+        renderer::{RenderContext, RenderDevice, RenderQueue},
+    },
+    shader::Shader,
+};
+
+/// How far each caster's depth is pushed away from the light as it is drawn, in multiples
+/// of its own depth change across one texel (the rasterizer's slope-scaled depth bias): a
+/// surface slanted to the light then stays behind its own stored depth over the two texels
+/// the bilinear comparison reads, instead of shadowing itself in stripes (acne).
+pub(crate) const SLOPE_BIAS_TEXELS: f32 = 2.0;
+
+/// The format of the shadow maps: 32-bit float depth, reversed (near 1, far 0).
+pub(crate) const SHADOW_MAP_FORMAT: TextureFormat = TextureFormat::Depth32Float;
+
+/// The shadow map array every Phong material binds, and the comparison sampler it is read
+/// with.
+#[derive(Resource)]
+pub(crate) struct ShadowAtlas {
+    layout: AtlasLayout,
+    /// The whole array, as materials bind it.
+    pub array_view: TextureView,
+    /// One view per layer, for the passes that draw the maps.
+    layer_views: Vec<TextureView>,
+    /// Compares with `GreaterEqual` (lit where the point is at least as near the light as
+    /// what the map holds), filtering bilinearly: a 2×2 percentage-closer filter per tap.
+    pub sampler: Sampler,
+    _texture: Texture,
+}
+
+impl ShadowAtlas {
+    fn new(device: &RenderDevice, layout: AtlasLayout, sampler: Sampler) -> Self {
+        let size = layout.size.max(1);
+        let layers = layout.layers.max(1);
+        let texture = device.create_texture(&TextureDescriptor {
+            label: Some("phong_shadow_maps"),
+            size: Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: TextureDimension::D2,
+            format: SHADOW_MAP_FORMAT,
+            usage: TextureUsages::RENDER_ATTACHMENT | TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let array_view = texture.create_view(&TextureViewDescriptor {
+            label: Some("phong_shadow_maps_array"),
+            dimension: Some(TextureViewDimension::D2Array),
+            ..default()
+        });
+        let layer_views = (0..layers)
+            .map(|layer| {
+                texture.create_view(&TextureViewDescriptor {
+                    label: Some("phong_shadow_map_layer"),
+                    dimension: Some(TextureViewDimension::D2),
+                    base_array_layer: layer,
+                    array_layer_count: Some(1),
+                    ..default()
+                })
+            })
+            .collect();
+        Self {
+            layout,
+            array_view,
+            layer_views,
+            sampler,
+            _texture: texture,
+        }
+    }
+}
+
+impl FromWorld for ShadowAtlas {
+    fn from_world(world: &mut World) -> Self {
+        let device = world.resource::<RenderDevice>();
+        let sampler = device.create_sampler(&SamplerDescriptor {
+            label: Some("phong_shadow_sampler"),
+            address_mode_u: AddressMode::ClampToEdge,
+            address_mode_v: AddressMode::ClampToEdge,
+            address_mode_w: AddressMode::ClampToEdge,
+            mag_filter: FilterMode::Linear,
+            min_filter: FilterMode::Linear,
+            compare: Some(CompareFunction::GreaterEqual),
+            ..default()
+        });
+        Self::new(device, AtlasLayout::default(), sampler)
+    }
+}
+
+/// Copies the main world's [`ShadowFrame`] into the render world.
+pub(crate) fn extract_shadow_frame(mut commands: Commands, frame: Extract<Res<ShadowFrame>>) {
+    commands.insert_resource(frame.clone());
+}
+
+/// Makes the shadow map array the size this frame needs. The main world marks every Phong
+/// material modified in the same frame, so their bind groups are rebuilt after this.
+pub(crate) fn prepare_shadow_atlas(
+    mut atlas: ResMut<ShadowAtlas>,
+    frame: Option<Res<ShadowFrame>>,
+    device: Res<RenderDevice>,
+) {
+    let Some(frame) = frame else { return };
+    if frame.layout != atlas.layout && frame.layout.layers > 0 {
+        let sampler = atlas.sampler.clone();
+        *atlas = ShadowAtlas::new(&device, frame.layout, sampler);
+    }
+}
+
+/// The depth-only pipeline that draws a caster into a shadow map: its positions, placed by
+/// a per-draw `clip_from_local` matrix read as an instance attribute.
+#[derive(Resource)]
+pub(crate) struct ShadowCasterPipeline {
+    shader: Handle<Shader>,
+}
+
+impl FromWorld for ShadowCasterPipeline {
+    fn from_world(world: &mut World) -> Self {
+        Self {
+            shader: world
+                .resource::<AssetServer>()
+                .load("embedded://bevy_phong/shaders/shadow_caster.wgsl"),
+        }
+    }
+}
+
+impl SpecializedMeshPipeline for ShadowCasterPipeline {
+    type Key = PrimitiveTopology;
+
+    fn specialize(
+        &self,
+        topology: PrimitiveTopology,
+        layout: &MeshVertexBufferLayoutRef,
+    ) -> Result<RenderPipelineDescriptor, SpecializedMeshPipelineError> {
+        let positions = layout
+            .0
+            .get_layout(&[Mesh::ATTRIBUTE_POSITION.at_shader_location(0)])?;
+        let clip_from_local = VertexBufferLayout {
+            array_stride: 64,
+            step_mode: VertexStepMode::Instance,
+            attributes: (0..4)
+                .map(|column| VertexAttribute {
+                    format: VertexFormat::Float32x4,
+                    offset: 16 * column as u64,
+                    shader_location: 1 + column,
+                })
+                .collect(),
+        };
+        Ok(RenderPipelineDescriptor {
+            label: Some("phong_shadow_caster".into()),
+            vertex: VertexState {
+                shader: self.shader.clone(),
+                entry_point: Some("vertex".into()),
+                buffers: vec![positions, clip_from_local],
+                ..default()
+            },
+            primitive: PrimitiveState {
+                topology,
+                // Both faces: open meshes (a plane) cast too.
+                cull_mode: None,
+                ..default()
+            },
+            depth_stencil: Some(DepthStencilState {
+                format: SHADOW_MAP_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(CompareFunction::GreaterEqual),
+                stencil: default(),
+                // Reversed depth: away from the light is down.
+                bias: DepthBiasState {
+                    constant: 0,
+                    slope_scale: -SLOPE_BIAS_TEXELS,
+                    clamp: 0.0,
+                },
+            }),
+            ..default()
+        })
+    }
+}
+
+/// One caster drawn into one map.
+struct ShadowDraw {
+    pipeline: CachedRenderPipelineId,
+    mesh: AssetId<Mesh>,
+}
+
+/// The draws of the frame's maps, in [`ShadowFrame::instances`] order, and the instance
+/// buffer of their `clip_from_local` matrices.
+#[derive(Resource)]
+pub(crate) struct ShadowDraws {
+    draws: Vec<Option<ShadowDraw>>,
+    instances: RawBufferVec<[f32; 16]>,
+}
+
+impl Default for ShadowDraws {
+    fn default() -> Self {
+        Self {
+            draws: Vec::new(),
+            instances: RawBufferVec::new(BufferUsages::VERTEX),
+        }
+    }
+}
+
+/// Finds each caster's pipeline (compiling it the first time its vertex layout is seen) and
+/// uploads the frame's instance matrices.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn prepare_shadow_draws(
+    frame: Option<Res<ShadowFrame>>,
+    meshes: Res<RenderAssets<RenderMesh>>,
+    pipeline: Res<ShadowCasterPipeline>,
+    mut pipelines: ResMut<SpecializedMeshPipelines<ShadowCasterPipeline>>,
+    cache: Res<PipelineCache>,
+    mut draws: ResMut<ShadowDraws>,
+    device: Res<RenderDevice>,
+    queue: Res<RenderQueue>,
+) {
+    let draws = &mut *draws;
+    draws.draws.clear();
+    draws.instances.clear();
+    let Some(frame) = frame else { return };
+    for instance in &frame.instances {
+        draws
+            .instances
+            .push(instance.clip_from_local.to_cols_array());
+        let draw = meshes.get(instance.mesh).and_then(|mesh| {
+            let topology = mesh.primitive_topology();
+            let is_triangles = matches!(
+                topology,
+                PrimitiveTopology::TriangleList | PrimitiveTopology::TriangleStrip
+            );
+            if !is_triangles {
+                return None;
+            }
+            match pipelines.specialize(&cache, &pipeline, topology, &mesh.layout) {
+                Ok(id) => Some(ShadowDraw {
+                    pipeline: id,
+                    mesh: instance.mesh,
+                }),
+                Err(err) => {
+                    error!("cannot draw a shadow caster: {err}");
+                    None
+                }
+            }
+        });
+        draws.draws.push(draw);
+    }
+    if !draws.instances.is_empty() {
+        draws.instances.write_buffer(&device, &queue);
+    }
+}
+
+/// Draws every shadow map of the frame: each pass clears its layer, then draws its casters.
+pub(crate) fn render_shadow_maps(
+    frame: Option<Res<ShadowFrame>>,
+    atlas: Res<ShadowAtlas>,
+    draws: Res<ShadowDraws>,
+    cache: Res<PipelineCache>,
+    meshes: Res<RenderAssets<RenderMesh>>,
+    allocator: Res<MeshAllocator>,
+    mut context: RenderContext,
+) {
+    let Some(frame) = frame else { return };
+    let Some(instance_buffer) = draws.instances.buffer() else {
+        // No caster at all: the maps are still cleared.
+        for pass in &frame.passes {
+            clear_layer(&mut context, &atlas, pass.layer);
+        }
+        return;
+    };
+    for pass in &frame.passes {
+        let Some(layer_view) = atlas.layer_views.get(pass.layer as usize) else {
+            continue;
+        };
+        let mut render_pass = context.begin_tracked_render_pass(RenderPassDescriptor {
+            label: Some("phong_shadow_map"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(RenderPassDepthStencilAttachment {
+                view: layer_view,
+                depth_ops: Some(Operations {
+                    load: LoadOp::Clear(0.0),
+                    store: StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let size = pass.resolution as f32;
+        render_pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+        for index in pass.instances.clone() {
+            let Some(draw) = &draws.draws[index] else {
+                continue;
+            };
+            let (Some(pipeline), Some(mesh), Some(vertices)) = (
+                cache.get_render_pipeline(draw.pipeline),
+                meshes.get(draw.mesh),
+                allocator.mesh_vertex_slice(&draw.mesh),
+            ) else {
+                continue;
+            };
+            render_pass.set_render_pipeline(pipeline);
+            render_pass.set_vertex_buffer(0, vertices.buffer.slice(..));
+            let offset = index as u64 * 64;
+            render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + 64));
+            match &mesh.buffer_info {
+                RenderMeshBufferInfo::Indexed {
+                    count,
+                    index_format,
+                } => {
+                    let Some(indices) = allocator.mesh_index_slice(&draw.mesh) else {
+                        continue;
+                    };
+                    render_pass.set_index_buffer(indices.buffer.slice(..), *index_format);
+                    render_pass.draw_indexed(
+                        indices.range.start..indices.range.start + count,
+                        vertices.range.start as i32,
+                        0..1,
+                    );
+                }
+                RenderMeshBufferInfo::NonIndexed => {
+                    render_pass.draw(
+                        vertices.range.start..vertices.range.start + mesh.vertex_count,
+                        0..1,
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Clears one layer to depth 0 (nothing in the way).
+fn clear_layer(context: &mut RenderContext, atlas: &ShadowAtlas, layer: u32) {
+    let Some(view) = atlas.layer_views.get(layer as usize) else {
+        return;
+    };
+    context.begin_tracked_render_pass(RenderPassDescriptor {
+        label: Some("phong_shadow_map_clear"),
+        color_attachments: &[],
+        depth_stencil_attachment: Some(RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(Operations {
+                load: LoadOp::Clear(0.0),
+                store: StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+}

@@ -1,0 +1,891 @@
+//! Shadows against an independent computation: for each pixel, the reference casts a ray in
+//! `f64` from the pixel's read-back world position toward each light, against the scene's
+//! analytic shapes (a sphere, a box, a square plane), and takes `V = 0` where a shape is hit
+//! first, else `V = 1`; the expected color is `reference::shade_shadowed` with those `V`.
+//!
+//! Shadow maps only estimate `V`: near the true shadow's edge the two may disagree. A pixel
+//! whose color differs from the expected one by more than the render tests' budget
+//! ([`TOLERANCE`], see `frames.rs`) must lie within the band of the edge: the exact `V` of
+//! some light changes within distance `b` of `P`, with
+//!
+//! ```text
+//! b = (4 + normal_bias) · t + depth_bias / max(N·L, 0.2) + penumbra
+//! ```
+//!
+//! where `t` is the world size of a shadow-map texel at `P` (the largest over the maps that
+//! cover `P`): the bilinear comparison reads one texel at each side and the caster's
+//! rasterized edge is off by up to one more; the casters' slope-scaled depth offset (their
+//! depth change across 2 texels) moves an edge by up to 2 texels; the normal bias moves the
+//! compared point
+//! `normal_bias` texels; the depth bias moves it `depth_bias` toward the light, which shifts
+//! the edge on the receiver by up to `depth_bias / cos` (cosines under 0.2 are on the unlit
+//! side of curved shapes, where the light gives nothing anyway); `penumbra` is, for a soft
+//! light, the widest filter (16 texels at each side) plus the lift off the surface that
+//! comes with it (as many texels along the normal): 32 texels; 0 for hard shadows. Outside the band
+//! every pixel is within [`TOLERANCE`].
+
+use crate::frames::TOLERANCE;
+use crate::harness::{FloatImage, Harness, SurfaceInputs};
+use bevy::{
+    light::{NotShadowCaster, NotShadowReceiver},
+    prelude::*,
+};
+use bevy_phong::{
+    prelude::*,
+    reference::{self, Shadowing, SurfacePoint},
+    shadows::{GpuShadowView, PhongShadowViews},
+};
+use glam::{DMat3, DVec3};
+
+/// Render size.
+const SIZE: u32 = 128;
+/// Rays start this far along their direction from `P`, world units: past the rounding of
+/// the read-back position (a few 1e-7 at these coordinates) so that a surface does not
+/// block its own light where it faces it.
+const RAY_START: f64 = 1e-4;
+/// Directions around `P` at which the band is probed, at two radii (`b` and `b / 2`).
+const BAND_PROBES: usize = 24;
+
+/// An analytic shape of the scene, matching a mesh that is spawned for it.
+#[derive(Clone, Copy, Debug)]
+enum Shape {
+    /// A sphere.
+    Sphere { center: DVec3, radius: f64 },
+    /// A box: centre, half-extents, rotation about +Y (radians).
+    Box {
+        center: DVec3,
+        half: DVec3,
+        yaw: f64,
+    },
+    /// The square `|x|, |z| ≤ half` in the plane `y = 0`.
+    Floor { half: f64 },
+}
+
+impl Shape {
+    /// The smallest `t > RAY_START` with `origin + t·direction` on the shape, for a unit
+    /// `direction`.
+    fn hit(&self, origin: DVec3, direction: DVec3) -> Option<f64> {
+        match *self {
+            Shape::Sphere { center, radius } => {
+                let offset = origin - center;
+                let b = offset.dot(direction);
+                let c = offset.length_squared() - radius * radius;
+                let discriminant = b * b - c;
+                if discriminant < 0.0 {
+                    return None;
+                }
+                let root = discriminant.sqrt();
+                [-b - root, -b + root].into_iter().find(|t| *t > RAY_START)
+            }
+            Shape::Box { center, half, yaw } => {
+                let to_local = DMat3::from_rotation_y(-yaw);
+                let o = to_local * (origin - center);
+                let d = to_local * direction;
+                let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
+                for axis in 0..3 {
+                    if d[axis].abs() < 1e-300 {
+                        if o[axis].abs() > half[axis] {
+                            return None;
+                        }
+                        continue;
+                    }
+                    let a = (-half[axis] - o[axis]) / d[axis];
+                    let b = (half[axis] - o[axis]) / d[axis];
+                    near = near.max(a.min(b));
+                    far = far.min(a.max(b));
+                }
+                if near > far {
+                    return None;
+                }
+                [near, far].into_iter().find(|t| *t > RAY_START)
+            }
+            Shape::Floor { half } => {
+                if direction.y.abs() < 1e-300 {
+                    return None;
+                }
+                let t = -origin.y / direction.y;
+                let point = origin + t * direction;
+                (t > RAY_START && point.x.abs() <= half && point.z.abs() <= half).then_some(t)
+            }
+        }
+    }
+}
+
+/// Where a light is, for the rays toward it.
+#[derive(Clone, Copy, Debug)]
+enum Toward {
+    /// Along `-direction`, unbounded.
+    Direction(DVec3),
+    /// To a point.
+    Point(DVec3),
+}
+
+/// The exact `V` of a light at `position`: 0 if a caster is on the way. The caster the point
+/// lies on is left out by the caller: the shapes are convex, so a ray leaving a surface
+/// toward a light it faces never meets that surface again (the mesh's flat facets lie a
+/// little inside the analytic sphere, and would otherwise block their own light), and where
+/// the surface faces away from the light the light gives nothing whatever `V` is.
+fn exact_visibility(position: DVec3, toward: Toward, casters: &[Shape]) -> f64 {
+    let (direction, distance) = match toward {
+        Toward::Direction(direction) => (-direction.normalize(), f64::INFINITY),
+        Toward::Point(light) => ((light - position).normalize(), light.distance(position)),
+    };
+    let blocked = casters
+        .iter()
+        .any(|shape| shape.hit(position, direction).is_some_and(|t| t < distance));
+    if blocked { 0.0 } else { 1.0 }
+}
+
+/// Whether the exact `V` of the light changes within `radius` of `position` on the surface
+/// with `normal`.
+fn near_edge(
+    position: DVec3,
+    normal: DVec3,
+    radius: f64,
+    toward: Toward,
+    casters: &[Shape],
+) -> bool {
+    let here = exact_visibility(position, toward, casters);
+    let normal = normal.normalize();
+    let u = normal.any_orthonormal_vector();
+    let v = normal.cross(u);
+    (0..BAND_PROBES).any(|probe| {
+        let angle = probe as f64 / BAND_PROBES as f64 * std::f64::consts::TAU;
+        [radius, 0.5 * radius].into_iter().any(|r| {
+            let point = position + r * (angle.cos() * u + angle.sin() * v);
+            exact_visibility(point, toward, casters) != here
+        })
+    })
+}
+
+/// The world size of a shadow-map texel at `position`: the largest over the maps that cover
+/// it (for cascades, the ones its view depth selects).
+fn texel_at(position: DVec3, views: &[GpuShadowView]) -> f64 {
+    let point = position.as_vec3();
+    let mut largest: f64 = 0.0;
+    let mut first = 0;
+    while first < views.len() {
+        let count = views[first].view_count.max(1) as usize;
+        let light_views = &views[first..(first + count).min(views.len())];
+        for (index, view) in light_views.iter().enumerate() {
+            let clip_from_world = Mat4::from_cols_array_2d(&view.clip_from_world);
+            let clip = clip_from_world * point.extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            let inside = clip.w > 0.0 && ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0;
+            let plane = Vec4::from_array(view.view_plane);
+            let selected = if plane == Vec4::ZERO {
+                true
+            } else {
+                let depth = plane.truncate().dot(point) + plane.w;
+                let start = if index == 0 {
+                    f32::NEG_INFINITY
+                } else {
+                    light_views[index - 1].cascade_blend_start
+                };
+                depth >= start && depth < view.cascade_far
+            };
+            if inside && selected {
+                let texel = if view.projection == GpuShadowView::PERSPECTIVE {
+                    view.texel_size * clip.w
+                } else {
+                    view.texel_size
+                };
+                largest = largest.max(f64::from(texel));
+            }
+        }
+        first += count;
+    }
+    largest
+}
+
+/// A light of a case, with what the reference needs of it.
+struct CaseLight {
+    toward: Toward,
+    settings: PhongShadows,
+}
+
+/// The result of one case.
+struct Verdict {
+    /// Pixels on a mesh.
+    covered: usize,
+    /// Pixels whose color differs from the exact-visibility reference beyond the budget.
+    disagreeing: usize,
+    /// Of those, the ones outside the band (must be 0).
+    outside_band: usize,
+    /// The widest band used, world units.
+    widest_band: f64,
+    /// Largest error of the pixels outside the band: of those that disagree (must be within
+    /// the budget, so none) and of those that agree.
+    max_error_outside: f64,
+}
+
+impl Verdict {
+    fn assert_holds(&self, case: &str) {
+        println!(
+            "{case}: {} covered pixels, {} disagree with the exact visibility, all within the \
+             band (widest {:.4} world units) but {}; largest error outside the band {:.3e} \
+             (budget {TOLERANCE:.0e})",
+            self.covered,
+            self.disagreeing,
+            self.widest_band,
+            self.outside_band,
+            self.max_error_outside
+        );
+        assert!(self.covered > 0, "{case}: nothing rendered");
+        assert_eq!(
+            self.outside_band, 0,
+            "{case}: {} pixels disagree with the exact visibility outside the band",
+            self.outside_band
+        );
+        assert!(self.max_error_outside <= TOLERANCE, "{case}");
+    }
+}
+
+/// The scene's shapes, with the entity and material of each one's mesh.
+struct Scene {
+    shapes: Vec<(Entity, Shape, Handle<PhongMaterial>)>,
+}
+
+impl Scene {
+    fn spawn(harness: &mut Harness) -> Self {
+        let world = harness.world_mut();
+        let shapes = [
+            Shape::Floor { half: 4.0 },
+            Shape::Sphere {
+                center: DVec3::new(-0.4, 0.9, 0.2),
+                radius: 0.6,
+            },
+            Shape::Box {
+                center: DVec3::new(1.3, 0.4, 0.4),
+                half: DVec3::new(0.4, 0.4, 0.5),
+                yaw: 0.5,
+            },
+        ];
+        let materials = [
+            PhongMaterial {
+                base_color: Color::srgb(0.7, 0.7, 0.7),
+                specular_strength: 0.5,
+                shininess: 8.0,
+                ..default()
+            },
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.2, 0.2),
+                specular_strength: 1.0,
+                shininess: 40.0,
+                ..default()
+            },
+            PhongMaterial {
+                base_color: Color::srgb(0.2, 0.3, 0.9),
+                specular_strength: 0.5,
+                shininess: 20.0,
+                ..default()
+            },
+        ];
+        let shapes = shapes
+            .into_iter()
+            .zip(materials)
+            .map(|(shape, material)| {
+                let (mesh, transform): (Mesh, Transform) = match shape {
+                    Shape::Floor { half } => (
+                        Plane3d::default()
+                            .mesh()
+                            .size(2.0 * half as f32, 2.0 * half as f32)
+                            .into(),
+                        Transform::IDENTITY,
+                    ),
+                    Shape::Sphere { center, radius } => (
+                        Sphere::new(radius as f32).mesh().ico(5).unwrap(),
+                        Transform::from_translation(center.as_vec3()),
+                    ),
+                    Shape::Box { center, half, yaw } => (
+                        Cuboid::from_size(2.0 * half.as_vec3()).into(),
+                        Transform::from_translation(center.as_vec3())
+                            .with_rotation(Quat::from_rotation_y(yaw as f32)),
+                    ),
+                };
+                let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+                let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+                let entity = world
+                    .spawn((Mesh3d(mesh), MeshMaterial3d(material.clone()), transform))
+                    .id();
+                (entity, shape, material)
+            })
+            .collect();
+        Self { shapes }
+    }
+
+    fn floor(&self) -> Entity {
+        self.shapes[0].0
+    }
+
+    fn sphere(&self) -> Entity {
+        self.shapes[1].0
+    }
+
+    fn cube(&self) -> Entity {
+        self.shapes[2].0
+    }
+
+    /// Moves a shape's mesh and its analytic twin by `offset`.
+    fn translate(&mut self, harness: &mut Harness, entity: Entity, offset: DVec3) {
+        let (_, shape, _) = self
+            .shapes
+            .iter_mut()
+            .find(|(e, ..)| *e == entity)
+            .expect("a shape of the scene");
+        match shape {
+            Shape::Sphere { center, .. } | Shape::Box { center, .. } => *center += offset,
+            Shape::Floor { .. } => panic!("the floor stays"),
+        }
+        harness
+            .world_mut()
+            .get_mut::<Transform>(entity)
+            .unwrap()
+            .translation += offset.as_vec3();
+    }
+}
+
+/// A harness seeing the scene, with a little ambient light.
+fn harness() -> (Harness, Scene) {
+    let mut harness = Harness::new(SIZE, SIZE);
+    harness.world_mut().insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let scene = Scene::spawn(&mut harness);
+    (harness, scene)
+}
+
+/// Spawns `light` and returns what the reference needs of it.
+fn spawn_light(
+    harness: &mut Harness,
+    light: impl Bundle,
+    toward: Toward,
+    settings: PhongShadows,
+) -> CaseLight {
+    harness.world_mut().spawn(light);
+    CaseLight { toward, settings }
+}
+
+fn directional(
+    harness: &mut Harness,
+    direction: Vec3,
+    shadows: PhongShadows,
+    cascades: PhongCascades,
+) -> CaseLight {
+    spawn_light(
+        harness,
+        (
+            PhongDirectionalLight {
+                color: Color::linear_rgb(0.9, 0.9, 0.9),
+                shadows,
+                cascades,
+                ..default()
+            },
+            Transform::default().looking_to(direction, Vec3::Z),
+        ),
+        Toward::Direction(direction.as_dvec3()),
+        shadows,
+    )
+}
+
+fn spot(harness: &mut Harness, position: Vec3, target: Vec3, shadows: PhongShadows) -> CaseLight {
+    spawn_light(
+        harness,
+        (
+            PhongSpotLight {
+                color: Color::linear_rgb(0.9, 0.8, 0.7),
+                outer_angle: 40f32.to_radians(),
+                inner_angle: 30f32.to_radians(),
+                shadows,
+                ..default()
+            },
+            Transform::from_translation(position).looking_at(target, Vec3::Y),
+        ),
+        Toward::Point(position.as_dvec3()),
+        shadows,
+    )
+}
+
+fn point(harness: &mut Harness, position: Vec3, shadows: PhongShadows) -> CaseLight {
+    spawn_light(
+        harness,
+        (
+            PhongPointLight {
+                color: Color::linear_rgb(0.6, 0.7, 0.9),
+                shadows,
+                ..default()
+            },
+            Transform::from_translation(position),
+        ),
+        Toward::Point(position.as_dvec3()),
+        shadows,
+    )
+}
+
+/// Who casts and who receives.
+struct Roles<'a> {
+    casting: &'a dyn Fn(Entity) -> bool,
+    receiving: &'a dyn Fn(Entity) -> bool,
+}
+
+const EVERYONE: Roles = Roles {
+    casting: &|_| true,
+    receiving: &|_| true,
+};
+
+/// Renders the settled frame and judges every pixel.
+fn judge(
+    harness: &mut Harness,
+    scene: &Scene,
+    lights: &[CaseLight],
+    roles: &Roles,
+    inputs: &SurfaceInputs,
+) -> Verdict {
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    judge_frame(harness, scene, lights, roles, inputs, &rendered)
+}
+
+/// Judges every pixel of `rendered`, lit from `inputs`.
+fn judge_frame(
+    harness: &mut Harness,
+    scene: &Scene,
+    lights: &[CaseLight],
+    roles: &Roles,
+    inputs: &SurfaceInputs,
+    rendered: &FloatImage,
+) -> Verdict {
+    let casters_except = |receiver: Entity| -> Vec<Shape> {
+        scene
+            .shapes
+            .iter()
+            .filter(|(entity, ..)| (roles.casting)(*entity) && *entity != receiver)
+            .map(|(_, shape, _)| *shape)
+            .collect()
+    };
+    let views = harness
+        .world_mut()
+        .resource::<PhongShadowViews>()
+        .views()
+        .to_vec();
+    let reference_lights = harness.reference_lights();
+    // Each reference light with the case light it came from, matched by where its rays
+    // come from.
+    let matched: Vec<&CaseLight> = reference_lights
+        .lights
+        .iter()
+        .map(|light| {
+            lights
+                .iter()
+                .find(|case| match (case.toward, light) {
+                    (Toward::Direction(d), reference::Light::Directional { direction, .. }) => {
+                        d.normalize().distance(direction.normalize()) < 1e-5
+                    }
+                    (Toward::Point(p), reference::Light::Point { position, .. })
+                    | (Toward::Point(p), reference::Light::Spot { position, .. }) => {
+                        p.distance(*position) < 1e-5
+                    }
+                    _ => false,
+                })
+                .expect("every light of the scene is a case light")
+        })
+        .collect();
+    let camera = harness.camera_position();
+    let materials = harness.world_mut().resource::<Assets<PhongMaterial>>();
+    let mut verdict = Verdict {
+        covered: 0,
+        disagreeing: 0,
+        outside_band: 0,
+        widest_band: 0.0,
+        max_error_outside: 0.0,
+    };
+    for (index, color) in rendered.pixels.iter().enumerate() {
+        let position = inputs.positions.pixels[index];
+        let normal = inputs.normals.pixels[index];
+        let Some(handle) = inputs.materials.get(&(position[3] as u32)) else {
+            continue;
+        };
+        let (entity, ..) = scene
+            .shapes
+            .iter()
+            .find(|(.., material)| material == handle)
+            .expect("a shape's material");
+        let material = reference::Material::from(materials.get(handle).expect("material"));
+        let surface = SurfacePoint {
+            position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
+            normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
+            camera,
+        };
+        let receives = (roles.receiving)(*entity);
+        let casters = casters_except(*entity);
+        let shadowing: Vec<Shadowing> = matched
+            .iter()
+            .map(|case| Shadowing {
+                visibility: if receives {
+                    exact_visibility(surface.position, case.toward, &casters)
+                } else {
+                    1.0
+                },
+                diffuse_in_shadow: f64::from(case.settings.diffuse_in_shadow),
+                specular_in_shadow: f64::from(case.settings.specular_in_shadow),
+            })
+            .collect();
+        let expected =
+            reference::shade_shadowed(&surface, &material, &reference_lights, &shadowing);
+        let error = (0..3)
+            .map(|c| (f64::from(color[c]) - expected[c]).abs() / expected[c].abs().max(1.0))
+            .fold(0.0, f64::max);
+        verdict.covered += 1;
+        if error <= TOLERANCE {
+            verdict.max_error_outside = verdict.max_error_outside.max(error);
+            continue;
+        }
+        verdict.disagreeing += 1;
+        let texel = texel_at(surface.position, &views);
+        let in_band = receives
+            && matched.iter().any(|case| {
+                let to_light = match case.toward {
+                    Toward::Direction(direction) => -direction.normalize(),
+                    Toward::Point(light) => (light - surface.position).normalize(),
+                };
+                let cosine = surface.normal.normalize().dot(to_light).max(0.2);
+                let penumbra = if case.settings.softness > 0.0 {
+                    32.0 * texel
+                } else {
+                    0.0
+                };
+                let band = (4.0 + f64::from(case.settings.normal_bias)) * texel
+                    + f64::from(case.settings.depth_bias) / cosine
+                    + penumbra;
+                verdict.widest_band = verdict.widest_band.max(band);
+                near_edge(
+                    surface.position,
+                    surface.normal,
+                    band,
+                    case.toward,
+                    &casters,
+                )
+            });
+        if !in_band {
+            verdict.outside_band += 1;
+            verdict.max_error_outside = verdict.max_error_outside.max(error);
+            if verdict.outside_band <= 5 {
+                println!(
+                    "outside the band: pixel ({}, {}) at {:?}, rendered {:?}, expected {:?}",
+                    index as u32 % rendered.width,
+                    index as u32 / rendered.width,
+                    surface.position,
+                    &color[..3],
+                    expected
+                );
+            }
+        }
+    }
+    verdict
+}
+
+/// Shadows of one light, on.
+fn on() -> PhongShadows {
+    PhongShadows {
+        resolution: 512,
+        ..PhongShadows::ON
+    }
+}
+
+/// One cascade reaching past the whole scene.
+fn one_cascade() -> PhongCascades {
+    PhongCascades {
+        count: 1,
+        max_distance: 20.0,
+        ..default()
+    }
+}
+
+/// Spawns a case's lights.
+type SpawnLights = dyn Fn(&mut Harness) -> Vec<CaseLight>;
+
+const SUN: Vec3 = Vec3::new(-0.5, -1.0, -0.35);
+
+#[test]
+fn each_light_kind_alone_and_all_together_shadow_where_the_exact_rays_are_blocked() {
+    let cases: [(&str, &SpawnLights); 4] = [
+        ("directional", &|h| {
+            vec![directional(h, SUN, on(), one_cascade())]
+        }),
+        ("spot", &|h| {
+            vec![spot(
+                h,
+                Vec3::new(1.5, 4.0, 2.0),
+                Vec3::new(0.0, 0.0, 0.0),
+                on(),
+            )]
+        }),
+        ("point", &|h| {
+            vec![point(h, Vec3::new(-1.5, 2.8, 1.8), on())]
+        }),
+        ("all together", &|h| {
+            vec![
+                directional(h, SUN, on(), one_cascade()),
+                spot(h, Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, on()),
+                point(h, Vec3::new(-1.5, 2.8, 1.8), on()),
+            ]
+        }),
+    ];
+    for (case, lights) in cases {
+        let (mut harness, scene) = harness();
+        let lights = lights(&mut harness);
+        harness.settle();
+        let inputs = harness.capture_inputs();
+        judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds(case);
+    }
+}
+
+#[test]
+fn a_directional_light_holds_across_its_cascade_splits() {
+    let (mut harness, scene) = harness();
+    // Splits at 4.6, 6.3 and 8.6 units from the camera: the floor crosses all three.
+    let cascades = PhongCascades {
+        count: 4,
+        first_far_bound: 4.6,
+        max_distance: 12.0,
+        overlap: 0.2,
+    };
+    let lights = vec![directional(&mut harness, SUN, on(), cascades)];
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("cascades");
+}
+
+#[test]
+fn not_shadow_caster_and_not_shadow_receiver_work_on_phong_meshes() {
+    let (mut harness, scene) = harness();
+    let lights = vec![spot(
+        &mut harness,
+        Vec3::new(1.5, 4.0, 2.0),
+        Vec3::ZERO,
+        on(),
+    )];
+    let (sphere, cube) = (scene.sphere(), scene.cube());
+    harness
+        .world_mut()
+        .entity_mut(sphere)
+        .insert(NotShadowCaster);
+    harness
+        .world_mut()
+        .entity_mut(cube)
+        .insert(NotShadowReceiver);
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let roles = Roles {
+        casting: &|entity| entity != sphere,
+        receiving: &|entity| entity != cube,
+    };
+    judge(&mut harness, &scene, &lights, &roles, &inputs).assert_holds("markers");
+}
+
+#[test]
+fn a_light_inside_an_object_is_blocked_everywhere_outside_it() {
+    let (mut harness, scene) = harness();
+    let center = Vec3::new(-0.4, 0.9, 0.2);
+    let lights = vec![point(&mut harness, center, on())];
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("light inside");
+}
+
+#[test]
+fn a_caster_hidden_moved_and_despawned_between_frames_leaves_no_stale_shadow() {
+    let (mut harness, mut scene) = harness();
+    let lights = vec![spot(
+        &mut harness,
+        Vec3::new(1.5, 4.0, 2.0),
+        Vec3::ZERO,
+        on(),
+    )];
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("before");
+
+    let cube = scene.cube();
+    *harness.world_mut().get_mut::<Visibility>(cube).unwrap() = Visibility::Hidden;
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let hidden = Roles {
+        casting: &|entity| entity != cube,
+        receiving: &|_| true,
+    };
+    judge(&mut harness, &scene, &lights, &hidden, &inputs).assert_holds("cube hidden");
+
+    *harness.world_mut().get_mut::<Visibility>(cube).unwrap() = Visibility::Inherited;
+    let sphere = scene.sphere();
+    scene.translate(&mut harness, sphere, DVec3::new(0.3, 0.2, -0.2));
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("sphere moved");
+
+    harness.world_mut().despawn(cube);
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let despawned = Roles {
+        casting: &|entity| entity != cube,
+        receiving: &|_| true,
+    };
+    judge(&mut harness, &scene, &lights, &despawned, &inputs).assert_holds("cube despawned");
+}
+
+#[test]
+fn a_plane_facing_the_light_has_no_acne_and_shadows_start_at_their_casters() {
+    // Light at 30° above the floor: the grazing case for acne; the box rests on the floor,
+    // so its shadow must start at its base (no gap wider than the band).
+    let (mut harness, scene) = harness();
+    let lights = vec![directional(
+        &mut harness,
+        Vec3::new(-1.0, -0.58, 0.0),
+        on(),
+        one_cascade(),
+    )];
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let verdict = judge(&mut harness, &scene, &lights, &EVERYONE, &inputs);
+    verdict.assert_holds("grazing light");
+    let _ = scene.floor();
+}
+
+#[test]
+fn from_0_to_100_to_0_shadow_casting_lights_every_frame_is_right() {
+    let (mut harness, scene) = harness();
+    let ring = |index: usize| {
+        let angle = index as f32 / 100.0 * std::f32::consts::TAU;
+        Vec3::new(3.0 * angle.cos(), 4.0, 3.0 * angle.sin())
+    };
+    let shadows = PhongShadows {
+        resolution: 128,
+        ..PhongShadows::ON
+    };
+    let spawn_ring = |harness: &mut Harness, count: usize| -> (Vec<Entity>, Vec<CaseLight>) {
+        (0..count)
+            .map(|index| {
+                let position = ring(index);
+                let entity = harness
+                    .world_mut()
+                    .spawn((
+                        PhongSpotLight {
+                            color: Color::linear_rgb(0.012, 0.012, 0.012),
+                            outer_angle: 35f32.to_radians(),
+                            inner_angle: 30f32.to_radians(),
+                            shadows,
+                            ..default()
+                        },
+                        Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y),
+                    ))
+                    .id();
+                let light = CaseLight {
+                    toward: Toward::Point(position.as_dvec3()),
+                    settings: shadows,
+                };
+                (entity, light)
+            })
+            .unzip()
+    };
+    // Compile the caster pipelines with one light, then start from none.
+    let (warm_up, _) = spawn_ring(&mut harness, 1);
+    harness.settle();
+    harness.world_mut().despawn(warm_up[0]);
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    for (step, count) in [0, 100, 0, 100, 0].into_iter().enumerate() {
+        let world = harness.world_mut();
+        let old: Vec<Entity> = world
+            .query_filtered::<Entity, With<PhongSpotLight>>()
+            .iter(world)
+            .collect();
+        for entity in old {
+            harness.world_mut().despawn(entity);
+        }
+        let (_, lights) = spawn_ring(&mut harness, count);
+        // The very next frame, without waiting: no stale map, no missing one.
+        let rendered = harness.render_next_frame();
+        judge_frame(&mut harness, &scene, &lights, &EVERYONE, &inputs, &rendered)
+            .assert_holds(&format!("step {step}: {count} lights"));
+    }
+}
+
+#[test]
+fn the_penumbra_widens_with_softness() {
+    let mut widths = Vec::new();
+    for softness in [0.0, 0.1, 0.3] {
+        let (mut harness, scene) = harness();
+        let shadows = PhongShadows { softness, ..on() };
+        let lights = vec![spot(
+            &mut harness,
+            Vec3::new(0.3, 4.5, 0.8),
+            Vec3::ZERO,
+            shadows,
+        )];
+        harness.settle();
+        let inputs = harness.capture_inputs();
+        harness.settle();
+        let rendered = harness.render_next_frame();
+        // The verdict still holds: the widest filter is within the band.
+        judge_frame(&mut harness, &scene, &lights, &EVERYONE, &inputs, &rendered)
+            .assert_holds(&format!("softness {softness}"));
+        // Floor pixels partly shadowed: the rendered green channel strictly between the
+        // reference's fully lit and fully shadowed values (by more than the budget).
+        let floor = &scene.shapes[0].2;
+        let tag = inputs
+            .materials
+            .iter()
+            .find(|(_, handle)| *handle == floor)
+            .map(|(tag, _)| *tag)
+            .expect("the floor is drawn");
+        let reference_lights = harness.reference_lights();
+        let camera = harness.camera_position();
+        let material = reference::Material::from(
+            harness
+                .world_mut()
+                .resource::<Assets<PhongMaterial>>()
+                .get(floor)
+                .unwrap(),
+        );
+        let partial = rendered
+            .pixels
+            .iter()
+            .enumerate()
+            .filter(|(index, color)| {
+                let position = inputs.positions.pixels[*index];
+                if position[3] as u32 != tag {
+                    return false;
+                }
+                let normal = inputs.normals.pixels[*index];
+                let surface = SurfacePoint {
+                    position: DVec3::new(
+                        position[0].into(),
+                        position[1].into(),
+                        position[2].into(),
+                    ),
+                    normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
+                    camera,
+                };
+                let shade = |visibility| {
+                    let shadowing = Shadowing {
+                        visibility,
+                        ..Shadowing::LIT
+                    };
+                    reference::shade_shadowed(&surface, &material, &reference_lights, &[shadowing])
+                        .y
+                };
+                let (dark, lit) = (shade(0.0), shade(1.0));
+                let green = f64::from(color[1]);
+                lit - dark > 0.05
+                    && green > dark + 0.05 * (lit - dark)
+                    && green < lit - 0.05 * (lit - dark)
+            })
+            .count();
+        println!("softness {softness}: {partial} floor pixels in the penumbra");
+        widths.push(partial);
+    }
+    assert!(
+        widths[0] < widths[1] && widths[1] < widths[2],
+        "the penumbra widens with softness: {widths:?}"
+    );
+}
