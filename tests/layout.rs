@@ -5,6 +5,7 @@ use bevy::render::render_resource::ShaderType;
 use bevy_phong::{
     PhongMaterialUniform,
     render::{GpuLight, GpuLightGridHeader, GpuLightsHeader},
+    shadows::{GpuShadowView, GpuShadowViewsHeader},
 };
 use std::mem::offset_of;
 
@@ -89,6 +90,22 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
         offset("grid_spot_count"),
         offset_of!(GpuLightsHeader, grid_spot_count)
     );
+    for (name, rust) in [
+        (
+            "shadowed_directional_count",
+            offset_of!(GpuLightsHeader, shadowed_directional_count),
+        ),
+        (
+            "shadowed_point_count",
+            offset_of!(GpuLightsHeader, shadowed_point_count),
+        ),
+        (
+            "shadowed_spot_count",
+            offset_of!(GpuLightsHeader, shadowed_spot_count),
+        ),
+    ] {
+        assert_eq!(offset(name), rust, "{name}");
+    }
     assert_eq!(offset("lights"), size_of::<GpuLightsHeader>());
 }
 
@@ -107,6 +124,51 @@ fn light_grid_header_matches_wgsl_phong_light_grid() {
         .map(|(name, offset)| (name.to_string(), *offset as u32))
         .collect();
     assert_eq!(members, rust);
+}
+
+#[test]
+fn shadow_view_matches_wgsl_phong_shadow_view() {
+    let (size, members) = wgsl_struct(&types_module(), "PhongShadowView");
+    assert_eq!(size as usize, size_of::<GpuShadowView>());
+    let rust = [
+        (
+            "clip_from_world",
+            offset_of!(GpuShadowView, clip_from_world),
+        ),
+        ("view_plane", offset_of!(GpuShadowView, view_plane)),
+        ("projection", offset_of!(GpuShadowView, projection)),
+        ("layer", offset_of!(GpuShadowView, layer)),
+        ("view_count", offset_of!(GpuShadowView, view_count)),
+        ("uv_scale", offset_of!(GpuShadowView, uv_scale)),
+        ("texel_size", offset_of!(GpuShadowView, texel_size)),
+        ("depth_range", offset_of!(GpuShadowView, depth_range)),
+        ("near", offset_of!(GpuShadowView, near)),
+        ("depth_bias", offset_of!(GpuShadowView, depth_bias)),
+        ("normal_bias", offset_of!(GpuShadowView, normal_bias)),
+        ("light_size", offset_of!(GpuShadowView, light_size)),
+        ("cascade_far", offset_of!(GpuShadowView, cascade_far)),
+        (
+            "cascade_blend_start",
+            offset_of!(GpuShadowView, cascade_blend_start),
+        ),
+        (
+            "diffuse_in_shadow",
+            offset_of!(GpuShadowView, diffuse_in_shadow),
+        ),
+        (
+            "specular_in_shadow",
+            offset_of!(GpuShadowView, specular_in_shadow),
+        ),
+        ("padding", offset_of!(GpuShadowView, padding)),
+    ];
+    let rust: Vec<(String, u32)> = rust
+        .iter()
+        .map(|(name, offset)| (name.to_string(), *offset as u32))
+        .collect();
+    assert_eq!(members, rust);
+    let (_, views) = wgsl_struct(&types_module(), "PhongShadowViews");
+    let views_offset = views.iter().find(|(name, _)| name == "views").unwrap().1;
+    assert_eq!(views_offset as usize, size_of::<GpuShadowViewsHeader>());
 }
 
 #[test]

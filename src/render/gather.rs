@@ -186,6 +186,13 @@ pub fn gather_lights(
         &mut state.records,
         with_shadow(PhongDirectionalLight::to_gpu),
     );
+    // Shadow-casting directional lights first (a stable sort keeps the others' order).
+    state.records.sort_by_key(|light| light.shadow == 0);
+    let shadowed_directional_count = state
+        .records
+        .iter()
+        .filter(|light| light.shadow != 0)
+        .count() as u32;
     push_visible(
         &point,
         &slots,
@@ -205,19 +212,25 @@ pub fn gather_lights(
         lights.retain_mut(|light| limit_reach(light, per_light_epsilon));
     }
 
-    // Unlimited reach first (every fragment loops over them), then the grid's lights.
-    let in_grid = |light: &GpuLight| culling.grid && has_finite_reach(light);
-    let mut append = |lights: &[GpuLight], grid: bool| {
+    // Unlimited reach first (every fragment loops over them), the shadow-casting lights of
+    // each kind leading, then the grid's lights (which cast no shadows).
+    let casts_shadow = |light: &GpuLight| light.shadow != 0;
+    let in_grid =
+        |light: &GpuLight| culling.grid && has_finite_reach(light) && !casts_shadow(light);
+    let plain = |light: &GpuLight| !casts_shadow(light) && !in_grid(light);
+    let mut append = |lights: &[GpuLight], include: &dyn Fn(&GpuLight) -> bool| {
         let start = state.records.len();
         state
             .records
-            .extend(lights.iter().filter(|light| in_grid(light) == grid));
+            .extend(lights.iter().filter(|light| include(light)));
         (state.records.len() - start) as u32
     };
-    let point_count = append(&state.points, false);
-    let spot_count = append(&state.spots, false);
-    let grid_point_count = append(&state.points, true);
-    let grid_spot_count = append(&state.spots, true);
+    let shadowed_point_count = append(&state.points, &casts_shadow);
+    let point_count = shadowed_point_count + append(&state.points, &plain);
+    let shadowed_spot_count = append(&state.spots, &casts_shadow);
+    let spot_count = shadowed_spot_count + append(&state.spots, &plain);
+    let grid_point_count = append(&state.points, &in_grid);
+    let grid_spot_count = append(&state.spots, &in_grid);
     let grid_start = (directional_count + point_count + spot_count) as usize;
     let grid_spots_start = grid_start + grid_point_count as usize;
     state.grid.build(
@@ -233,6 +246,10 @@ pub fn gather_lights(
         spot_count,
         grid_point_count,
         grid_spot_count,
+        shadowed_directional_count,
+        shadowed_point_count,
+        shadowed_spot_count,
+        padding: 0,
     };
     let lights_resized = state
         .buffer
@@ -342,6 +359,42 @@ mod tests {
             [0.0; 3]
         );
         assert!(!built_in_buffer_bytes(&app).is_empty());
+    }
+
+    #[test]
+    fn shadow_casting_lights_lead_their_kind_and_stay_out_of_the_grid() {
+        let mut app = test_app(|_| {});
+        let world = app.world_mut();
+        world.spawn((
+            PhongPointLight {
+                range: Some(5.0),
+                ..Default::default()
+            },
+            Transform::from_xyz(0.0, 1.0, 0.0),
+        ));
+        world.spawn((
+            PhongPointLight {
+                range: Some(5.0),
+                shadows: crate::PhongShadows::ON,
+                ..Default::default()
+            },
+            Transform::from_xyz(2.0, 1.0, 0.0),
+        ));
+        app.update();
+        let state = app.world().resource::<PhongLightBuffer>();
+        let header = state.header();
+        assert_eq!(
+            (
+                header.shadowed_point_count,
+                header.point_count,
+                header.grid_point_count
+            ),
+            (1, 1, 1),
+            "the shadow-casting light leads the unlimited run; the other is in the grid"
+        );
+        assert_eq!(state.records()[0].position, [2.0, 1.0, 0.0]);
+        assert_eq!(state.records()[0].shadow, 1, "its first view, plus one");
+        assert_eq!(state.records()[1].shadow, 0);
     }
 
     #[test]

@@ -35,9 +35,6 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
 
 // A point or spot light with its shadow applied (see `bevy_phong::shadows::shadowed`).
 fn shadowed_at_point(light: PhongLight, surface: PhongSurface) -> PhongLight {
-    if light.shadow == 0u {
-        return light;
-    }
     return shadowed(light, surface, normalize_or_zero(light.position - surface.position));
 }
 
@@ -47,17 +44,30 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     var color = vec3<f32>(0.0);
     var index = 0u;
     let directional_end = lights.directional_count;
-    for (; index < directional_end; index += 1u) {
+    // Each kind's shadow-casting lights come first; the others run the plain loop.
+    let shadowed_directional_end = lights.shadowed_directional_count;
+    for (; index < shadowed_directional_end; index += 1u) {
         let light = lights.lights[index];
         color += directional_light(surface, shadowed(light, surface, -light.direction));
     }
+    for (; index < directional_end; index += 1u) {
+        color += directional_light(surface, lights.lights[index]);
+    }
+    let shadowed_point_end = directional_end + lights.shadowed_point_count;
+    for (; index < shadowed_point_end; index += 1u) {
+        color += point_light(surface, shadowed_at_point(lights.lights[index], surface));
+    }
     let point_end = directional_end + lights.point_count;
     for (; index < point_end; index += 1u) {
-        color += point_light(surface, shadowed_at_point(lights.lights[index], surface));
+        color += point_light(surface, lights.lights[index]);
+    }
+    let shadowed_spot_end = point_end + lights.shadowed_spot_count;
+    for (; index < shadowed_spot_end; index += 1u) {
+        color += spot_light(surface, shadowed_at_point(lights.lights[index], surface));
     }
     let spot_end = point_end + lights.spot_count;
     for (; index < spot_end; index += 1u) {
-        color += spot_light(surface, shadowed_at_point(lights.lights[index], surface));
+        color += spot_light(surface, lights.lights[index]);
     }
     return color + grid_lights(surface);
 }
@@ -77,10 +87,10 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     let spot_end = point_end + light_grid.data[record + 2u];
     var color = vec3<f32>(0.0);
     for (; slot < point_end; slot += 1u) {
-        color += point_light(surface, shadowed_at_point(lights.lights[light_grid.data[slot]], surface));
+        color += point_light(surface, lights.lights[light_grid.data[slot]]);
     }
     for (; slot < spot_end; slot += 1u) {
-        color += spot_light(surface, shadowed_at_point(lights.lights[light_grid.data[slot]], surface));
+        color += spot_light(surface, lights.lights[light_grid.data[slot]]);
     }
     return color;
 }
