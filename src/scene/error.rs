@@ -1,9 +1,9 @@
 //! What goes wrong with a scene or material file.
 
 use super::SceneColor;
-use crate::quoting::{quoted, shorten_quoted_spans};
+use crate::quoting::shorten_quoted_spans;
 use bevy::{
-    asset::{AssetPath, LoadContext, io::Reader},
+    asset::{LoadContext, io::Reader},
     color::Color,
 };
 use serde::de::DeserializeOwned;
@@ -71,21 +71,6 @@ pub(crate) fn scene_color(
     color
         .to_color()
         .map_err(|message| SceneFileError::invalid(load_context, field, message))
-}
-
-/// `path`, relative to the file being loaded, as an asset path; a malformed one is an
-/// [`Invalid`](SceneFileError::Invalid) error at `field`.
-pub(crate) fn relative_path(
-    load_context: &LoadContext,
-    path: &str,
-    field: impl Into<String>,
-) -> Result<AssetPath<'static>, SceneFileError> {
-    load_context
-        .path()
-        .resolve_embed_str(path)
-        .map_err(|error| {
-            SceneFileError::invalid(load_context, field, format!("{}: {error}", quoted(path)))
-        })
 }
 
 /// Parses `text` as RON into `T`; a syntax or type error says where (`path:line:column`).
