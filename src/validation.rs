@@ -30,7 +30,7 @@ use crate::{
 };
 use bevy::{
     asset::{AssetEvent, AssetId, Assets},
-    color::Color,
+    color::{Color, LinearRgba},
     ecs::{
         change_detection::{DetectChanges, DetectChangesMut},
         component::Component,
@@ -121,7 +121,7 @@ impl Checker {
         if fixed == linear {
             return;
         }
-        self.replace(field, format!("{linear:?}"), format!("{fixed:?}"));
+        self.replace(field, color_text(linear), color_text(fixed));
         *color = fixed.into();
     }
 
@@ -138,10 +138,11 @@ impl Checker {
         if fixed == *value {
             return;
         }
+        // `{:?}` writes 3e38 as `3e38` where `{}` writes 39 digits.
         self.replace(
             field,
-            value.to_string(),
-            format!("{fixed} (allowed: {limits})"),
+            format!("{value:?}"),
+            format!("{fixed:?} (allowed: {limits})"),
         );
         *value = fixed;
     }
@@ -202,6 +203,17 @@ impl Checker {
             messages.write(invalid);
         }
     }
+}
+
+/// `color` as a warning quotes it: `Linear(3.4028235e38, 0.5, 0.0, alpha NaN)`.
+fn color_text(color: LinearRgba) -> String {
+    let LinearRgba {
+        red,
+        green,
+        blue,
+        alpha,
+    } = color;
+    format!("Linear({red:?}, {green:?}, {blue:?}, alpha {alpha:?})")
 }
 
 /// A light kind whose fields [`validate_lights`] checks.

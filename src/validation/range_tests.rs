@@ -62,6 +62,16 @@ fn huge_finite_light_values_are_clamped_to_the_bound_with_one_warning_each() {
         "{warnings:#?}"
     );
     assert_eq!(fields_of(&warnings, Owner::Resource), ["color"]);
+    // The values are quoted whole, extreme ones in exponent form.
+    let color = warnings
+        .iter()
+        .find(|w| w.owner == Owner::Entity(light) && w.field == "color")
+        .unwrap();
+    assert_eq!(color.value, "Linear(3.4028235e38, 0.5, 2e38, alpha 1.0)");
+    assert_eq!(
+        color.replacement,
+        "Linear(1000000.0, 0.5, 1000000.0, alpha 1.0)"
+    );
     let point = app.world().get::<PhongPointLight>(light).unwrap();
     assert_eq!(
         point.color.to_linear().to_vec3(),
@@ -115,6 +125,10 @@ fn an_infinite_or_huge_spot_angle_is_reported_and_clamped_to_180_degrees() {
         .unwrap()
         .to_string();
     assert!(text.contains("PhongSpotLight.outer_angle = inf"), "{text}");
+    assert!(
+        text.ends_with("using 3.1415927 (allowed: 0 to 3.1415927)"),
+        "{text}"
+    );
     for entity in [infinite, huge] {
         let spot = app.world().get::<PhongSpotLight>(entity).unwrap();
         assert_eq!(spot.outer_angle, PI);
