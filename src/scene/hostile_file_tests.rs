@@ -5,7 +5,7 @@
 use super::tests::{LoadErrors, run_until, scene_app, scene_app_with, scratch_directory, spawned};
 use super::*;
 use crate::{PhongDirectionalLight, PhongMaterial, PhongSpotLight, render::light_direction};
-use bevy::{asset::UnapprovedPathMode, prelude::*};
+use bevy::{asset::UnapprovedPathMode, ecs::message::Messages, prelude::*};
 use std::{path::Path, time::Duration};
 
 /// A file that must never be read: a valid material whose shininess no other file uses.
@@ -259,5 +259,44 @@ fn file_directions_of_any_scale_point_where_they_say() {
             actual.abs_diff_eq(expected, 1e-6),
             "{actual} instead of {expected}"
         );
+    }
+}
+
+#[test]
+fn a_spot_angle_of_1e400_degrees_in_a_file_is_reported_and_clamped_to_180_degrees() {
+    let directory = scratch_directory("huge_angle");
+    // RON reads 1e400 as f32 infinity; 1e9° is finite but far past 180°.
+    write(
+        &directory,
+        "spots.phong_scene.ron",
+        "(lights: [
+            Spot(position: (0.0, 2.0, 0.0), direction: (0.0, -1.0, 0.0), outer_angle_degrees: 1e400),
+            Spot(position: (0.0, 2.0, 0.0), direction: (0.0, -1.0, 0.0), outer_angle_degrees: 1e9),
+        ])",
+    );
+    let mut app = scene_app(&directory);
+    let scene = app
+        .world()
+        .resource::<AssetServer>()
+        .load("spots.phong_scene.ron");
+    app.world_mut().spawn(PhongSceneRoot(scene));
+    assert!(run_until(&mut app, Duration::from_secs(20), |app| spawned(
+        app
+    ) == [
+        0, 0, 0, 2, 0
+    ]));
+    app.update();
+    let warnings: Vec<_> = app
+        .world_mut()
+        .resource_mut::<Messages<crate::validation::InvalidInput>>()
+        .drain()
+        .filter(|warning| warning.field == "outer_angle")
+        .map(|warning| warning.value)
+        .collect();
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(warnings.contains(&"inf".to_owned()), "{warnings:?}");
+    let world = app.world_mut();
+    for spot in world.query::<&PhongSpotLight>().iter(world) {
+        assert_eq!(spot.outer_angle, core::f32::consts::PI);
     }
 }
