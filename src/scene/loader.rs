@@ -105,8 +105,11 @@ fn build_scene(
                 load_context.load(resolved)
             }
         };
-        let transform = object_transform(&object.transform, &format!("{field}.transform"))
-            .map_err(|(field, message)| SceneFileError::invalid(load_context, field, message))?;
+        let transform = object_transform(
+            &object.transform,
+            &format!("{field}.transform"),
+            load_context,
+        )?;
         objects.push((mesh, material, transform));
     }
     Ok(PhongScene {
@@ -249,14 +252,16 @@ fn scene_camera(
 fn object_transform(
     description: &TransformDescription,
     field: &str,
-) -> Result<Transform, (String, String)> {
+    load_context: &LoadContext,
+) -> Result<Transform, SceneFileError> {
     for (name, value) in [
         ("translation", description.translation),
         ("rotation", description.rotation),
         ("scale", description.scale),
     ] {
         if !value.is_finite() {
-            return Err((
+            return Err(SceneFileError::invalid(
+                load_context,
                 format!("{field}.{name}"),
                 format!("must be finite, got {value}"),
             ));
