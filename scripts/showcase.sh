@@ -5,4 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/ensure-vulkan.sh
 source scripts/software-adapter.sh
-exec cargo run --example showcase -- "$@"
+source scripts/runtime-dir.sh
+# Not `exec`: the private runtime directory is removed when this script exits.
+cargo run --example showcase -- "$@"

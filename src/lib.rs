@@ -65,7 +65,8 @@
 //! - **New light kinds** plug in from outside the crate: [`extension`] is the guide, with a
 //!   searchlight as the worked example.
 //! - **Invalid input** (a negative range, a NaN color, ...) is replaced by a documented value
-//!   with one warning naming the entity and field: see [`validation`].
+//!   with one warning naming the entity and field: see [`validation`]. Every float has a
+//!   documented range ([`limits`]), chosen so that no finite input overflows to infinity.
 //! - **Scene and material files** ([`scene`]): a scene written in RON
 //!   (`*.phong_scene.ron`), spawned by a [`PhongSceneRoot`](scene::PhongSceneRoot) and
 //!   hot-reloaded; a material alone in a `*.phong.ron` file.
@@ -79,11 +80,14 @@
 //!   with, for checking a render against [`reference`](mod@reference).
 
 pub mod culling;
+mod direction;
 pub mod extension;
 pub mod interop;
 mod lights;
+pub mod limits;
 mod material;
 mod plugin;
+mod quoting;
 pub mod reference;
 pub mod render;
 pub mod scene;

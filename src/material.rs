@@ -1,5 +1,6 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
+use crate::limits;
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
@@ -170,34 +171,20 @@ impl PhongMaterialUniform {
     pub const FLIP_NORMAL_MAP_Y: u32 = 4;
 }
 
-/// `value` if it is finite and non-negative, else `0` (see [`crate::validation`]).
-fn finite_non_negative(value: f32) -> f32 {
-    if value.is_finite() && value > 0.0 {
-        value
-    } else {
-        0.0
-    }
-}
-
-/// Each channel finite and non-negative, else `0`.
-fn finite_non_negative_rgb(rgb: Vec3) -> Vec3 {
-    Vec3::from_array(rgb.to_array().map(finite_non_negative))
-}
-
-// Bevy's `AsBindGroupShaderType` comes with this conversion. Invalid values are clamped
-// here too, so no frame draws with them before `validate_materials` has replaced them.
+// Bevy's `AsBindGroupShaderType` comes with this conversion. Every value is brought into its
+// range ([`crate::limits`], the rule `validate_materials` applies) here too, so no frame
+// draws with an invalid value before `validate_materials` has replaced it.
 impl From<&PhongMaterial> for PhongMaterialUniform {
     fn from(material: &PhongMaterial) -> Self {
-        let base_color = material.base_color.to_linear();
-        let specular = finite_non_negative_rgb(material.specular_color.to_linear().to_vec3())
-            * finite_non_negative(material.specular_strength);
+        let base_color = limits::linear_color(material.base_color.to_linear());
+        let specular = limits::INTENSITY.apply_vec3(material.specular_color.to_linear().to_vec3())
+            * limits::INTENSITY.apply(material.specular_strength);
         Self {
-            base_color: finite_non_negative_rgb(base_color.to_vec3())
-                .extend(finite_non_negative(base_color.alpha)),
+            base_color: base_color.to_vec4(),
             specular,
-            shininess: finite_non_negative(material.shininess),
-            emissive: finite_non_negative_rgb(material.emissive.to_vec3()),
-            ambient_factor: finite_non_negative(material.ambient_factor),
+            shininess: limits::EXPONENT.apply(material.shininess),
+            emissive: limits::INTENSITY.apply_vec3(material.emissive.to_vec3()),
+            ambient_factor: limits::INTENSITY.apply(material.ambient_factor),
             flags: material.specular_model.shader_flag()
                 | if material.flip_normal_map_y {
                     Self::FLIP_NORMAL_MAP_Y
@@ -205,7 +192,7 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
                     0
                 },
             alpha_cutoff: match material.alpha_mode {
-                AlphaMode::Mask(cutoff) => cutoff,
+                AlphaMode::Mask(cutoff) => limits::ALPHA_CUTOFF.apply(cutoff),
                 _ => 0.0,
             },
         }

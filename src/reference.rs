@@ -9,16 +9,22 @@
 //!
 //! Every function follows the shader's rules for degenerate input, so that the two can be
 //! compared anywhere:
-//! - a normal, view or light direction that is zero, NaN, or shorter than 1e-15
-//!   ([`MIN_LENGTH_SQUARED`]) counts as zero: such a light gives no diffuse or specular light;
-//! - a point or spot light at the surface point (closer than 1e-15) lights nothing;
+//! - a vector is normalized by its largest component first ([`normalize_or_zero`]); one
+//!   that is not finite, or whose largest component is below `f32`'s smallest normal number
+//!   (about 1.2e-38), has no direction: such a normal, view or light vector gives no diffuse
+//!   or specular light;
+//! - a point or spot light at the surface point (closer than 1e-15, [`MIN_LENGTH_SQUARED`])
+//!   lights nothing;
 //! - a spot light whose outer angle is not positive has an empty cone and lights nothing;
 //! - `power(0, 0) = 1`;
-//! - an attenuation denominator at or below 1 (a `Decay` of all zeros included) gives 1.
+//! - an attenuation denominator at or below 1 (a `Decay` of all zeros included) gives 1;
+//! - a [`PhongMaterial`]'s values, and a spot light's angles, are first brought into their
+//!   ranges ([`crate::limits`]) as its uniform and light record do.
 
 use crate::{
     culling::influence_radius,
     lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    limits,
     material::{PhongMaterial, SpecularModel},
     render::light_direction,
 };
@@ -31,18 +37,16 @@ use glam::DVec3;
 mod texture_maps;
 pub use texture_maps::{Texels, mapped_normal};
 
-/// Vectors whose squared length is at or below this count as zero (no direction), here and
-/// in the shader.
+/// A point or spot light whose squared distance from the surface point is at or below this
+/// (closer than 1e-15) lights nothing, here and in the shader.
 pub const MIN_LENGTH_SQUARED: f64 = 1e-30;
 
-/// `v / |v|`, or zero where `|v|² ≤ MIN_LENGTH_SQUARED` or `v` is not finite.
+/// `v / |v|`, computed as `u / |u|` with `u = v / max(|v.x|, |v.y|, |v.z|)` (as the shader
+/// does, so that no `f32` square overflows or underflows); zero where `v` is not finite or
+/// its largest component is below `f32::MIN_POSITIVE` (about 1.2e-38: GPUs may flush smaller
+/// numbers to zero).
 pub fn normalize_or_zero(v: DVec3) -> DVec3 {
-    let length_squared = v.length_squared();
-    if length_squared > MIN_LENGTH_SQUARED && length_squared.is_finite() {
-        v / length_squared.sqrt()
-    } else {
-        DVec3::ZERO
-    }
+    crate::direction::normalize_or_zero_f64(v)
 }
 
 /// A surface point and where it is seen from.
@@ -420,16 +424,23 @@ fn position(transform: &GlobalTransform) -> DVec3 {
     transform.translation().as_dvec3()
 }
 
+/// The material's values brought into their ranges ([`crate::limits`]), exactly as its
+/// uniform (`PhongMaterialUniform`) brings them.
 impl From<&PhongMaterial> for Material {
     fn from(material: &PhongMaterial) -> Self {
+        let channels = |color: Color| {
+            limits::INTENSITY
+                .apply_vec3(color.to_linear().to_vec3())
+                .as_dvec3()
+        };
         Self {
-            diffuse: linear_rgb(material.base_color),
-            ambient_factor: material.ambient_factor.into(),
-            specular: linear_rgb(material.specular_color),
-            specular_strength: material.specular_strength.into(),
-            shininess: material.shininess.into(),
+            diffuse: channels(material.base_color),
+            ambient_factor: limits::INTENSITY.apply(material.ambient_factor).into(),
+            specular: channels(material.specular_color),
+            specular_strength: limits::INTENSITY.apply(material.specular_strength).into(),
+            shininess: limits::EXPONENT.apply(material.shininess).into(),
             specular_model: material.specular_model,
-            emissive: material.emissive.to_vec3().as_dvec3(),
+            emissive: channels(material.emissive.into()),
         }
     }
 }
@@ -491,7 +502,8 @@ impl Light {
         }
     }
 
-    /// The reference form of a spot light entity.
+    /// The reference form of a spot light entity, its angles brought into `[0, π]` as its
+    /// light record's are ([`crate::limits::SPOT_ANGLE`]).
     pub fn spot(light: &PhongSpotLight, transform: &GlobalTransform) -> Self {
         Light::Spot {
             position: position(transform),
@@ -500,8 +512,8 @@ impl Light {
             specular: linear_rgb(light.specular.unwrap_or(light.color)),
             decay: decay_of(light.decay),
             range: light.range.map(f64::from),
-            inner_angle: light.inner_angle.into(),
-            outer_angle: light.outer_angle.into(),
+            inner_angle: limits::SPOT_ANGLE.apply(light.inner_angle).into(),
+            outer_angle: limits::SPOT_ANGLE.apply(light.outer_angle).into(),
             exponent: light.exponent.into(),
         }
     }

@@ -2,26 +2,35 @@
 //! [`PhongMaterial`]s are replaced by documented values once, when they
 //! change, with one warning that names the entity (or asset) and the field.
 //!
-//! | field | invalid | replaced by |
-//! |---|---|---|
-//! | any color | a NaN, infinite or negative channel | `0` for that channel |
-//! | `Decay` coefficients | NaN, infinite or negative | `0` (a `Decay` of all zeros does not fade) |
-//! | `range` | NaN or `≤ 0` | `None` (unlimited) |
-//! | spot `inner_angle`, `outer_angle` | NaN or negative | `0` (an outer angle of 0 lights nothing) |
-//! | spot `inner_angle` | greater than `outer_angle` | `outer_angle` (a hard edge) |
-//! | spot `exponent` | NaN, infinite or negative | `0` |
-//! | material `shininess`, `specular_strength`, `ambient_factor` | NaN, infinite or negative | `0` |
-//! | a light's transform | a NaN or infinite translation or rotation | the light is skipped while it lasts |
+//! Every float has a range ([`crate::limits`]); NaN takes the range's fallback and anything
+//! else outside it is clamped, `±∞` included. The upper bounds keep every sum the shader
+//! forms finite (see [`crate::limits`] for the arithmetic).
 //!
-//! Each replacement is also sent as an [`InvalidInput`] message, for tools and tests.
+//! | field | range | NaN becomes | outside the range |
+//! |---|---|---|---|
+//! | any color channel (lights, ambient, `base_color`, `specular_color`, `emissive`) | 0 to 1e6, linear RGB | `0` | clamped |
+//! | any color's alpha | 0 to 1 | `1` | clamped |
+//! | `Decay` coefficients | 0 to 1e6 | `0` | clamped (a `Decay` of all zeros does not fade) |
+//! | `range` | above 0; `∞` means unlimited | `None` (unlimited) | `≤ 0`: `None` |
+//! | spot `inner_angle`, `outer_angle` | 0 to π radians (0° to 180°) | `0` (an outer angle of 0 lights nothing) | clamped |
+//! | spot `inner_angle` | at most `outer_angle` | | `outer_angle` (a hard edge) |
+//! | spot `exponent`, material `shininess` | 0 to 1e6 | `0` | clamped |
+//! | material `specular_strength`, `ambient_factor` | 0 to 1e6 | `0` | clamped |
+//! | material `AlphaMode::Mask` cutoff | 0 to 1 | `0.5` | clamped |
+//! | a light's transform | finite translation and rotation | the light is skipped while it lasts | |
+//!
+//! Each replacement is also sent as an [`InvalidInput`] message, for tools and tests. Its
+//! value is quoted at most 80 characters long.
 
 use crate::{
     lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    limits::{self, Limits},
     material::PhongMaterial,
+    quoting::bounded,
 };
 use bevy::{
     asset::{AssetEvent, AssetId, Assets},
-    color::{Color, ColorToComponents, LinearRgba},
+    color::{Color, LinearRgba},
     ecs::{
         change_detection::{DetectChanges, DetectChangesMut},
         component::Component,
@@ -32,6 +41,7 @@ use bevy::{
         world::Ref,
     },
     log::warn,
+    prelude::AlphaMode,
     transform::components::GlobalTransform,
 };
 use core::fmt;
@@ -45,7 +55,7 @@ pub struct InvalidInput {
     pub component: &'static str,
     /// The field, e.g. `range`.
     pub field: &'static str,
-    /// The invalid value, as written.
+    /// The invalid value, as written (at most 80 characters of it, then its length).
     pub value: String,
     /// What the crate uses instead.
     pub replacement: String,
@@ -98,24 +108,21 @@ impl Checker {
             owner: self.owner.clone(),
             component: self.component,
             field,
-            value,
+            value: bounded(&value),
             replacement,
         });
     }
 
-    /// A linear color whose channels are finite and non-negative.
+    /// A linear color in [`limits::INTENSITY`]'s range, its alpha in [`limits::ALPHA`]'s.
     fn color(&mut self, field: &'static str, color: &mut Color) {
         let linear = color.to_linear();
-        let rgb = linear.to_vec3();
-        if rgb.is_finite() && rgb.min_element() >= 0.0 {
+        let fixed = limits::linear_color(linear);
+        // NaN never equals itself: a NaN channel is replaced.
+        if fixed == linear {
             return;
         }
-        let fixed = rgb
-            .to_array()
-            .map(|c| if c.is_finite() && c > 0.0 { c } else { 0.0 });
-        let replacement = LinearRgba::new(fixed[0], fixed[1], fixed[2], linear.alpha);
-        self.replace(field, format!("{linear:?}"), format!("{replacement:?}"));
-        *color = replacement.into();
+        self.replace(field, color_text(linear), color_text(fixed));
+        *color = fixed.into();
     }
 
     fn optional_color(&mut self, field: &'static str, color: &mut Option<Color>) {
@@ -124,19 +131,26 @@ impl Checker {
         }
     }
 
-    /// A finite, non-negative scalar; `0` otherwise.
-    fn non_negative(&mut self, field: &'static str, value: &mut f32) {
-        if value.is_finite() && *value >= 0.0 {
+    /// A scalar in the range of `limits`.
+    fn scalar(&mut self, field: &'static str, value: &mut f32, limits: Limits) {
+        let fixed = limits.apply(*value);
+        // NaN never equals itself: it is replaced.
+        if fixed == *value {
             return;
         }
-        self.replace(field, value.to_string(), "0".into());
-        *value = 0.0;
+        // `{:?}` writes 3e38 as `3e38` where `{}` writes 39 digits.
+        self.replace(
+            field,
+            format!("{value:?}"),
+            format!("{fixed:?} (allowed: {limits})"),
+        );
+        *value = fixed;
     }
 
     fn decay(&mut self, decay: &mut Decay) {
-        self.non_negative("decay.constant", &mut decay.constant);
-        self.non_negative("decay.linear", &mut decay.linear);
-        self.non_negative("decay.quadratic", &mut decay.quadratic);
+        self.scalar("decay.constant", &mut decay.constant, limits::DECAY);
+        self.scalar("decay.linear", &mut decay.linear, limits::DECAY);
+        self.scalar("decay.quadratic", &mut decay.quadratic, limits::DECAY);
     }
 
     /// A positive range, or `None`.
@@ -153,15 +167,8 @@ impl Checker {
     }
 
     fn spot_angles(&mut self, light: &mut PhongSpotLight) {
-        for (field, angle) in [
-            ("inner_angle", &mut light.inner_angle),
-            ("outer_angle", &mut light.outer_angle),
-        ] {
-            if angle.is_nan() || *angle < 0.0 {
-                self.replace(field, angle.to_string(), "0".into());
-                *angle = 0.0;
-            }
-        }
+        self.scalar("inner_angle", &mut light.inner_angle, limits::SPOT_ANGLE);
+        self.scalar("outer_angle", &mut light.outer_angle, limits::SPOT_ANGLE);
         if light.inner_angle > light.outer_angle {
             self.replace(
                 "inner_angle",
@@ -172,6 +179,23 @@ impl Checker {
         }
     }
 
+    /// Every float of a material.
+    fn material(&mut self, material: &mut PhongMaterial) {
+        self.color("base_color", &mut material.base_color);
+        self.color("specular_color", &mut material.specular_color);
+        self.scalar("shininess", &mut material.shininess, limits::EXPONENT);
+        let strength = &mut material.specular_strength;
+        self.scalar("specular_strength", strength, limits::INTENSITY);
+        let ambient_factor = &mut material.ambient_factor;
+        self.scalar("ambient_factor", ambient_factor, limits::INTENSITY);
+        let mut emissive: Color = material.emissive.into();
+        self.color("emissive", &mut emissive);
+        material.emissive = emissive.to_linear();
+        if let AlphaMode::Mask(cutoff) = &mut material.alpha_mode {
+            self.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
+        }
+    }
+
     /// Logs and sends what was replaced.
     fn report(self, messages: &mut MessageWriter<InvalidInput>) {
         for invalid in self.found {
@@ -179,6 +203,17 @@ impl Checker {
             messages.write(invalid);
         }
     }
+}
+
+/// `color` as a warning quotes it: `Linear(3.4028235e38, 0.5, 0.0, alpha NaN)`.
+fn color_text(color: LinearRgba) -> String {
+    let LinearRgba {
+        red,
+        green,
+        blue,
+        alpha,
+    } = color;
+    format!("Linear({red:?}, {green:?}, {blue:?}, alpha {alpha:?})")
 }
 
 /// A light kind whose fields [`validate_lights`] checks.
@@ -215,7 +250,7 @@ impl Validate for PhongSpotLight {
         checker.decay(&mut self.decay);
         checker.range(&mut self.range);
         checker.spot_angles(self);
-        checker.non_negative("exponent", &mut self.exponent);
+        checker.scalar("exponent", &mut self.exponent, limits::EXPONENT);
     }
 }
 
@@ -278,17 +313,13 @@ pub fn validate_materials(
             continue;
         };
         let mut checker = Checker::new(Owner::Material(*id), "PhongMaterial");
-        checker.color("base_color", &mut material.base_color);
-        checker.color("specular_color", &mut material.specular_color);
-        checker.non_negative("shininess", &mut material.shininess);
-        checker.non_negative("specular_strength", &mut material.specular_strength);
-        checker.non_negative("ambient_factor", &mut material.ambient_factor);
-        let mut emissive: Color = material.emissive.into();
-        checker.color("emissive", &mut emissive);
-        material.emissive = emissive.to_linear();
+        checker.material(material);
         checker.report(&mut messages);
     }
 }
+
+#[cfg(test)]
+mod range_tests;
 
 #[cfg(test)]
 mod tests {
@@ -298,6 +329,7 @@ mod tests {
         test_app::{test_app, uploads_in_next_frame},
     };
     use bevy::{
+        color::ColorToComponents,
         ecs::message::Messages,
         prelude::{Transform, Vec3},
     };

@@ -15,7 +15,8 @@ use serde::{Deserialize, Serialize};
 #[reflect(Resource, Default, Debug, Clone)]
 #[serde(default)]
 pub struct PhongAmbientLight {
-    /// Intensity as a color, converted to linear RGB; components may exceed 1.
+    /// Intensity as a color, converted to linear RGB; each channel `0` to `1e6`
+    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1.
     /// Default: linear gray `0.1`.
     pub color: Color,
 }

@@ -10,8 +10,9 @@ use serde::{Deserialize, Serialize};
 /// ```
 ///
 /// The `min(1, …)` keeps a light that sits on a surface finite. All three coefficients are
-/// dimensionless multipliers of `1`, `d` and `d²`; none may be negative, and at least one
-/// should be positive (a `Decay` of all zeros means "no fall-off": `A = 1`).
+/// multipliers of `1`, `d` and `d²`, each `0` to `1e6`
+/// ([`MAX_DECAY`](crate::limits::MAX_DECAY)); at least one should be positive (a `Decay` of
+/// all zeros means "no fall-off": `A = 1`).
 ///
 /// The default, [`Decay::NONE`], does not fade.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]

@@ -21,9 +21,11 @@ use serde::{Deserialize, Serialize};
 #[require(Transform, Visibility)]
 #[serde(default)]
 pub struct PhongDirectionalLight {
-    /// Diffuse intensity, converted to linear RGB; components may exceed 1. Default white.
+    /// Diffuse intensity, converted to linear RGB; each channel `0` to `1e6`
+    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1. Default white.
     pub color: Color,
-    /// Specular intensity; `None` (the default) uses [`color`](Self::color).
+    /// Specular intensity, in the same range; `None` (the default) uses
+    /// [`color`](Self::color).
     pub specular: Option<Color>,
     /// Shadow settings. Default off.
     pub shadows: PhongShadows,

@@ -20,14 +20,16 @@ use serde::{Deserialize, Serialize};
 #[require(Transform, Visibility)]
 #[serde(default)]
 pub struct PhongPointLight {
-    /// Diffuse intensity, converted to linear RGB; components may exceed 1. Default white.
+    /// Diffuse intensity, converted to linear RGB; each channel `0` to `1e6`
+    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1. Default white.
     pub color: Color,
-    /// Specular intensity; `None` (the default) uses [`color`](Self::color).
+    /// Specular intensity, in the same range; `None` (the default) uses
+    /// [`color`](Self::color).
     pub specular: Option<Color>,
     /// Fall-off with distance. Default [`Decay::NONE`].
     pub decay: Decay,
-    /// Distance (world units, `> 0`) past which the light contributes nothing;
-    /// `None` (the default) means unlimited.
+    /// Distance (world units, `> 0`; `∞` is unlimited) past which the light contributes
+    /// nothing; `None` (the default) means unlimited.
     pub range: Option<f32>,
     /// Shadow settings. Default off.
     pub shadows: PhongShadows,

@@ -24,24 +24,28 @@ use serde::{Deserialize, Serialize};
 #[require(Transform, Visibility)]
 #[serde(default)]
 pub struct PhongSpotLight {
-    /// Diffuse intensity, converted to linear RGB; components may exceed 1. Default white.
+    /// Diffuse intensity, converted to linear RGB; each channel `0` to `1e6`
+    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1. Default white.
     pub color: Color,
-    /// Specular intensity; `None` (the default) uses [`color`](Self::color).
+    /// Specular intensity, in the same range; `None` (the default) uses
+    /// [`color`](Self::color).
     pub specular: Option<Color>,
     /// Fall-off with distance. Default [`Decay::NONE`].
     pub decay: Decay,
-    /// Distance (world units, `> 0`) past which the light contributes nothing;
-    /// `None` (the default) means unlimited.
+    /// Distance (world units, `> 0`; `∞` is unlimited) past which the light contributes
+    /// nothing; `None` (the default) means unlimited.
     pub range: Option<f32>,
     /// Shadow settings. Default off.
     pub shadows: PhongShadows,
     /// Half-angle of the fully lit core, in radians, `0 ≤ inner ≤ outer`.
     /// Default 12.5° (seed 004).
     pub inner_angle: f32,
-    /// Half-angle where the light reaches zero, in radians, `inner ≤ outer < π/2`; a cone
-    /// with `outer_angle = 0` is empty and gives no light. Default 17.5° (seed 004).
+    /// Half-angle where the light reaches zero, in radians, `inner ≤ outer ≤ π` (180°; past
+    /// 90° the cone lights behind the light too); a cone with `outer_angle = 0` is empty and
+    /// gives no light. Default 17.5° (seed 004).
     pub outer_angle: f32,
-    /// Exponent of the `cos(θ)^exponent` rim darkening, `≥ 0`. Default `0` (none).
+    /// Exponent of the `cos(θ)^exponent` rim darkening, `0` to `1e6`
+    /// ([`MAX_EXPONENT`](crate::limits::MAX_EXPONENT)). Default `0` (none).
     pub exponent: f32,
 }
 

@@ -12,9 +12,10 @@ pub fn linear_rgb(color: Color) -> [f32; 3] {
 }
 
 /// The unit vector a light travels along: the entity's world -Z, or zero for a transform
-/// that has collapsed it (zero scale).
+/// that has collapsed it (zero scale). Normalized at any scale: a scale of 1e38 or 1e-30
+/// keeps the direction.
 pub fn light_direction(transform: &GlobalTransform) -> Vec3 {
-    (transform.affine().matrix3 * Vec3::NEG_Z).normalize_or_zero()
+    crate::direction::normalize_or_zero(transform.affine().matrix3 * Vec3::NEG_Z)
 }
 
 /// `range`, with `None` stored as `f32::MAX` (never reached).
@@ -45,9 +46,12 @@ fn intensities(color: Color, specular: Option<Color>) -> ([f32; 3], [f32; 3]) {
 /// `(1 - cos(outer), cone_scale)` of a spot cone, computed in `f64` and rounded once:
 /// `cone_scale = 1 / (cos(inner) - cos(outer))`, or `0` (a hard edge at the outer angle)
 /// where the inner cone is not narrower. A cone whose outer angle is not positive is empty:
-/// its `1 - cos(outer)` is stored as `-1`, which no `1 - cos θ` reaches.
+/// its `1 - cos(outer)` is stored as `-1`, which no `1 - cos θ` reaches. Angles are first
+/// brought into `[0, π]` ([`crate::limits::SPOT_ANGLE`]).
 pub fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
-    if outer_angle.is_nan() || outer_angle <= 0.0 {
+    let inner_angle = crate::limits::SPOT_ANGLE.apply(inner_angle);
+    let outer_angle = crate::limits::SPOT_ANGLE.apply(outer_angle);
+    if outer_angle <= 0.0 {
         return (-1.0, 0.0);
     }
     let (inner, outer) = (f64::from(inner_angle), f64::from(outer_angle));

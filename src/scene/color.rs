@@ -1,5 +1,6 @@
 //! Colors as scene and material files write them.
 
+use crate::quoting::quoted;
 use bevy::color::{Color, LinearRgba};
 use serde::{Deserialize, Serialize};
 
@@ -27,7 +28,7 @@ impl SceneColor {
             SceneColor::Linear(r, g, b) => Color::LinearRgba(LinearRgba::rgb(r, g, b)),
             SceneColor::Hex(ref hex) => bevy::color::Srgba::hex(hex)
                 .map(Color::from)
-                .map_err(|error| format!("{hex:?} is not a hex color: {error}"))?,
+                .map_err(|error| format!("{} is not a hex color: {error}", quoted(hex)))?,
         })
     }
 

@@ -1,8 +1,9 @@
 //! What goes wrong with a scene or material file.
 
 use super::SceneColor;
+use crate::quoting::shorten_quoted_spans;
 use bevy::{
-    asset::{AssetPath, LoadContext, io::Reader},
+    asset::{LoadContext, io::Reader},
     color::Color,
 };
 use serde::de::DeserializeOwned;
@@ -21,7 +22,7 @@ pub enum SceneFileError {
         source: std::io::Error,
     },
     /// The file is not valid RON for its type: the position of the problem and what was
-    /// expected there.
+    /// expected there. Values quoted from the file are cut to 80 characters.
     #[error("{path}:{line}:{column}: {message}")]
     Syntax {
         /// The asset path.
@@ -40,7 +41,7 @@ pub enum SceneFileError {
         path: String,
         /// Where the value sits, as `objects[2].mesh.radius`.
         field: String,
-        /// What is wrong and what is allowed.
+        /// What is wrong and what is allowed; a value it quotes is cut to 80 characters.
         message: String,
     },
 }
@@ -72,26 +73,14 @@ pub(crate) fn scene_color(
         .map_err(|message| SceneFileError::invalid(load_context, field, message))
 }
 
-/// `path`, relative to the file being loaded, as an asset path; a malformed one is an
-/// [`Invalid`](SceneFileError::Invalid) error at `field`.
-pub(crate) fn relative_path(
-    load_context: &LoadContext,
-    path: &str,
-    field: impl Into<String>,
-) -> Result<AssetPath<'static>, SceneFileError> {
-    load_context
-        .path()
-        .resolve_embed_str(path)
-        .map_err(|error| SceneFileError::invalid(load_context, field, format!("{path:?}: {error}")))
-}
-
 /// Parses `text` as RON into `T`; a syntax or type error says where (`path:line:column`).
+/// Text the message quotes from the file is cut to 80 characters, its length named.
 pub fn parse_ron<T: DeserializeOwned>(path: &str, text: &[u8]) -> Result<T, SceneFileError> {
     ron::de::from_bytes(text).map_err(|error| SceneFileError::Syntax {
         path: path.to_owned(),
         line: error.span.start.line,
         column: error.span.start.col,
-        message: error.code.to_string(),
+        message: shorten_quoted_spans(&error.code.to_string()),
     })
 }
 

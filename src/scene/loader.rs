@@ -2,10 +2,11 @@
 //! and light components, ready to spawn.
 
 use super::{
-    LightDescription, MaterialSource, MeshDescription, PhongSceneDescription, SceneFileError,
-    read_ron, relative_path, scene_color,
+    CameraDescription, LightDescription, MaterialSource, MeshDescription, PhongSceneDescription,
+    SceneFileError, TransformDescription, read_ron, relative_path, scene_color,
 };
 use crate::{
+    direction,
     lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
     material::PhongMaterial,
 };
@@ -73,19 +74,7 @@ fn build_scene(
 ) -> Result<PhongScene, SceneFileError> {
     let camera = match &description.camera {
         None => None,
-        Some(camera) => {
-            let field = "camera.fov_degrees";
-            if !(camera.fov_degrees > 0.0 && camera.fov_degrees < 180.0) {
-                return Err(SceneFileError::invalid(
-                    load_context,
-                    field,
-                    format!("must be between 0 and 180, got {}", camera.fov_degrees),
-                ));
-            }
-            let transform =
-                Transform::from_translation(camera.position).looking_at(camera.looking_at, Vec3::Y);
-            Some((transform, camera.fov_degrees.to_radians()))
-        }
+        Some(camera) => Some(scene_camera(camera, load_context)?),
     };
     let ambient = match &description.ambient {
         None => None,
@@ -116,7 +105,12 @@ fn build_scene(
                 load_context.load(resolved)
             }
         };
-        objects.push((mesh, material, Transform::from(&object.transform)));
+        let transform = object_transform(
+            &object.transform,
+            &format!("{field}.transform"),
+            load_context,
+        )?;
+        objects.push((mesh, material, transform));
     }
     Ok(PhongScene {
         camera,
@@ -134,20 +128,36 @@ fn scene_light(
     let color = |name: &str, color: &super::SceneColor| {
         scene_color(load_context, color, format!("{field}.{name}"))
     };
+    let placed = |position: Vec3| {
+        if position.is_finite() {
+            Ok(Transform::from_translation(position))
+        } else {
+            Err(SceneFileError::invalid(
+                load_context,
+                format!("{field}.position"),
+                format!("must be finite, got {position}"),
+            ))
+        }
+    };
     let specular = |color_of: &Option<super::SceneColor>| match color_of {
         None => Ok(None),
         Some(specular) => color("specular", specular).map(Some),
     };
     let aimed = |position: Vec3, direction: Vec3| {
-        if direction.length_squared() > 0.0 && direction.is_finite() {
-            Ok(Transform::from_translation(position).looking_to(direction, any_up(direction)))
-        } else {
-            Err(SceneFileError::invalid(
+        let position = placed(position)?;
+        // Normalized by its largest component first: huge and tiny directions keep theirs.
+        let unit = direction::normalize_or_zero(direction);
+        if unit == Vec3::ZERO {
+            return Err(SceneFileError::invalid(
                 load_context,
                 format!("{field}.direction"),
-                format!("must be a finite, non-zero vector, got {direction}"),
-            ))
+                format!(
+                    "must be finite and non-zero (its largest component at least {:e}), got {direction}",
+                    direction::MIN_COMPONENT
+                ),
+            ));
         }
+        Ok(position.looking_to(unit, any_up(unit)))
     };
     Ok(match light {
         LightDescription::Directional {
@@ -180,7 +190,7 @@ fn scene_light(
                 range: *range,
                 shadows: *shadows,
             }),
-            Transform::from_translation(*position),
+            placed(*position)?,
         ),
         LightDescription::Spot {
             color: diffuse,
@@ -209,9 +219,68 @@ fn scene_light(
     })
 }
 
-/// An up vector not parallel to `direction`.
+/// The camera's transform and vertical field of view (radians); a non-finite position, a
+/// target at the camera or a field of view outside (0°, 180°) is an error naming its field.
+fn scene_camera(
+    camera: &CameraDescription,
+    load_context: &LoadContext,
+) -> Result<(Transform, f32), SceneFileError> {
+    let invalid = |field: &str, message: String| {
+        Err(SceneFileError::invalid(
+            load_context,
+            format!("camera.{field}"),
+            message,
+        ))
+    };
+    if !(camera.fov_degrees > 0.0 && camera.fov_degrees < 180.0) {
+        let message = format!("must be between 0 and 180, got {}", camera.fov_degrees);
+        return invalid("fov_degrees", message);
+    }
+    for (field, point) in [
+        ("position", camera.position),
+        ("looking_at", camera.looking_at),
+    ] {
+        if !point.is_finite() {
+            return invalid(field, format!("must be finite, got {point}"));
+        }
+    }
+    // In f64, where the difference of two finite f32 points cannot overflow.
+    let offset = camera.looking_at.as_dvec3() - camera.position.as_dvec3();
+    let forward = direction::normalize_or_zero_f64(offset).as_vec3();
+    if forward == Vec3::ZERO {
+        let message = format!("must differ from position, got {}", camera.looking_at);
+        return invalid("looking_at", message);
+    }
+    let transform = Transform::from_translation(camera.position).looking_to(forward, Vec3::Y);
+    Ok((transform, camera.fov_degrees.to_radians()))
+}
+
+/// An object's transform; a non-finite translation, rotation or scale is an error at
+/// `field` (as `objects[2].transform.scale`).
+fn object_transform(
+    description: &TransformDescription,
+    field: &str,
+    load_context: &LoadContext,
+) -> Result<Transform, SceneFileError> {
+    for (name, value) in [
+        ("translation", description.translation),
+        ("rotation", description.rotation),
+        ("scale", description.scale),
+    ] {
+        if !value.is_finite() {
+            return Err(SceneFileError::invalid(
+                load_context,
+                format!("{field}.{name}"),
+                format!("must be finite, got {value}"),
+            ));
+        }
+    }
+    Ok(Transform::from(description))
+}
+
+/// An up vector not parallel to the unit vector `direction`.
 fn any_up(direction: Vec3) -> Vec3 {
-    if direction.normalize().y.abs() > 0.99 {
+    if direction.y.abs() > 0.99 {
         Vec3::Z
     } else {
         Vec3::Y

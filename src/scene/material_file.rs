@@ -96,19 +96,17 @@ impl PhongMaterialDescription {
         field: &str,
         load_context: &mut LoadContext,
     ) -> Result<PhongMaterial, SceneFileError> {
-        let color = |name: &str, color: &SceneColor| {
-            scene_color(load_context, color, format!("{field}{name}"))
+        // `objects[0].material.base_color` in a scene, `base_color` in a material file.
+        let at = |name: &str| match field {
+            "" => name.to_owned(),
+            _ => format!("{field}.{name}"),
         };
-        let base_color = color(".base_color", &self.base_color)?;
-        let specular_color = color(".specular_color", &self.specular_color)?;
-        let emissive = color(".emissive", &self.emissive)?.to_linear();
+        let color = |name: &str, color: &SceneColor| scene_color(load_context, color, at(name));
+        let base_color = color("base_color", &self.base_color)?;
+        let specular_color = color("specular_color", &self.specular_color)?;
+        let emissive = color("emissive", &self.emissive)?.to_linear();
         let mut map = |path: &Option<String>, name: &str, srgb: bool| {
-            load_texture(
-                load_context,
-                path.as_deref(),
-                &format!("{field}{name}"),
-                srgb,
-            )
+            load_texture(load_context, path.as_deref(), &at(name), srgb)
         };
         Ok(PhongMaterial {
             base_color,
@@ -123,10 +121,10 @@ impl PhongMaterialDescription {
                 AlphaModeDescription::Mask(cutoff) => AlphaMode::Mask(cutoff),
                 AlphaModeDescription::Blend => AlphaMode::Blend,
             },
-            base_color_texture: map(&self.base_color_texture, ".base_color_texture", true)?,
-            specular_texture: map(&self.specular_texture, ".specular_texture", false)?,
-            emissive_texture: map(&self.emissive_texture, ".emissive_texture", true)?,
-            normal_map_texture: map(&self.normal_map_texture, ".normal_map_texture", false)?,
+            base_color_texture: map(&self.base_color_texture, "base_color_texture", true)?,
+            specular_texture: map(&self.specular_texture, "specular_texture", false)?,
+            emissive_texture: map(&self.emissive_texture, "emissive_texture", true)?,
+            normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
         })
     }

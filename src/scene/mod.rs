@@ -10,8 +10,12 @@
 //! gives a [`SceneFileError`] with its line, column and what was expected there; a value
 //! that cannot be used (a negative radius, a zero light direction) names its field
 //! (`objects[2].mesh`). Either way nothing panics and a hot-reloaded scene keeps its last
-//! good version. Light and material values outside their ranges (a negative color, say) are
-//! replaced at run time, with a warning, as for any light ([`crate::validation`]).
+//! good version. Paths to material files and textures are relative to the file that names
+//! them and must stay inside its asset folder: a path with `..` above the folder's root, an
+//! absolute path or another asset source (`name://`) is refused with an error naming its
+//! field. Text quoted in an error is cut to 80 characters, its full length named. Light and
+//! material values outside their ranges (a negative color, say) are replaced at run time,
+//! with a warning, as for any light ([`crate::validation`]).
 //!
 //! Hot reload needs Bevy's `file_watcher` feature (it is off in this crate's own
 //! dependencies; enable it in the game's).
@@ -21,6 +25,7 @@ mod description;
 mod error;
 mod loader;
 mod material_file;
+mod relative_path;
 mod spawn;
 
 pub use color::SceneColor;
@@ -29,11 +34,14 @@ pub use description::{
     PhongSceneDescription, TransformDescription,
 };
 pub use error::{SceneFileError, parse_ron};
-pub(crate) use error::{read_ron, relative_path, scene_color};
+pub(crate) use error::{read_ron, scene_color};
 pub use loader::{PhongScene, PhongSceneLoader, SceneLight};
 pub use material_file::{AlphaModeDescription, PhongMaterialDescription, PhongMaterialLoader};
+pub(crate) use relative_path::relative_path;
 pub(crate) use spawn::spawn_phong_scenes;
 pub use spawn::{PhongSceneCamera, PhongSceneRoot};
 
+#[cfg(test)]
+mod hostile_file_tests;
 #[cfg(test)]
 mod tests;

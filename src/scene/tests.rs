@@ -5,7 +5,7 @@
 use super::*;
 use crate::{PhongDirectionalLight, PhongMaterial, PhongPlugin, PhongPointLight, PhongSpotLight};
 use bevy::{
-    asset::{AssetLoadFailedEvent, AssetPlugin},
+    asset::{AssetLoadFailedEvent, AssetPlugin, UnapprovedPathMode},
     image::Image,
     mesh::Mesh,
     prelude::*,
@@ -17,7 +17,7 @@ use std::{
 };
 
 /// A fresh directory for one test's files.
-fn scratch_directory(name: &str) -> PathBuf {
+pub(super) fn scratch_directory(name: &str) -> PathBuf {
     let directory = std::env::temp_dir().join(format!("bevy_phong_{name}_{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&directory);
     std::fs::create_dir_all(&directory).unwrap();
@@ -25,13 +25,19 @@ fn scratch_directory(name: &str) -> PathBuf {
 }
 
 /// An app whose asset root is `directory`, watching it for changes.
-fn scene_app(directory: &Path) -> App {
+pub(super) fn scene_app(directory: &Path) -> App {
+    scene_app_with(directory, UnapprovedPathMode::default())
+}
+
+/// [`scene_app`] with Bevy's handling of paths outside the asset folder set to `unapproved`.
+pub(super) fn scene_app_with(directory: &Path, unapproved: UnapprovedPathMode) -> App {
     let mut app = App::new();
     app.add_plugins((
         MinimalPlugins,
         AssetPlugin {
             file_path: directory.to_string_lossy().into_owned(),
             watch_for_changes_override: Some(true),
+            unapproved_path_mode: unapproved,
             ..default()
         },
         TransformPlugin,
@@ -47,7 +53,7 @@ fn scene_app(directory: &Path) -> App {
 
 /// Every load error the asset server reported, as text.
 #[derive(Resource, Default)]
-struct LoadErrors(Vec<String>);
+pub(super) struct LoadErrors(pub(super) Vec<String>);
 
 fn collect_load_errors(
     mut scenes: MessageReader<AssetLoadFailedEvent<PhongScene>>,
@@ -64,7 +70,11 @@ fn collect_load_errors(
 
 /// Runs frames until `done` or `timeout`, sleeping a little between them (file events and
 /// loads arrive from other threads).
-fn run_until(app: &mut App, timeout: Duration, mut done: impl FnMut(&mut App) -> bool) -> bool {
+pub(super) fn run_until(
+    app: &mut App,
+    timeout: Duration,
+    mut done: impl FnMut(&mut App) -> bool,
+) -> bool {
     let start = Instant::now();
     while start.elapsed() < timeout {
         app.update();
@@ -77,7 +87,7 @@ fn run_until(app: &mut App, timeout: Duration, mut done: impl FnMut(&mut App) ->
 }
 
 /// Counts of (cameras, directional, point, spot lights, meshes) spawned.
-fn spawned(app: &mut App) -> [usize; 5] {
+pub(super) fn spawned(app: &mut App) -> [usize; 5] {
     let world = app.world_mut();
     [
         world.query::<&PhongSceneCamera>().iter(world).count(),
@@ -195,6 +205,21 @@ const BROKEN: &[Broken] = &[
         file: "bad_fov.phong_scene.ron",
         text: "(camera: Some((position: (0.0, 0.0, 5.0), fov_degrees: 0.0)))",
         expected: &["camera.fov_degrees", "between 0 and 180"],
+    },
+    Broken {
+        file: "camera_at_target.phong_scene.ron",
+        text: "(camera: Some((position: (1.0, 2.0, 3.0), looking_at: (1.0, 2.0, 3.0))))",
+        expected: &["camera.looking_at", "must differ from position"],
+    },
+    Broken {
+        file: "nan_scale.phong_scene.ron",
+        text: "(objects: [(mesh: Sphere(radius: 1.0)), (mesh: Sphere(radius: 1.0), transform: (scale: (1.0, NaN, 1.0)))])",
+        expected: &["objects[1].transform.scale", "must be finite"],
+    },
+    Broken {
+        file: "far_light.phong_scene.ron",
+        text: "(lights: [Point(position: (0.0, inf, 0.0))])",
+        expected: &["lights[0].position", "must be finite"],
     },
     Broken {
         file: "empty.phong_scene.ron",
