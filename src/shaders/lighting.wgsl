@@ -4,18 +4,44 @@
 
 #import bevy_phong::types::{PhongLight, PhongSurface, SPECULAR_MODEL_BLINN_PHONG}
 
-// Vectors whose squared length is at or below this count as zero (no direction): 1e-15
-// units, far below any scene's scale, and far above where f32 squares underflow.
-const MIN_LENGTH_SQUARED: f32 = 1e-30;
+// A vector whose largest component is below this has no direction: f32's smallest normal
+// number (GPUs may flush smaller ones to zero). The rule of src/direction.rs and SPEC.md.
+const MIN_COMPONENT: f32 = 1.17549435e-38;
 
-// `v / |v|`, or zero when `v` is zero, NaN or shorter than 1e-15.
+// A point or spot light closer than this to the surface point lights nothing (1e-15 units,
+// far below any scene's scale).
+const MIN_LIGHT_DISTANCE: f32 = 1e-15;
+
+// A finite, non-zero `v` divided by its largest component (which becomes ±1), with the
+// squared length of the result, in [1, 3]: no square of `v` overflows or underflows on the
+// way. The length is NaN or outside [1, 3] for a zero, NaN or infinite `v`.
+struct Scaled {
+    vector: vec3<f32>,
+    largest: f32,
+    length_squared: f32,
+}
+
+fn scaled(v: vec3<f32>) -> Scaled {
+    let largest = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    let vector = v / largest;
+    return Scaled(vector, largest, dot(vector, vector));
+}
+
+// Whether a `Scaled` came from a finite vector with a direction: its largest component at
+// least MIN_COMPONENT (`!(…)` also rejects NaN) and its squared length in [1, 3].
+fn has_direction(s: Scaled) -> bool {
+    return s.largest >= MIN_COMPONENT && s.length_squared >= 0.5 && s.length_squared <= 4.0;
+}
+
+// `v / |v|`, computed by way of `scaled` so that `(3e38, 3e38, 3e38)` and
+// `(1e-30, -1e-30, 0)` keep their directions; zero when `v` is NaN, infinite, or its largest
+// component is below MIN_COMPONENT.
 fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
-    let length_squared = dot(v, v);
-    // `!(x > m)` is also true for NaN.
-    if !(length_squared > MIN_LENGTH_SQUARED) {
+    let s = scaled(v);
+    if !has_direction(s) {
         return vec3<f32>(0.0);
     }
-    return v * inverseSqrt(length_squared);
+    return s.vector * inverseSqrt(s.length_squared);
 }
 
 // `ln(1 - d)` for `0 ≤ d < 1`, with full relative precision for small `d`: there `1 - d`
@@ -164,17 +190,20 @@ struct LightRay {
 }
 
 fn ray_toward(surface: PhongSurface, position: vec3<f32>, decay: vec3<f32>, range: f32) -> LightRay {
-    let offset = position - surface.position;
-    let distance_squared = dot(offset, offset);
-    if !(distance_squared > MIN_LENGTH_SQUARED) {
+    let offset = scaled(position - surface.position);
+    if !has_direction(offset) {
         return LightRay(vec3<f32>(0.0), 0.0);
     }
-    let distance = sqrt(distance_squared);
+    let scaled_length = sqrt(offset.length_squared);
+    let distance = offset.largest * scaled_length;
+    if !(distance > MIN_LIGHT_DISTANCE) {
+        return LightRay(vec3<f32>(0.0), 0.0);
+    }
     let attenuation = distance_attenuation(distance, decay, range);
     if !(attenuation > 0.0) {
         return LightRay(vec3<f32>(0.0), 0.0);
     }
-    return LightRay(offset / distance, attenuation);
+    return LightRay(offset.vector / scaled_length, attenuation);
 }
 
 // A point light: L toward its position, attenuated by distance.
