@@ -68,6 +68,26 @@ pub const DECAY: Limits = Limits::new(0.0, MAX_DECAY, 0.0);
 /// (an outer angle of 0 is an empty cone).
 pub const SPOT_ANGLE: Limits = Limits::new(0.0, core::f32::consts::PI, 0.0);
 
+/// `PhongShadows::depth_bias` (world units) and `normal_bias` (texels): `[0, 1e6]`, NaN → 0.
+pub const SHADOW_BIAS: Limits = Limits::new(0.0, 1e6, 0.0);
+
+/// `PhongShadows::softness` (world units, or degrees for a directional light):
+/// `[0, 1e6]`, NaN → 0 (hard edges). A directional light's is used up to 45°.
+pub const SHADOW_SOFTNESS: Limits = Limits::new(0.0, 1e6, 0.0);
+
+/// `PhongShadows::near_distance`, world units: `[1e-6, 1e6]`, NaN → 0.1.
+pub const SHADOW_NEAR: Limits = Limits::new(1e-6, 1e6, 0.1);
+
+/// `PhongShadows::diffuse_in_shadow` and `specular_in_shadow`: `[0, 1]`, NaN → 0.
+pub const SHADOW_FRACTION: Limits = Limits::new(0.0, 1.0, 0.0);
+
+/// `PhongCascades::first_far_bound` and `max_distance`, world units: `[1e-3, 1e7]`, NaN →
+/// 100 (a far bound a camera sees).
+pub const CASCADE_DISTANCE: Limits = Limits::new(1e-3, 1e7, 100.0);
+
+/// `PhongCascades::overlap`: `[0, 0.95]`, NaN → 0.2.
+pub const CASCADE_OVERLAP: Limits = Limits::new(0.0, 0.95, 0.2);
+
 impl Limits {
     /// The range `[min, max]`, NaN replaced by `nan`.
     pub const fn new(min: f32, max: f32, nan: f32) -> Self {

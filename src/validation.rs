@@ -23,7 +23,10 @@
 //! value is quoted at most 80 characters long.
 
 use crate::{
-    lights::{Decay, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    lights::{
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
+        PhongShadows, PhongSpotLight,
+    },
     limits::{self, Limits},
     material::PhongMaterial,
     quoting::bounded,
@@ -147,6 +150,91 @@ impl Checker {
         *value = fixed;
     }
 
+    /// Shadow settings in their ranges; a resolution within `[16, 4096]`.
+    fn shadows(&mut self, shadows: &mut PhongShadows) {
+        self.scalar(
+            "shadows.depth_bias",
+            &mut shadows.depth_bias,
+            limits::SHADOW_BIAS,
+        );
+        self.scalar(
+            "shadows.normal_bias",
+            &mut shadows.normal_bias,
+            limits::SHADOW_BIAS,
+        );
+        self.scalar(
+            "shadows.softness",
+            &mut shadows.softness,
+            limits::SHADOW_SOFTNESS,
+        );
+        self.scalar(
+            "shadows.near_distance",
+            &mut shadows.near_distance,
+            limits::SHADOW_NEAR,
+        );
+        self.scalar(
+            "shadows.diffuse_in_shadow",
+            &mut shadows.diffuse_in_shadow,
+            limits::SHADOW_FRACTION,
+        );
+        self.scalar(
+            "shadows.specular_in_shadow",
+            &mut shadows.specular_in_shadow,
+            limits::SHADOW_FRACTION,
+        );
+        let resolution = shadows
+            .resolution
+            .clamp(PhongShadows::MIN_RESOLUTION, PhongShadows::MAX_RESOLUTION);
+        if resolution != shadows.resolution {
+            self.replace(
+                "shadows.resolution",
+                shadows.resolution.to_string(),
+                format!(
+                    "{resolution} (allowed: {} to {})",
+                    PhongShadows::MIN_RESOLUTION,
+                    PhongShadows::MAX_RESOLUTION
+                ),
+            );
+            shadows.resolution = resolution;
+        }
+    }
+
+    /// Cascade settings in their ranges: 1 to 4 cascades, the first ending before the last.
+    fn cascades(&mut self, cascades: &mut PhongCascades) {
+        let count = cascades.count.clamp(1, PhongCascades::MAX_COUNT);
+        if count != cascades.count {
+            self.replace(
+                "cascades.count",
+                cascades.count.to_string(),
+                format!("{count} (allowed: 1 to {})", PhongCascades::MAX_COUNT),
+            );
+            cascades.count = count;
+        }
+        self.scalar(
+            "cascades.max_distance",
+            &mut cascades.max_distance,
+            limits::CASCADE_DISTANCE,
+        );
+        self.scalar(
+            "cascades.first_far_bound",
+            &mut cascades.first_far_bound,
+            limits::CASCADE_DISTANCE,
+        );
+        if cascades.first_far_bound > cascades.max_distance {
+            self.replace(
+                "cascades.first_far_bound",
+                format!("{:?}", cascades.first_far_bound),
+                format!("{:?} (at most max_distance)", cascades.max_distance),
+            );
+            cascades.first_far_bound = cascades.max_distance;
+        }
+        self.scalar(
+            "cascades.overlap",
+            &mut cascades.overlap,
+            limits::CASCADE_OVERLAP,
+        );
+    }
+
     fn decay(&mut self, decay: &mut Decay) {
         self.scalar("decay.constant", &mut decay.constant, limits::DECAY);
         self.scalar("decay.linear", &mut decay.linear, limits::DECAY);
@@ -229,6 +317,8 @@ impl Validate for PhongDirectionalLight {
     fn validate(&mut self, checker: &mut Checker) {
         checker.color("color", &mut self.color);
         checker.optional_color("specular", &mut self.specular);
+        checker.shadows(&mut self.shadows);
+        checker.cascades(&mut self.cascades);
     }
 }
 
@@ -239,6 +329,7 @@ impl Validate for PhongPointLight {
         checker.optional_color("specular", &mut self.specular);
         checker.decay(&mut self.decay);
         checker.range(&mut self.range);
+        checker.shadows(&mut self.shadows);
     }
 }
 
@@ -251,6 +342,7 @@ impl Validate for PhongSpotLight {
         checker.range(&mut self.range);
         checker.spot_angles(self);
         checker.scalar("exponent", &mut self.exponent, limits::EXPONENT);
+        checker.shadows(&mut self.shadows);
     }
 }
 
@@ -400,6 +492,50 @@ mod tests {
         assert_eq!(uploads_in_next_frame(&mut app), 0);
         assert!(invalid_inputs(&mut app).is_empty());
         let _ = good;
+    }
+
+    #[test]
+    fn invalid_shadow_settings_are_replaced_with_a_warning_per_field() {
+        let mut app = test_app(|_| {});
+        let light = app
+            .world_mut()
+            .spawn(PhongDirectionalLight {
+                shadows: PhongShadows {
+                    depth_bias: f32::NAN,
+                    resolution: 100_000,
+                    diffuse_in_shadow: 2.0,
+                    ..PhongShadows::ON
+                },
+                cascades: PhongCascades {
+                    count: 9,
+                    first_far_bound: 50.0,
+                    max_distance: 20.0,
+                    ..Default::default()
+                },
+                ..Default::default()
+            })
+            .id();
+        app.update();
+        let fields: Vec<&str> = invalid_inputs(&mut app)
+            .iter()
+            .map(|warning| warning.field)
+            .collect();
+        assert_eq!(
+            fields,
+            [
+                "shadows.depth_bias",
+                "shadows.diffuse_in_shadow",
+                "shadows.resolution",
+                "cascades.count",
+                "cascades.first_far_bound",
+            ]
+        );
+        let light = app.world().get::<PhongDirectionalLight>(light).unwrap();
+        assert_eq!(light.shadows.depth_bias, 0.0);
+        assert_eq!(light.shadows.diffuse_in_shadow, 1.0);
+        assert_eq!(light.shadows.resolution, PhongShadows::MAX_RESOLUTION);
+        assert_eq!(light.cascades.count, PhongCascades::MAX_COUNT);
+        assert_eq!(light.cascades.first_far_bound, 20.0);
     }
 
     #[test]

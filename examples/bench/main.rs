@@ -8,11 +8,15 @@
 //! cargo run --example bench             # the full tables (about half an hour)
 //! cargo run --example bench -- --quick  # a small smoke run (what CI runs)
 //! cargo run --example bench -- --scene showcase --size 1024 --no-variants  # one row
+//! cargo run --example bench -- --shadows  # only the cost of shadows
 //! ```
 //!
 //! `--scene` (`showcase`, `field16`, `field256`, `field4096`) and `--size` may be repeated
 //! to pick rows of the frame-time table; `--culling` (`none`, `exact`, `default`) sets the
-//! Phong column's `PhongLightCulling`; `--no-variants` skips the second table.
+//! Phong column's `PhongLightCulling`; `--no-variants` skips the second table. A third table
+//! gives the cost of shadows: the showcase on a floor with its three lights casting shadows
+//! or not, Phong beside `StandardMaterial` (each with 1024² shadow maps), at 1024²
+//! (`--shadows` runs it alone).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -39,6 +43,10 @@ use timing::{Frames, median_frame_time};
 
 struct Options {
     variants: bool,
+    /// Whether to run only the shadow table.
+    shadows_only: bool,
+    /// The shadow table's image size.
+    shadow_size: u32,
     culling: PhongLightCulling,
     sizes: Vec<u32>,
     scenes: Vec<Scene>,
@@ -53,6 +61,7 @@ impl Options {
         let args: Vec<String> = std::env::args().skip(1).collect();
         let mut options = Self::defaults(args.iter().any(|arg| arg == "--quick"));
         options.variants = !args.iter().any(|arg| arg == "--no-variants");
+        options.shadows_only = args.iter().any(|arg| arg == "--shadows");
         let values = |flag: &str| -> Vec<String> {
             args.windows(2)
                 .filter(|pair| pair[0] == flag)
@@ -97,6 +106,8 @@ impl Options {
         if quick {
             return Self {
                 variants: true,
+                shadows_only: false,
+                shadow_size: 128,
                 culling: PhongLightCulling::default(),
                 sizes: vec![128],
                 scenes: vec![Scene::Showcase, Scene::Field { lights: 16 }],
@@ -111,6 +122,8 @@ impl Options {
         }
         Self {
             variants: true,
+            shadows_only: false,
+            shadow_size: 1024,
             culling: PhongLightCulling::default(),
             sizes: vec![512, 1024],
             scenes: vec![
@@ -190,10 +203,53 @@ fn main() {
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
     }
-    frame_times(&options, directory);
-    if options.variants {
-        time_against_error(&options, directory);
+    if !options.shadows_only {
+        frame_times(&options, directory);
+        if options.variants {
+            time_against_error(&options, directory);
+        }
     }
+    shadow_costs(&options, directory);
+}
+
+/// The cost of shadows: the showcase on a floor with its lights casting shadows or not,
+/// Phong beside `StandardMaterial`, all measured in this run.
+fn shadow_costs(options: &Options, directory: &Path) {
+    let size = options.shadow_size;
+    let phong = Shading::Phong(Some(SpecularModel::Phong));
+    let mut csv = String::from("size,shading,shadows,median_ms\n");
+    let times = [
+        ("Phong", phong, false),
+        ("Phong", phong, true),
+        ("Standard", Shading::Standard, false),
+        ("Standard", Shading::Standard, true),
+    ]
+    .map(|(name, shading, shadows)| {
+        let scene = Scene::ShowcaseOnFloor { shadows };
+        let median = ms(median_frame_time(
+            scene,
+            size,
+            shading,
+            options.culling,
+            options.frames,
+        ));
+        let _ = writeln!(csv, "{size},{name},{shadows},{median:.3}");
+        eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
+        median
+    });
+    let [phong_off, phong_on, standard_off, standard_on] = times;
+    let table = format!(
+        "| size | Phong | Phong, shadows | Standard | Standard, shadows | Phong shadows / Standard shadows | Phong shadows / Phong |\n\
+         |---|---|---|---|---|---|---|\n\
+         | {size}² | {phong_off:.1} | {phong_on:.1} | {standard_off:.1} | {standard_on:.1} | {:.2} | {:.2} |\n",
+        phong_on / standard_on,
+        phong_on / phong_off,
+    );
+    println!(
+        "\nShadows, median ms: the showcase on a floor, a cascaded directional light and two \
+         point lights casting shadows or not (1024² maps):\n\n{table}"
+    );
+    write(&directory.join("shadows.csv"), &csv);
 }
 
 /// Phong beside Standard and the constant-color floor, each scene at each size.
@@ -231,7 +287,7 @@ fn frame_times(options: &Options, directory: &Path) {
             let (error, _) =
                 accuracy::max_error(scene, Some(SpecularModel::Phong), default_culling);
             let lights = match scene {
-                Scene::Showcase => 3,
+                Scene::Showcase | Scene::ShowcaseOnFloor { .. } => 3,
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
             };
             for (offset, time) in times.iter().enumerate() {

@@ -1,6 +1,11 @@
 //! The benchmark's scenes, drawn with `PhongMaterial`, `StandardMaterial` or a constant color.
 
-use bevy::{prelude::*, render::render_resource::AsBindGroup, shader::ShaderRef};
+use bevy::{
+    light::{DirectionalLightShadowMap, PointLightShadowMap},
+    prelude::*,
+    render::render_resource::AsBindGroup,
+    shader::ShaderRef,
+};
 use bevy_phong::prelude::*;
 
 /// What the scene's meshes are made of.
@@ -14,12 +19,16 @@ pub enum Shading {
     Constant,
 }
 
-/// The scenes: the showcase (3 lights), or a field of 100 spheres on a floor under point
-/// lights.
+/// The scenes: the showcase (3 lights), the showcase on a floor with or without shadows, or
+/// a field of 100 spheres on a floor under point lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Scene {
     /// Seed 000's four shapes under a directional and two point lights.
     Showcase,
+    /// The showcase's shapes on a floor, under a directional light aimed down at it (four
+    /// cascades) and the two point lights, all casting shadows or none; the shadow maps
+    /// 1024² for both materials.
+    ShowcaseOnFloor { shadows: bool },
     /// `lights` point lights that fade as `1 / (1 + 0.2 d²)` and are cut off at 4 units.
     Field { lights: usize },
     /// `lights` point lights that fade as `1 / (1 + 4 d²)`, with no range: only ε culling
@@ -31,6 +40,10 @@ impl Scene {
     pub fn name(self) -> String {
         match self {
             Scene::Showcase => "showcase (3 lights)".into(),
+            Scene::ShowcaseOnFloor { shadows } => format!(
+                "showcase on a floor, shadows {}",
+                if shadows { "on" } else { "off" }
+            ),
             Scene::Field { lights } => format!("field, {lights} point lights with range"),
             Scene::FieldWithoutRanges { lights } => {
                 format!("field, {lights} point lights without range")
@@ -41,11 +54,15 @@ impl Scene {
     /// Where the camera stands (looking at the origin).
     pub fn camera_position(self) -> Vec3 {
         match self {
-            Scene::Showcase => Vec3::new(0.0, 1.0, 8.5),
+            Scene::Showcase | Scene::ShowcaseOnFloor { .. } => Vec3::new(0.0, 1.0, 8.5),
             _ => Vec3::new(0.0, 14.0, 16.0),
         }
     }
 }
+
+/// Edge length of every shadow map, both materials' (Bevy's directional and point light
+/// maps), texels.
+const SHADOW_MAP_SIZE: u32 = 1024;
 
 /// A material whose fragment shader returns a constant color.
 #[derive(Asset, AsBindGroup, TypePath, Clone)]
@@ -74,7 +91,14 @@ fn scatter(i: usize) -> (f32, f32, f32) {
 /// The meshes of `scene` and their colors.
 fn objects(scene: Scene) -> Vec<(Mesh, Vec3, Color)> {
     let mut objects: Vec<(Mesh, Vec3, Color)> = Vec::new();
-    if scene == Scene::Showcase {
+    if let Scene::ShowcaseOnFloor { .. } = scene {
+        objects.push((
+            Plane3d::default().mesh().size(30.0, 30.0).into(),
+            Vec3::new(0.0, -1.6, 0.0),
+            Color::srgb(0.6, 0.6, 0.6),
+        ));
+    }
+    if matches!(scene, Scene::Showcase | Scene::ShowcaseOnFloor { .. }) {
         objects.push((
             Cuboid::new(1.6, 1.6, 1.6).into(),
             Vec3::new(-4.5, 0.0, 0.0),
@@ -139,7 +163,7 @@ fn point_lights(scene: Scene) -> Vec<Light> {
             .collect()
     };
     match scene {
-        Scene::Showcase => [
+        Scene::Showcase | Scene::ShowcaseOnFloor { .. } => [
             (Vec3::new(-3.0, 3.0, 0.0), Color::linear_rgb(1.0, 0.0, 0.0)),
             (Vec3::new(3.0, 3.0, 0.0), Color::linear_rgb(0.0, 0.0, 1.0)),
         ]
@@ -190,12 +214,34 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
         }
     }
 
-    let directional = Transform::default().looking_to(Vec3::NEG_X, Vec3::Y);
-    let has_directional = scene == Scene::Showcase;
+    let (directional, has_directional, shadows) = match scene {
+        Scene::Showcase => (
+            Transform::default().looking_to(Vec3::NEG_X, Vec3::Y),
+            true,
+            false,
+        ),
+        Scene::ShowcaseOnFloor { shadows } => (
+            Transform::default().looking_to(Vec3::new(-1.0, -1.2, -0.6), Vec3::Y),
+            true,
+            shadows,
+        ),
+        _ => (Transform::default(), false, false),
+    };
+    let phong_shadows = PhongShadows {
+        enabled: shadows,
+        resolution: SHADOW_MAP_SIZE,
+        ..default()
+    };
     match shading {
         Shading::Phong(_) => {
             if has_directional {
-                world.spawn((PhongDirectionalLight::default(), directional));
+                world.spawn((
+                    PhongDirectionalLight {
+                        shadows: phong_shadows,
+                        ..default()
+                    },
+                    directional,
+                ));
             }
             for light in point_lights(scene) {
                 world.spawn((
@@ -203,6 +249,7 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
                         color: light.color,
                         decay: light.decay,
                         range: light.range,
+                        shadows: phong_shadows,
                         ..default()
                     },
                     Transform::from_translation(light.position),
@@ -210,14 +257,27 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
             }
         }
         Shading::Standard => {
+            world.insert_resource(DirectionalLightShadowMap {
+                size: SHADOW_MAP_SIZE as usize,
+            });
+            world.insert_resource(PointLightShadowMap {
+                size: SHADOW_MAP_SIZE as usize,
+            });
             if has_directional {
-                world.spawn((DirectionalLight::default(), directional));
+                world.spawn((
+                    DirectionalLight {
+                        shadow_maps_enabled: shadows,
+                        ..default()
+                    },
+                    directional,
+                ));
             }
             for light in point_lights(scene) {
                 world.spawn((
                     PointLight {
                         color: light.color,
                         range: light.range.unwrap_or(20.0),
+                        shadow_maps_enabled: shadows,
                         ..default()
                     },
                     Transform::from_translation(light.position),

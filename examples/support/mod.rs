@@ -124,7 +124,7 @@ impl Plugin for HeadlessCapturePlugin {
         let ready = PipelinesReady::default();
         app.insert_resource(ready.clone())
             .add_systems(PostStartup, render_cameras_to_image)
-            .add_systems(Update, request_capture)
+            .add_systems(Update, (request_capture, exit_when_drained))
             .add_observer(save_capture);
         if let Some(render_app) = app.get_sub_app_mut(RenderApp) {
             render_app
@@ -186,17 +186,42 @@ fn request_capture(
     }
 }
 
+/// Frames to run after the picture is saved, before exiting: readbacks the render world
+/// had already started for the next frames then arrive while the app still listens, instead
+/// of failing against a closed channel.
+const DRAIN_FRAMES: u32 = 3;
+
+/// The exit code, and the frames left before the app exits with it.
+#[derive(Resource)]
+struct PendingExit {
+    exit: AppExit,
+    frames_left: u32,
+}
+
+fn exit_when_drained(pending: Option<ResMut<PendingExit>>, mut exit: MessageWriter<AppExit>) {
+    let Some(mut pending) = pending else { return };
+    if pending.frames_left == 0 {
+        exit.write(pending.exit.clone());
+    } else {
+        pending.frames_left -= 1;
+    }
+}
+
 fn save_capture(
     readback: On<ReadbackComplete>,
     mode: Res<RunMode>,
+    mut saved: Local<bool>,
     mut commands: Commands,
-    mut exit: MessageWriter<AppExit>,
 ) {
     let RunMode::Headless(path) = &*mode else {
         return;
     };
-    // One frame is all it takes.
-    commands.entity(readback.entity).despawn();
+    // One frame is all it takes: later readbacks (already under way) are dropped.
+    commands.entity(readback.entity).try_despawn();
+    if *saved {
+        return;
+    }
+    *saved = true;
     let (width, height) = (HEADLESS_SIZE.x as usize, HEADLESS_SIZE.y as usize);
     let row_bytes = readback.data.len() / height;
     let pixels: Vec<u8> = (0..height)
@@ -214,11 +239,17 @@ fn save_capture(
     ) {
         Ok(()) => {
             println!("wrote {}", path.display());
-            exit.write(AppExit::Success);
+            commands.insert_resource(PendingExit {
+                exit: AppExit::Success,
+                frames_left: DRAIN_FRAMES,
+            });
         }
         Err(error) => {
             eprintln!("cannot write {}: {error}", path.display());
-            exit.write(AppExit::error());
+            commands.insert_resource(PendingExit {
+                exit: AppExit::error(),
+                frames_left: DRAIN_FRAMES,
+            });
         }
     }
 }

@@ -11,9 +11,10 @@ use serde::{Deserialize, Serialize};
 /// directional light (see [`PhongCascades`]). Meshes with Bevy's `NotShadowCaster` cast no
 /// shadow; meshes with `NotShadowReceiver` are lit as if nothing were in the way.
 ///
-/// Values out of range are clamped where the maps are laid out: a NaN or negative bias,
-/// softness or fraction counts as 0, a fraction above 1 as 1, the resolution is clamped to
-/// `[16, 4096]`, and a `near_distance` that is not positive and finite is `0.1`.
+/// Values out of range are replaced with one warning naming the entity and field (see
+/// [`crate::validation`]): a NaN bias, softness or fraction counts as 0 and a NaN
+/// `near_distance` as 0.1; biases and softness are clamped to `[0, 1e6]`, fractions to
+/// `[0, 1]`, `near_distance` to `[1e-6, 1e6]`, the resolution to `[16, 4096]`.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
 #[reflect(Default, Debug, PartialEq, Clone)]
 #[serde(default, deny_unknown_fields)]

@@ -11,6 +11,7 @@ use super::{
     },
 };
 use crate::lights::PhongShadows;
+use crate::limits;
 use crate::render::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::{AssetId, Assets, Handle, uuid_handle},
@@ -289,12 +290,7 @@ fn light_views(
     resolution: u32,
     casters: &[Bounds],
 ) -> Vec<ShadowLightView> {
-    let near = if request.settings.near_distance.is_finite() && request.settings.near_distance > 0.0
-    {
-        request.settings.near_distance
-    } else {
-        PhongShadows::default().near_distance
-    };
+    let near = limits::SHADOW_NEAR.apply(request.settings.near_distance);
     match request.projection {
         PhongShadowProjection::Directional {
             direction,
@@ -336,23 +332,12 @@ fn view_record(
     resolution: u32,
     settings: &PhongShadows,
 ) -> GpuShadowView {
-    let non_negative = |value: f32| {
-        if value.is_finite() {
-            value.max(0.0)
-        } else {
-            0.0
-        }
-    };
-    let fraction = |value: f32| {
-        if value.is_finite() {
-            value.clamp(0.0, 1.0)
-        } else {
-            0.0
-        }
-    };
+    // The ranges `validate_lights` warns about, applied again so that no frame draws with an
+    // invalid value.
+    let softness = limits::SHADOW_SOFTNESS.apply(settings.softness);
     let light_size = match view.projection {
-        GpuShadowView::ORTHOGRAPHIC => non_negative(settings.softness).min(45.0).to_radians().tan(),
-        _ => non_negative(settings.softness),
+        GpuShadowView::ORTHOGRAPHIC => softness.min(45.0).to_radians().tan(),
+        _ => softness,
     };
     GpuShadowView {
         clip_from_world: view.clip_from_world.to_cols_array_2d(),
@@ -364,13 +349,13 @@ fn view_record(
         texel_size: view.texel_size,
         depth_range: view.depth_range,
         near: view.near,
-        depth_bias: non_negative(settings.depth_bias),
-        normal_bias: non_negative(settings.normal_bias),
+        depth_bias: limits::SHADOW_BIAS.apply(settings.depth_bias),
+        normal_bias: limits::SHADOW_BIAS.apply(settings.normal_bias),
         light_size,
         cascade_far: view.cascade_far,
         cascade_blend_start: view.cascade_blend_start,
-        diffuse_in_shadow: fraction(settings.diffuse_in_shadow),
-        specular_in_shadow: fraction(settings.specular_in_shadow),
+        diffuse_in_shadow: limits::SHADOW_FRACTION.apply(settings.diffuse_in_shadow),
+        specular_in_shadow: limits::SHADOW_FRACTION.apply(settings.specular_in_shadow),
         padding: [0; 2],
     }
 }
