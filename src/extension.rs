@@ -166,8 +166,13 @@
 //! #import bevy_phong::shadows::shadow_factors
 //! // In the fragment shader, before lighting: honour `NotShadowReceiver`.
 //! surface.receives_shadows = receives_shadows(in.instance_index);
-//! // Per light: (diffuse factor, specular factor).
-//! let shadow = shadow_factors(lamp.shadow, surface, to_light, lamp.position);
+//! // Per light: (diffuse factor, specular factor). `PHONG_SHADOWS` is defined only while
+//! // some light casts shadows: without it the shadow code is left out, which keeps
+//! // scenes without shadows as fast as before (see `PhongMaterialKey::shadows`).
+//! var shadow = vec2<f32>(1.0);
+//! #ifdef PHONG_SHADOWS
+//! shadow = shadow_factors(lamp.shadow, surface, to_light, lamp.position);
+//! #endif
 //! color += phong_light(surface, to_light, shadow.x * lamp.color, shadow.y * lamp.color);
 //! ```
 //!

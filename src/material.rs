@@ -14,6 +14,7 @@ use bevy::{
     render::render_resource::{RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError},
     shader::ShaderRef,
 };
+use core::sync::atomic::Ordering;
 use serde::{Deserialize, Serialize};
 
 /// Path of the material's fragment shader among the crate's embedded assets.
@@ -226,6 +227,11 @@ pub struct PhongMaterialKey {
     pub normal_map: bool,
     /// Whether it discards fragments below an alpha cutoff.
     pub alpha_mask: bool,
+    /// Whether some light of the scene casts shadows: only then is the shadow code compiled
+    /// in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last off,
+    /// compiles the other variant once, as any new variant. The flag is process-wide: apps
+    /// that render Phong materials side by side in one process share it.
+    pub shadows: bool,
 }
 
 impl From<&PhongMaterial> for PhongMaterialKey {
@@ -238,6 +244,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             emissive_texture: material.emissive_texture.is_some(),
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
+            shadows: crate::shadows::SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
         }
     }
 }
@@ -271,6 +278,9 @@ impl PhongMaterialKey {
         }
         if self.alpha_mask {
             defs.push("PHONG_ALPHA_MASK");
+        }
+        if self.shadows {
+            defs.push("PHONG_SHADOWS");
         }
         for (used, def, field) in maps {
             if used && has_uvs {

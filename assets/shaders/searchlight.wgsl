@@ -82,7 +82,11 @@ fn searchlight(surface: PhongSurface, light: Searchlight) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     let attenuation = distance_attenuation(along, light.decay, 3.4028235e38);
-    let shadow = shadow_factors(light.shadow, surface, -light.direction, light.position);
+    var shadow = vec2<f32>(1.0);
+#ifdef PHONG_SHADOWS
+    // Compiled only when the scene casts shadows (see `PhongMaterialKey::shadows`).
+    shadow = shadow_factors(light.shadow, surface, -light.direction, light.position);
+#endif
     return (coverage * attenuation)
         * phong_light(surface, -light.direction, shadow.x * light.color, shadow.y * light.specular);
 }

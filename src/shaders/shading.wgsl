@@ -44,27 +44,34 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     var color = vec3<f32>(0.0);
     var index = 0u;
     let directional_end = lights.directional_count;
-    // Each kind's shadow-casting lights come first; the others run the plain loop.
+    // Each kind's shadow-casting lights come first; the others run the plain loop. The
+    // shadow code is compiled only in the variant for scenes with shadows (PHONG_SHADOWS).
+#ifdef PHONG_SHADOWS
     let shadowed_directional_end = lights.shadowed_directional_count;
     for (; index < shadowed_directional_end; index += 1u) {
         let light = lights.lights[index];
         color += directional_light(surface, shadowed(light, surface, -light.direction));
     }
+#endif
     for (; index < directional_end; index += 1u) {
         color += directional_light(surface, lights.lights[index]);
     }
+#ifdef PHONG_SHADOWS
     let shadowed_point_end = directional_end + lights.shadowed_point_count;
     for (; index < shadowed_point_end; index += 1u) {
         color += point_light(surface, shadowed_at_point(lights.lights[index], surface));
     }
+#endif
     let point_end = directional_end + lights.point_count;
     for (; index < point_end; index += 1u) {
         color += point_light(surface, lights.lights[index]);
     }
+#ifdef PHONG_SHADOWS
     let shadowed_spot_end = point_end + lights.shadowed_spot_count;
     for (; index < shadowed_spot_end; index += 1u) {
         color += spot_light(surface, shadowed_at_point(lights.lights[index], surface));
     }
+#endif
     let spot_end = point_end + lights.spot_count;
     for (; index < spot_end; index += 1u) {
         color += spot_light(surface, lights.lights[index]);

@@ -2,7 +2,7 @@
 //! shadow maps, where each map looks from, and which casters each map draws.
 
 use super::{
-    MAX_SHADOW_VIEWS,
+    MAX_SHADOW_VIEWS, SCENE_CASTS_SHADOWS,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
@@ -34,7 +34,7 @@ use bevy::{
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
-use core::ops::Range;
+use core::{ops::Range, sync::atomic::Ordering};
 
 /// The storage buffer of the shadow views, bound by every Phong material.
 pub(crate) const PHONG_SHADOW_VIEW_BUFFER: Handle<ShaderBuffer> =
@@ -243,7 +243,10 @@ pub(crate) fn gather_shadows(
     let buffer_resized = state
         .views_buffer
         .write(&mut buffers, &header, &state.records);
-    if buffer_resized || next.layout != frame.layout {
+    let casts_shadows = !state.records.is_empty();
+    let variant_changed =
+        SCENE_CASTS_SHADOWS.swap(casts_shadows, Ordering::Relaxed) != casts_shadows;
+    if buffer_resized || variant_changed || next.layout != frame.layout {
         resized.write(LightBufferResized {
             buffer: PHONG_SHADOW_VIEW_BUFFER,
         });

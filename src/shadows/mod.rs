@@ -50,6 +50,14 @@ pub(crate) use request::ShadowRequests;
 pub use request::{PhongShadowProjection, PhongShadowRequest};
 pub(crate) use sources::request_shadows;
 
+/// Whether any light casts shadows this frame. Phong materials compile the shadow code only
+/// in the variant for scenes where one does (shader def `PHONG_SHADOWS`): on some devices
+/// (lavapipe) the mere presence of that code makes every fragment several times slower.
+/// [`gather_shadows`] sets it in the main world and, when it flips, marks every Phong
+/// material modified in the same frame, so that each is prepared again with the new key.
+pub(crate) static SCENE_CASTS_SHADOWS: core::sync::atomic::AtomicBool =
+    core::sync::atomic::AtomicBool::new(false);
+
 /// Most shadow maps a frame holds (layers of the shadow map array, which WebGL2 caps at
 /// 256): a directional light takes one per cascade, a point light six, a spot light one
 /// (six past a 60° cone).

@@ -26,7 +26,7 @@ use crate::headless::headless_app_with_assets;
 use std::{
     collections::HashMap,
     path::PathBuf,
-    sync::{Arc, Mutex},
+    sync::{Arc, Mutex, MutexGuard},
 };
 
 /// The camera every scene is seen from.
@@ -84,6 +84,10 @@ struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
 /// A headless app with a float render target, the Phong plugin and a camera.
 pub struct Harness {
     pub app: App,
+    /// Held while the harness lives: one harness renders at a time. Phong materials take
+    /// their shadow variant from a process-wide flag (`PhongMaterialKey::shadows`), which
+    /// apps rendering side by side would flip under each other.
+    _one_at_a_time: MutexGuard<'static, ()>,
     target: Handle<Image>,
     width: u32,
     height: u32,
@@ -110,6 +114,11 @@ impl Harness {
         asset_root: String,
         add_plugins: impl FnOnce(&mut App),
     ) -> Self {
+        static RENDERING: Mutex<()> = Mutex::new(());
+        // A test that failed while holding it leaves it poisoned; the next one goes on.
+        let one_at_a_time = RENDERING
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
         let mut app = headless_app_with_assets(asset_root, |app| {
             app.insert_resource(PhongLightCulling::EXACT)
                 .add_plugins(SurfaceInputsPlugin);
@@ -142,6 +151,7 @@ impl Harness {
         ));
         Self {
             app,
+            _one_at_a_time: one_at_a_time,
             target,
             width,
             height,
