@@ -52,23 +52,14 @@ pub struct PhongShadows {
 
 impl Default for PhongShadows {
     fn default() -> Self {
-        Self {
-            enabled: false,
-            resolution: 1024,
-            depth_bias: 0.02,
-            normal_bias: 1.0,
-            softness: 0.0,
-            near_distance: 0.1,
-            diffuse_in_shadow: 0.0,
-            specular_in_shadow: 0.0,
-        }
+        Self::OFF
     }
 }
 
 impl PhongShadows {
-    /// Shadows on, with the default settings.
-    pub const ON: Self = Self {
-        enabled: true,
+    /// The defaults: shadows off.
+    pub const OFF: Self = Self {
+        enabled: false,
         resolution: 1024,
         depth_bias: 0.02,
         normal_bias: 1.0,
@@ -76,6 +67,12 @@ impl PhongShadows {
         near_distance: 0.1,
         diffuse_in_shadow: 0.0,
         specular_in_shadow: 0.0,
+    };
+
+    /// Shadows on, with the default settings.
+    pub const ON: Self = Self {
+        enabled: true,
+        ..Self::OFF
     };
 
     /// Seed 003's look: shadows dim the diffuse term to 10 % and leave the highlight whole.

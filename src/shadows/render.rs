@@ -17,6 +17,7 @@ use bevy::{
         Extract,
         mesh::{RenderMesh, RenderMeshBufferInfo, allocator::MeshAllocator},
         render_asset::RenderAssets,
+        render_phase::TrackedRenderPass,
         render_resource::{
             AddressMode, BufferUsages, CachedRenderPipelineId, CompareFunction, DepthBiasState,
             DepthStencilState, Extent3d, FilterMode, LoadOp, Operations, PipelineCache,
@@ -299,21 +300,7 @@ pub(crate) fn render_shadow_maps(
         let Some(layer_view) = atlas.layer_views.get(pass.layer as usize) else {
             continue;
         };
-        let mut render_pass = context.begin_tracked_render_pass(RenderPassDescriptor {
-            label: Some("phong_shadow_map"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(RenderPassDepthStencilAttachment {
-                view: layer_view,
-                depth_ops: Some(Operations {
-                    load: LoadOp::Clear(0.0),
-                    store: StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut render_pass = clearing_depth_pass(&mut context, layer_view, "phong_shadow_map");
         let size = pass.resolution as f32;
         render_pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
         for index in pass.instances.clone() {
@@ -359,11 +346,20 @@ pub(crate) fn render_shadow_maps(
 
 /// Clears one layer to depth 0 (nothing in the way).
 fn clear_layer(context: &mut RenderContext, atlas: &ShadowAtlas, layer: u32) {
-    let Some(view) = atlas.layer_views.get(layer as usize) else {
-        return;
-    };
+    if let Some(view) = atlas.layer_views.get(layer as usize) {
+        clearing_depth_pass(context, view, "phong_shadow_map_clear");
+    }
+}
+
+/// A depth-only pass into `view` that starts by clearing it to 0 (reversed depth: nothing
+/// in the way).
+fn clearing_depth_pass<'a>(
+    context: &'a mut RenderContext,
+    view: &TextureView,
+    label: &'static str,
+) -> TrackedRenderPass<'a> {
     context.begin_tracked_render_pass(RenderPassDescriptor {
-        label: Some("phong_shadow_map_clear"),
+        label: Some(label),
         color_attachments: &[],
         depth_stencil_attachment: Some(RenderPassDepthStencilAttachment {
             view,
@@ -376,5 +372,5 @@ fn clear_layer(context: &mut RenderContext, atlas: &ShadowAtlas, layer: u32) {
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,
-    });
+    })
 }
