@@ -829,63 +829,116 @@ fn the_penumbra_widens_with_softness() {
         // The verdict still holds: the widest filter is within the band.
         judge_frame(&mut harness, &scene, &lights, &EVERYONE, &inputs, &rendered)
             .assert_holds(&format!("softness {softness}"));
-        // Floor pixels partly shadowed: the rendered green channel strictly between the
-        // reference's fully lit and fully shadowed values (by more than the budget).
-        let floor = &scene.shapes[0].2;
-        let tag = inputs
-            .materials
-            .iter()
-            .find(|(_, handle)| *handle == floor)
-            .map(|(tag, _)| *tag)
-            .expect("the floor is drawn");
-        let reference_lights = harness.reference_lights();
-        let camera = harness.camera_position();
-        let material = reference::Material::from(
-            harness
-                .world_mut()
-                .resource::<Assets<PhongMaterial>>()
-                .get(floor)
-                .unwrap(),
-        );
-        let partial = rendered
-            .pixels
-            .iter()
-            .enumerate()
-            .filter(|(index, color)| {
-                let position = inputs.positions.pixels[*index];
-                if position[3] as u32 != tag {
-                    return false;
-                }
-                let normal = inputs.normals.pixels[*index];
-                let surface = SurfacePoint {
-                    position: DVec3::new(
-                        position[0].into(),
-                        position[1].into(),
-                        position[2].into(),
-                    ),
-                    normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
-                    camera,
-                };
-                let shade = |visibility| {
-                    let shadowing = Shadowing {
-                        visibility,
-                        ..Shadowing::LIT
-                    };
-                    reference::shade_shadowed(&surface, &material, &reference_lights, &[shadowing])
-                        .y
-                };
-                let (dark, lit) = (shade(0.0), shade(1.0));
-                let green = f64::from(color[1]);
-                lit - dark > 0.05
-                    && green > dark + 0.05 * (lit - dark)
-                    && green < lit - 0.05 * (lit - dark)
-            })
-            .count();
+        let (partial, _) = floor_shadow_pixels(&mut harness, &scene, &inputs, &rendered);
         println!("softness {softness}: {partial} floor pixels in the penumbra");
         widths.push(partial);
     }
     assert!(
         widths[0] < widths[1] && widths[1] < widths[2],
         "the penumbra widens with softness: {widths:?}"
+    );
+}
+
+/// Floor pixels in the penumbra and in full shadow: the rendered green channel strictly
+/// between the reference's fully lit and fully shadowed values (each by more than 5 % of
+/// their difference), or within 5 % of the shadowed one.
+fn floor_shadow_pixels(
+    harness: &mut Harness,
+    scene: &Scene,
+    inputs: &SurfaceInputs,
+    rendered: &FloatImage,
+) -> (usize, usize) {
+    let floor = &scene.shapes[0].2;
+    let tag = inputs
+        .materials
+        .iter()
+        .find(|(_, handle)| *handle == floor)
+        .map(|(tag, _)| *tag)
+        .expect("the floor is drawn");
+    let reference_lights = harness.reference_lights();
+    let camera = harness.camera_position();
+    let material = reference::Material::from(
+        harness
+            .world_mut()
+            .resource::<Assets<PhongMaterial>>()
+            .get(floor)
+            .unwrap(),
+    );
+    let (mut partial, mut full) = (0, 0);
+    for (index, color) in rendered.pixels.iter().enumerate() {
+        let position = inputs.positions.pixels[index];
+        if position[3] as u32 != tag {
+            continue;
+        }
+        let normal = inputs.normals.pixels[index];
+        let surface = SurfacePoint {
+            position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
+            normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
+            camera,
+        };
+        let shade = |visibility| {
+            let shadowing = Shadowing {
+                visibility,
+                ..Shadowing::LIT
+            };
+            reference::shade_shadowed(&surface, &material, &reference_lights, &[shadowing]).y
+        };
+        let (dark, lit) = (shade(0.0), shade(1.0));
+        if lit - dark <= 0.05 {
+            continue;
+        }
+        let green = f64::from(color[1]);
+        let margin = 0.05 * (lit - dark);
+        if green < dark + margin {
+            full += 1;
+        } else if green < lit - margin {
+            partial += 1;
+        }
+    }
+    (partial, full)
+}
+
+#[test]
+fn the_penumbra_widens_with_the_distance_between_blocker_and_receiver() {
+    // The sphere alone casts, from its place and then 1.5 units higher, nearer the light:
+    // the penumbra, `light_size · (d_receiver − d_blocker) / d_blocker`, takes a larger share
+    // of its shadow (the shadow grows as `d_receiver / d_blocker`, the penumbra faster).
+    let (mut harness, mut scene) = harness();
+    let cube = scene.cube();
+    *harness.world_mut().get_mut::<Visibility>(cube).unwrap() = Visibility::Hidden;
+    let shadows = PhongShadows {
+        softness: 0.3,
+        ..on()
+    };
+    let lights = vec![spot(
+        &mut harness,
+        Vec3::new(0.3, 4.5, 0.8),
+        Vec3::ZERO,
+        shadows,
+    )];
+    let roles = Roles {
+        casting: &|entity| entity != cube,
+        receiving: &|_| true,
+    };
+    let mut shares = Vec::new();
+    for raise in [0.0, 1.5] {
+        let sphere = scene.sphere();
+        scene.translate(&mut harness, sphere, DVec3::new(0.0, raise, 0.0));
+        harness.settle();
+        let inputs = harness.capture_inputs();
+        harness.settle();
+        let rendered = harness.render_next_frame();
+        judge_frame(&mut harness, &scene, &lights, &roles, &inputs, &rendered)
+            .assert_holds(&format!("sphere raised {raise}"));
+        let (partial, full) = floor_shadow_pixels(&mut harness, &scene, &inputs, &rendered);
+        let share = partial as f64 / (partial + full).max(1) as f64;
+        println!(
+            "sphere raised {raise}: {partial} penumbra and {full} umbra floor pixels, share {share:.2}"
+        );
+        shares.push(share);
+    }
+    assert!(
+        shares[1] > shares[0],
+        "the penumbra's share grows as the blocker nears the light: {shares:?}"
     );
 }
