@@ -4,7 +4,7 @@
 
 use super::gather::{AtlasLayout, ShadowFrame};
 use bevy::{
-    asset::{AssetId, AssetServer, Handle},
+    asset::{AssetServer, Handle},
     ecs::{
         resource::Resource,
         system::{Commands, Res, ResMut},
@@ -207,24 +207,19 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
     }
 }
 
-/// One caster drawn into one map.
-struct ShadowDraw {
-    pipeline: CachedRenderPipelineId,
-    mesh: AssetId<Mesh>,
-}
-
-/// The draws of the frame's maps, in [`ShadowFrame::instances`] order, and the instance
-/// buffer of their `clip_from_local` matrices.
+/// The pipeline of each caster of the frame's maps, in [`ShadowFrame::instances`] order
+/// (`None` for a mesh that is not loaded or not made of triangles), and the instance buffer
+/// of their `clip_from_local` matrices.
 #[derive(Resource)]
 pub(crate) struct ShadowDraws {
-    draws: Vec<Option<ShadowDraw>>,
+    pipelines: Vec<Option<CachedRenderPipelineId>>,
     instances: RawBufferVec<[f32; 16]>,
 }
 
 impl Default for ShadowDraws {
     fn default() -> Self {
         Self {
-            draws: Vec::new(),
+            pipelines: Vec::new(),
             instances: RawBufferVec::new(BufferUsages::VERTEX),
         }
     }
@@ -244,14 +239,14 @@ pub(crate) fn prepare_shadow_draws(
     queue: Res<RenderQueue>,
 ) {
     let draws = &mut *draws;
-    draws.draws.clear();
+    draws.pipelines.clear();
     draws.instances.clear();
     let Some(frame) = frame else { return };
     for instance in &frame.instances {
         draws
             .instances
             .push(instance.clip_from_local.to_cols_array());
-        let draw = meshes.get(instance.mesh).and_then(|mesh| {
+        let pipeline_id = meshes.get(instance.mesh).and_then(|mesh| {
             let topology = mesh.primitive_topology();
             let is_triangles = matches!(
                 topology,
@@ -261,17 +256,14 @@ pub(crate) fn prepare_shadow_draws(
                 return None;
             }
             match pipelines.specialize(&cache, &pipeline, topology, &mesh.layout) {
-                Ok(id) => Some(ShadowDraw {
-                    pipeline: id,
-                    mesh: instance.mesh,
-                }),
+                Ok(id) => Some(id),
                 Err(err) => {
                     error!("cannot draw a shadow caster: {err}");
                     None
                 }
             }
         });
-        draws.draws.push(draw);
+        draws.pipelines.push(pipeline_id);
     }
     if !draws.instances.is_empty() {
         draws.instances.write_buffer(&device, &queue);
@@ -289,13 +281,8 @@ pub(crate) fn render_shadow_maps(
     mut context: RenderContext,
 ) {
     let Some(frame) = frame else { return };
-    let Some(instance_buffer) = draws.instances.buffer() else {
-        // No caster at all: the maps are still cleared.
-        for pass in &frame.passes {
-            clear_layer(&mut context, &atlas, pass.layer);
-        }
-        return;
-    };
+    // Without a caster at all there is no instance buffer: the maps are only cleared.
+    let instance_buffer = draws.instances.buffer();
     for pass in &frame.passes {
         let Some(layer_view) = atlas.layer_views.get(pass.layer as usize) else {
             continue;
@@ -303,14 +290,15 @@ pub(crate) fn render_shadow_maps(
         let mut render_pass = clearing_depth_pass(&mut context, layer_view, "phong_shadow_map");
         let size = pass.resolution as f32;
         render_pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+        let Some(instance_buffer) = instance_buffer else {
+            continue;
+        };
         for index in pass.instances.clone() {
-            let Some(draw) = &draws.draws[index] else {
-                continue;
-            };
+            let mesh_id = frame.instances[index].mesh;
             let (Some(pipeline), Some(mesh), Some(vertices)) = (
-                cache.get_render_pipeline(draw.pipeline),
-                meshes.get(draw.mesh),
-                allocator.mesh_vertex_slice(&draw.mesh),
+                draws.pipelines[index].and_then(|id| cache.get_render_pipeline(id)),
+                meshes.get(mesh_id),
+                allocator.mesh_vertex_slice(&mesh_id),
             ) else {
                 continue;
             };
@@ -323,7 +311,7 @@ pub(crate) fn render_shadow_maps(
                     count,
                     index_format,
                 } => {
-                    let Some(indices) = allocator.mesh_index_slice(&draw.mesh) else {
+                    let Some(indices) = allocator.mesh_index_slice(&mesh_id) else {
                         continue;
                     };
                     render_pass.set_index_buffer(indices.buffer.slice(..), *index_format);
@@ -341,13 +329,6 @@ pub(crate) fn render_shadow_maps(
                 }
             }
         }
-    }
-}
-
-/// Clears one layer to depth 0 (nothing in the way).
-fn clear_layer(context: &mut RenderContext, atlas: &ShadowAtlas, layer: u32) {
-    if let Some(view) = atlas.layer_views.get(layer as usize) {
-        clearing_depth_pass(context, view, "phong_shadow_map_clear");
     }
 }
 

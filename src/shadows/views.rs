@@ -32,10 +32,10 @@ pub(crate) struct ShadowLightView {
 }
 
 impl ShadowLightView {
-    fn perspective(world_from_view: Mat4, fov: f32, near: f32, resolution: u32) -> Self {
+    fn perspective(view_from_world: Mat4, fov: f32, near: f32, resolution: u32) -> Self {
         let clip_from_view = Mat4::perspective_infinite_reverse_rh(fov, 1.0, near);
         Self {
-            clip_from_world: clip_from_view * world_from_view.inverse(),
+            clip_from_world: clip_from_view * view_from_world,
             projection: GpuShadowView::PERSPECTIVE,
             texel_size: 2.0 * (fov / 2.0).tan() / resolution as f32,
             depth_range: 0.0,
@@ -75,8 +75,8 @@ fn cube_face_fov(resolution: u32) -> f32 {
 /// The six views of a point light at `position` (or of a spot light too wide for one map).
 pub(crate) fn cube_views(position: Vec3, near: f32, resolution: u32) -> [ShadowLightView; 6] {
     CUBE_FACES.map(|(forward, up)| {
-        let world_from_view = Mat4::look_to_rh(position, forward, up).inverse();
-        ShadowLightView::perspective(world_from_view, cube_face_fov(resolution), near, resolution)
+        let view_from_world = Mat4::look_to_rh(position, forward, up);
+        ShadowLightView::perspective(view_from_world, cube_face_fov(resolution), near, resolution)
     })
 }
 
@@ -93,10 +93,10 @@ pub(crate) fn spot_view(
     resolution: u32,
 ) -> ShadowLightView {
     let up = any_perpendicular(direction);
-    let world_from_view = Mat4::look_to_rh(position, direction, up).inverse();
+    let view_from_world = Mat4::look_to_rh(position, direction, up);
     // The cone's edge plus the filter's margin.
     let half_tan = outer_angle.tan() * (1.0 + 2.0 * MAX_FILTER_RADIUS_TEXELS / resolution as f32);
-    ShadowLightView::perspective(world_from_view, 2.0 * half_tan.atan(), near, resolution)
+    ShadowLightView::perspective(view_from_world, 2.0 * half_tan.atan(), near, resolution)
 }
 
 /// A unit vector not parallel to `direction`, as the up vector of a view along it.
