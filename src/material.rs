@@ -232,6 +232,11 @@ pub struct PhongMaterialKey {
     /// compiles the other variant once, as any new variant. The flag is process-wide: apps
     /// that render Phong materials side by side in one process share it.
     pub shadows: bool,
+    /// Whether some shadow-casting light of the scene has a size (`PhongShadows::softness`
+    /// above 0): only then is the soft-shadow filter (PCSS) compiled in (shader def
+    /// `PHONG_SOFT_SHADOWS`); hard shadows take one bilinear comparison. Process-wide, as
+    /// `shadows`.
+    pub soft_shadows: bool,
 }
 
 impl From<&PhongMaterial> for PhongMaterialKey {
@@ -245,6 +250,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             shadows: crate::shadows::SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
+            soft_shadows: crate::shadows::SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
         }
     }
 }
@@ -281,6 +287,9 @@ impl PhongMaterialKey {
         }
         if self.shadows {
             defs.push("PHONG_SHADOWS");
+            if self.soft_shadows {
+                defs.push("PHONG_SOFT_SHADOWS");
+            }
         }
         for (used, def, field) in maps {
             if used && has_uvs {

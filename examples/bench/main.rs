@@ -16,7 +16,8 @@
 //! Phong column's `PhongLightCulling`; `--no-variants` skips the second table. A third table
 //! gives the cost of shadows: the showcase on a floor with its three lights casting shadows
 //! or not, Phong beside `StandardMaterial` (each with 1024² shadow maps), at 1024²
-//! (`--shadows` runs it alone).
+//! (`--shadows` runs it alone; its rows take turns over five rounds, each the median of
+//! its rounds).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -47,6 +48,8 @@ struct Options {
     shadows_only: bool,
     /// The shadow table's image size.
     shadow_size: u32,
+    /// How many times each row of the shadow table is measured, taking turns.
+    shadow_rounds: usize,
     culling: PhongLightCulling,
     sizes: Vec<u32>,
     scenes: Vec<Scene>,
@@ -108,6 +111,7 @@ impl Options {
                 variants: true,
                 shadows_only: false,
                 shadow_size: 128,
+                shadow_rounds: 1,
                 culling: PhongLightCulling::default(),
                 sizes: vec![128],
                 scenes: vec![Scene::Showcase, Scene::Field { lights: 16 }],
@@ -124,6 +128,7 @@ impl Options {
             variants: true,
             shadows_only: false,
             shadow_size: 1024,
+            shadow_rounds: 5,
             culling: PhongLightCulling::default(),
             sizes: vec![512, 1024],
             scenes: vec![
@@ -217,25 +222,37 @@ fn main() {
 fn shadow_costs(options: &Options, directory: &Path) {
     let size = options.shadow_size;
     let phong = Shading::Phong(Some(SpecularModel::Phong));
-    let mut csv = String::from("size,shading,shadows,median_ms\n");
-    let times = [
+    let mut csv = String::from("size,shading,shadows,round,median_ms\n");
+    let rows = [
         ("Phong", phong, false),
         ("Phong", phong, true),
         ("Standard", Shading::Standard, false),
         ("Standard", Shading::Standard, true),
-    ]
-    .map(|(name, shading, shadows)| {
-        let scene = Scene::ShowcaseOnFloor { shadows };
-        let median = ms(median_frame_time(
-            scene,
-            size,
-            shading,
-            options.culling,
-            options.frames,
-        ));
-        let _ = writeln!(csv, "{size},{name},{shadows},{median:.3}");
-        eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
-        median
+    ];
+    // The rows take turns, round after round, and each keeps the median of its rounds: a
+    // change in the machine's load then falls on every row alike, not on one.
+    let mut rounds = [const { Vec::new() }; 4];
+    for round in 0..options.shadow_rounds {
+        for ((name, shading, shadows), times) in rows.iter().zip(&mut rounds) {
+            let scene = Scene::ShowcaseOnFloor { shadows: *shadows };
+            let median = ms(median_frame_time(
+                scene,
+                size,
+                *shading,
+                options.culling,
+                options.frames,
+            ));
+            let _ = writeln!(csv, "{size},{name},{shadows},{round},{median:.3}");
+            eprintln!(
+                "{} {size}² {name}, round {round}: {median:.1} ms",
+                scene.name()
+            );
+            times.push(median);
+        }
+    }
+    let times = rounds.map(|mut times| {
+        times.sort_by(f64::total_cmp);
+        times[times.len() / 2]
     });
     let [phong_off, phong_on, standard_off, standard_on] = times;
     let table = format!(
@@ -246,8 +263,9 @@ fn shadow_costs(options: &Options, directory: &Path) {
         phong_on / phong_off,
     );
     println!(
-        "\nShadows, median ms: the showcase on a floor, a cascaded directional light and two \
-         point lights casting shadows or not (1024² maps):\n\n{table}"
+        "\nShadows, median ms (the median of {} rounds): the showcase on a floor, a cascaded directional light and two \
+         point lights casting shadows or not (1024² maps):\n\n{table}",
+        options.shadow_rounds
     );
     write(&directory.join("shadows.csv"), &csv);
 }

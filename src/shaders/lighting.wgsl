@@ -233,3 +233,37 @@ fn spot_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
     }
     return (ray.attenuation * cone) * phong_light(surface, ray.to_light, light.color, light.specular);
 }
+
+// The built-in kinds of light, by where a record sits in the light buffer.
+const LIGHT_DIRECTIONAL: u32 = 0u;
+const LIGHT_POINT: u32 = 1u;
+const LIGHT_SPOT: u32 = 2u;
+
+// How a light of any built-in kind arrives at the surface point: L, and the factor on its
+// `phong_light` term (1 for a directional light; the distance attenuation, times the cone
+// factor for a spot light, for the others).
+struct Incidence {
+    to_light: vec3<f32>,
+    attenuation: f32,
+}
+
+// The light of `kind` as `directional_light`, `point_light` and `spot_light` see it, with
+// the kind selected rather than branched on: one loop then lights every kind, and a SIMD
+// rasterizer on the CPU (lavapipe), which runs every branch and every loop at least once
+// under a mask, does one light's work per light instead of a loop's body per kind.
+fn incidence(surface: PhongSurface, light: PhongLight, kind: u32) -> Incidence {
+    let ray = ray_toward(surface, light.position, light.decay, light.range);
+    let cone = spot_cone(-ray.to_light, light.direction, light.outer_versine, light.cone_scale, light.spot_exponent);
+    let at_point = kind != LIGHT_DIRECTIONAL;
+    return Incidence(
+        select(-light.direction, ray.to_light, at_point),
+        select(1.0, ray.attenuation * select(1.0, cone, kind == LIGHT_SPOT), at_point),
+    );
+}
+
+// `directional_light`, `point_light` or `spot_light` by `kind`, with the light's color and
+// specular color scaled by `factors` (its shadow factors; (1, 1) unshadowed).
+fn light_of_kind(surface: PhongSurface, light: PhongLight, kind: u32, incidence: Incidence, factors: vec2<f32>) -> vec3<f32> {
+    let lit = phong_light(surface, incidence.to_light, light.color * factors.x, light.specular * factors.y);
+    return select(lit, incidence.attenuation * lit, kind != LIGHT_DIRECTIONAL);
+}

@@ -2,8 +2,8 @@
 #define_import_path bevy_phong::shading
 
 #import bevy_phong::bindings::{light_grid, lights, material}
-#import bevy_phong::lighting::{directional_light, normalize_or_zero, phong_surface, point_light, spot_light}
-#import bevy_phong::shadows::shadowed
+#import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface}
+#import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
 #import bevy_phong::types::{PhongLight, PhongSurface}
@@ -33,48 +33,25 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
     return lights.ambient * material.ambient_factor * surface.diffuse;
 }
 
-// A point or spot light with its shadow applied (see `bevy_phong::shadows::shadowed`).
-fn shadowed_at_point(light: PhongLight, surface: PhongSurface) -> PhongLight {
-    return shadowed(light, surface, normalize_or_zero(light.position - surface.position));
-}
-
 // Σ over every light that reaches the surface point: the directional lights, the point and
-// spot lights of unlimited reach, and those of the point's grid cell.
+// spot lights of unlimited reach, and those of the point's grid cell. One loop lights every
+// kind (see `incidence`); while some light casts shadows (PHONG_SHADOWS), each light's
+// terms are scaled by its shadow factors.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
+    let point_start = lights.directional_count;
+    let spot_start = point_start + lights.point_count;
+    let end = spot_start + lights.spot_count;
     var color = vec3<f32>(0.0);
-    var index = 0u;
-    let directional_end = lights.directional_count;
-    // Each kind's shadow-casting lights come first; the others run the plain loop. The
-    // shadow code is compiled only in the variant for scenes with shadows (PHONG_SHADOWS).
-#ifdef PHONG_SHADOWS
-    let shadowed_directional_end = lights.shadowed_directional_count;
-    for (; index < shadowed_directional_end; index += 1u) {
+    for (var index = 0u; index < end; index += 1u) {
         let light = lights.lights[index];
-        color += directional_light(surface, shadowed(light, surface, -light.direction));
-    }
-#endif
-    for (; index < directional_end; index += 1u) {
-        color += directional_light(surface, lights.lights[index]);
-    }
+        let kind = select(select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= point_start), LIGHT_SPOT, index >= spot_start);
+        let arriving = incidence(surface, light, kind);
 #ifdef PHONG_SHADOWS
-    let shadowed_point_end = directional_end + lights.shadowed_point_count;
-    for (; index < shadowed_point_end; index += 1u) {
-        color += point_light(surface, shadowed_at_point(lights.lights[index], surface));
-    }
+        let factors = shadow_factors(light.shadow, surface, arriving.to_light, light.position);
+#else
+        let factors = vec2<f32>(1.0);
 #endif
-    let point_end = directional_end + lights.point_count;
-    for (; index < point_end; index += 1u) {
-        color += point_light(surface, lights.lights[index]);
-    }
-#ifdef PHONG_SHADOWS
-    let shadowed_spot_end = point_end + lights.shadowed_spot_count;
-    for (; index < shadowed_spot_end; index += 1u) {
-        color += spot_light(surface, shadowed_at_point(lights.lights[index], surface));
-    }
-#endif
-    let spot_end = point_end + lights.spot_count;
-    for (; index < spot_end; index += 1u) {
-        color += spot_light(surface, lights.lights[index]);
+        color += light_of_kind(surface, light, kind, arriving, factors);
     }
     return color + grid_lights(surface);
 }
@@ -89,15 +66,14 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     }
     let cell_index = vec3<u32>(cell);
     let record = 4u * (cell_index.x + dimensions.x * (cell_index.y + dimensions.y * cell_index.z));
-    var slot = light_grid.data[record];
-    let point_end = slot + light_grid.data[record + 1u];
-    let spot_end = point_end + light_grid.data[record + 2u];
+    let start = light_grid.data[record];
+    let spot_start = start + light_grid.data[record + 1u];
+    let end = spot_start + light_grid.data[record + 2u];
     var color = vec3<f32>(0.0);
-    for (; slot < point_end; slot += 1u) {
-        color += point_light(surface, lights.lights[light_grid.data[slot]]);
-    }
-    for (; slot < spot_end; slot += 1u) {
-        color += spot_light(surface, lights.lights[light_grid.data[slot]]);
+    for (var slot = start; slot < end; slot += 1u) {
+        let light = lights.lights[light_grid.data[slot]];
+        let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_start);
+        color += light_of_kind(surface, light, kind, incidence(surface, light, kind), vec2<f32>(1.0));
     }
     return color;
 }

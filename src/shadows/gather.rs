@@ -2,7 +2,7 @@
 //! shadow maps, where each map looks from, and which casters each map draws.
 
 use super::{
-    MAX_SHADOW_VIEWS, SCENE_CASTS_SHADOWS,
+    MAX_SHADOW_VIEWS, SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
@@ -244,8 +244,10 @@ pub(crate) fn gather_shadows(
         .views_buffer
         .write(&mut buffers, &header, &state.records);
     let casts_shadows = !state.records.is_empty();
-    let variant_changed =
-        SCENE_CASTS_SHADOWS.swap(casts_shadows, Ordering::Relaxed) != casts_shadows;
+    let soft_shadows = state.records.iter().any(|view| view.light_size > 0.0);
+    let variant_changed = (SCENE_CASTS_SHADOWS.swap(casts_shadows, Ordering::Relaxed)
+        != casts_shadows)
+        | (SCENE_HAS_SOFT_SHADOWS.swap(soft_shadows, Ordering::Relaxed) != soft_shadows);
     if buffer_resized || variant_changed || next.layout != frame.layout {
         resized.write(LightBufferResized {
             buffer: PHONG_SHADOW_VIEW_BUFFER,

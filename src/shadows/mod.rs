@@ -58,6 +58,13 @@ pub(crate) use sources::request_shadows;
 pub(crate) static SCENE_CASTS_SHADOWS: core::sync::atomic::AtomicBool =
     core::sync::atomic::AtomicBool::new(false);
 
+/// Whether some shadow-casting light has a size (`softness > 0`) this frame: only then is
+/// the soft-shadow filter compiled in (shader def `PHONG_SOFT_SHADOWS`), as
+/// [`SCENE_CASTS_SHADOWS`] and set beside it. Hard shadows are one bilinear comparison per
+/// light.
+pub(crate) static SCENE_HAS_SOFT_SHADOWS: core::sync::atomic::AtomicBool =
+    core::sync::atomic::AtomicBool::new(false);
+
 /// Most shadow maps a frame holds (layers of the shadow map array, which WebGL2 caps at
 /// 256): a directional light takes one per cascade, a point light six, a spot light one
 /// (six past a 60° cone).
