@@ -114,6 +114,7 @@ impl Plugin for PhongPlugin {
         load_shader_library!(app, "shaders/types.wgsl");
         load_shader_library!(app, "shaders/lighting.wgsl");
         load_shader_library!(app, "shaders/bindings.wgsl");
+        load_shader_library!(app, "shaders/scene.wgsl");
         load_shader_library!(app, "shaders/shading.wgsl");
         load_shader_library!(app, "shaders/texture_maps.wgsl");
         load_shader_library!(app, "shaders/shadows.wgsl");

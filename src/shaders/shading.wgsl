@@ -1,8 +1,9 @@
 // Lights a surface point with every light in the light buffer.
 #define_import_path bevy_phong::shading
 
-#import bevy_phong::bindings::{light_grid, lights, material}
+#import bevy_phong::bindings::material
 #import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface}
+#import bevy_phong::scene::{ambient_color, directional_count, grid_cell_size, grid_dimensions, grid_origin, grid_word, light_at, point_count, spot_count}
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
@@ -30,7 +31,7 @@ fn receives_shadows(instance_index: u32) -> bool {
 
 // ambient ⊙ k_a ⊙ k_d
 fn ambient_light(surface: PhongSurface) -> vec3<f32> {
-    return lights.ambient * material.ambient_factor * surface.diffuse;
+    return ambient_color() * material.ambient_factor * surface.diffuse;
 }
 
 // Σ over every light that reaches the surface point: the directional lights, the point and
@@ -38,12 +39,12 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
 // kind (see `incidence`); while some light casts shadows (PHONG_SHADOWS), each light's
 // terms are scaled by its shadow factors.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
-    let point_start = lights.directional_count;
-    let spot_start = point_start + lights.point_count;
-    let end = spot_start + lights.spot_count;
+    let point_start = directional_count();
+    let spot_start = point_start + point_count();
+    let end = spot_start + spot_count();
     var color = vec3<f32>(0.0);
     for (var index = 0u; index < end; index += 1u) {
-        let light = lights.lights[index];
+        let light = light_at(index);
         let kind = select(select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= point_start), LIGHT_SPOT, index >= spot_start);
         let arriving = incidence(surface, light, kind);
 #ifdef PHONG_SHADOWS
@@ -58,20 +59,20 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
 
 // Σ over the point and spot lights listed in the grid cell that holds the surface point.
 fn grid_lights(surface: PhongSurface) -> vec3<f32> {
-    let dimensions = light_grid.dimensions;
-    let cell = (surface.position - light_grid.origin) / light_grid.cell_size;
+    let dimensions = grid_dimensions();
+    let cell = (surface.position - grid_origin()) / grid_cell_size();
     // Outside the grid no light of finite reach arrives; `!(…)` also rejects NaN.
     if !(all(cell >= vec3<f32>(0.0)) && all(cell < vec3<f32>(dimensions))) {
         return vec3<f32>(0.0);
     }
     let cell_index = vec3<u32>(cell);
     let record = 4u * (cell_index.x + dimensions.x * (cell_index.y + dimensions.y * cell_index.z));
-    let start = light_grid.data[record];
-    let spot_start = start + light_grid.data[record + 1u];
-    let end = spot_start + light_grid.data[record + 2u];
+    let start = grid_word(record);
+    let spot_start = start + grid_word(record + 1u);
+    let end = spot_start + grid_word(record + 2u);
     var color = vec3<f32>(0.0);
     for (var slot = start; slot < end; slot += 1u) {
-        let light = lights.lights[light_grid.data[slot]];
+        let light = light_at(grid_word(slot));
         let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_start);
         color += light_of_kind(surface, light, kind, incidence(surface, light, kind), vec2<f32>(1.0));
     }

@@ -2,7 +2,8 @@
 // read from the light's shadow maps, and the factors it puts on the light's two terms.
 #define_import_path bevy_phong::shadows
 
-#import bevy_phong::bindings::{shadow_maps, shadow_sampler, shadow_views}
+#import bevy_phong::bindings::{shadow_maps, shadow_sampler}
+#import bevy_phong::scene::{shadow_view_at, shadow_view_count}
 #import bevy_phong::types::{PhongLight, PhongShadowView, PhongSurface, SHADOW_PROJECTION_PERSPECTIVE}
 
 // Widest filter, in texels at each side of the point: the margin the cube faces keep
@@ -153,10 +154,10 @@ struct ShadowSlot {
 }
 
 fn shadow_slot(shadow: u32, surface: PhongSurface) -> ShadowSlot {
-    let listed = shadow != 0u && shadow <= shadow_views.count;
+    let listed = shadow != 0u && shadow <= shadow_view_count();
     let first = select(0u, shadow - 1u, listed);
     let read = listed && surface.receives_shadows
-        && first + shadow_views.views[first].view_count <= shadow_views.count;
+        && first + shadow_view_at(first).view_count <= shadow_view_count();
     return ShadowSlot(first, read);
 }
 
@@ -175,15 +176,15 @@ fn visibility_from(first: u32, head: PhongShadowView, surface: PhongSurface, to_
     let cascades = select(0u, view_count, cascaded);
     var index = 0u;
     for (; index < cascades; index += 1u) {
-        if depth < shadow_views.views[first + index].cascade_far {
+        if depth < shadow_view_at(first + index).cascade_far {
             break;
         }
     }
     let beyond_cascades = cascaded && index == cascades;
     let face = select(0u, cube_face(surface.position, light_position), view_count == 6u);
     index = min(select(face, index, cascaded), view_count - 1u);
-    let blend_start = shadow_views.views[first + index].cascade_blend_start;
-    let blend_end = shadow_views.views[first + index].cascade_far;
+    let blend_start = shadow_view_at(first + index).cascade_blend_start;
+    let blend_end = shadow_view_at(first + index).cascade_far;
     let blends = cascaded && depth > blend_start;
     let t = select(0.0, (depth - blend_start) / (blend_end - blend_start), blends);
     // This view, and where it blends the next (past the last, 1).
@@ -191,7 +192,7 @@ fn visibility_from(first: u32, head: PhongShadowView, surface: PhongSurface, to_
     let samples = select(1u, 2u, blends);
     for (var sample = 0u; sample < samples; sample += 1u) {
         let next = index + sample;
-        let sampled = view_visibility(shadow_views.views[first + min(next, view_count - 1u)], surface, to_light);
+        let sampled = view_visibility(shadow_view_at(first + min(next, view_count - 1u)), surface, to_light);
         visibility += select(1.0 - t, t, sample == 1u) * select(1.0, sampled, next < view_count);
     }
     return select(visibility, 1.0, beyond_cascades);
@@ -202,7 +203,7 @@ fn visibility_from(first: u32, head: PhongShadowView, surface: PhongSurface, to_
 // lights at a point); 1 for a light without shadows.
 fn light_visibility(shadow: u32, surface: PhongSurface, to_light: vec3<f32>, light_position: vec3<f32>) -> f32 {
     let slot = shadow_slot(shadow, surface);
-    let head = shadow_views.views[slot.first];
+    let head = shadow_view_at(slot.first);
     return select(1.0, visibility_from(slot.first, head, surface, to_light, light_position), slot.read);
 }
 
@@ -211,7 +212,7 @@ fn light_visibility(shadow: u32, surface: PhongSurface, to_light: vec3<f32>, lig
 // in full shadow. (1, 1) for a light without shadows.
 fn shadow_factors(shadow: u32, surface: PhongSurface, to_light: vec3<f32>, light_position: vec3<f32>) -> vec2<f32> {
     let slot = shadow_slot(shadow, surface);
-    let head = shadow_views.views[slot.first];
+    let head = shadow_view_at(slot.first);
     let visibility = visibility_from(slot.first, head, surface, to_light, light_position);
     let factors = mix(vec2<f32>(head.diffuse_in_shadow, head.specular_in_shadow), vec2<f32>(1.0), visibility);
     return select(vec2<f32>(1.0), factors, slot.read);
