@@ -256,9 +256,11 @@ impl From<&PhongMaterial> for PhongMaterialKey {
 }
 
 impl PhongMaterialKey {
-    /// The fragment shader defs of this variant on a mesh with `layout`: maps need UVs (the
-    /// normal map tangents too); without them they are left out, with a warning.
-    fn shader_defs(&self, layout: &MeshVertexBufferLayoutRef) -> Vec<&'static str> {
+    /// The fragment shader defs of this variant on a mesh with `layout`, beside those Bevy's
+    /// mesh pipeline adds: maps need UVs (the normal map tangents too); without them they are
+    /// left out, with a warning. A material extending [`PhongMaterial`] is specialized with
+    /// the same defs.
+    pub fn shader_defs(&self, layout: &MeshVertexBufferLayoutRef) -> Vec<&'static str> {
         let has_uvs = layout.0.contains(Mesh::ATTRIBUTE_UV_0);
         let has_tangents = layout.0.contains(Mesh::ATTRIBUTE_TANGENT);
         let maps = [

@@ -16,12 +16,12 @@ use crate::{
 };
 use bevy::{
     app::{App, Plugin, PostUpdate, PreUpdate},
-    asset::{AssetApp, AssetEventSystems, embedded_asset},
+    asset::{AssetApp, AssetEventSystems, Assets, embedded_asset},
     camera::visibility::VisibilitySystems,
     ecs::schedule::{IntoScheduleConfigs, SystemSet},
     pbr::{Material, MaterialPlugin},
     render::RenderApp,
-    shader::load_shader_library,
+    shader::{Shader, load_shader_library},
     transform::TransformSystems,
 };
 use core::hash::Hash;
@@ -106,20 +106,25 @@ impl Plugin for PhongPlugin {
             .add_systems(PostUpdate, gather_lights.in_set(PhongSystems::GatherLights));
         crate::shadows::add_shadow_gather(app);
 
+        // The shaders are registered wherever Bevy's renderer is added, also without a render
+        // device (`WgpuSettings::backends: None`), as Bevy's own plugins do: tools can then
+        // compose them without a GPU. ECS-only apps (`MinimalPlugins`) have no shader assets.
+        if app.world().contains_resource::<Assets<Shader>>() {
+            load_shader_library!(app, "shaders/types.wgsl");
+            load_shader_library!(app, "shaders/lighting.wgsl");
+            load_shader_library!(app, "shaders/bindings.wgsl");
+            load_shader_library!(app, "shaders/scene.wgsl");
+            load_shader_library!(app, "shaders/shading.wgsl");
+            load_shader_library!(app, "shaders/texture_maps.wgsl");
+            load_shader_library!(app, "shaders/shadows.wgsl");
+            embedded_asset!(app, "shaders/phong_material.wgsl");
+            embedded_asset!(app, "shaders/shadow_caster.wgsl");
+        }
         if app.get_sub_app(RenderApp).is_none() {
             app.init_asset::<PhongMaterial>()
                 .register_asset_loader(PhongMaterialLoader);
             return;
         }
-        load_shader_library!(app, "shaders/types.wgsl");
-        load_shader_library!(app, "shaders/lighting.wgsl");
-        load_shader_library!(app, "shaders/bindings.wgsl");
-        load_shader_library!(app, "shaders/scene.wgsl");
-        load_shader_library!(app, "shaders/shading.wgsl");
-        load_shader_library!(app, "shaders/texture_maps.wgsl");
-        load_shader_library!(app, "shaders/shadows.wgsl");
-        embedded_asset!(app, "shaders/phong_material.wgsl");
-        embedded_asset!(app, "shaders/shadow_caster.wgsl");
         crate::shadows::add_shadow_rendering(app);
         app.add_phong_material::<PhongMaterial>()
             .register_asset_loader(PhongMaterialLoader);

@@ -3,12 +3,12 @@
 //! lit with, compared with `bevy_phong::reference` on those inputs and *all* the scene's
 //! lights (no culling in the model).
 
-use crate::harness::Harness;
 use crate::scene::{Scene, Shading, spawn_scene};
 use bevy_phong::{
     PhongLightCulling, SpecularModel,
     reference::{self, Light},
 };
+use bevy_phong_headless::Harness;
 
 /// Width and height of the renders the error is measured on.
 pub const ERROR_SIZE: u32 = 128;

@@ -26,12 +26,6 @@
 //! with the render tests' harness. It writes `target/bench/*.csv` and `target/bench/*.png`.
 
 mod accuracy;
-// The render tests' harness; the benchmark uses part of it.
-#[allow(dead_code)]
-#[path = "../../tests/gpu/harness.rs"]
-mod harness;
-#[path = "../support/headless.rs"]
-mod headless;
 mod plot;
 mod scene;
 mod timing;

@@ -1,6 +1,5 @@
 //! Frame time on the render device: the median of repeated frames after warm-up.
 
-use crate::headless;
 use crate::scene::{ConstantColor, Scene, Shading, spawn_scene};
 use bevy::{
     camera::RenderTarget,
@@ -14,6 +13,7 @@ use bevy::{
     },
 };
 use bevy_phong::PhongLightCulling;
+use bevy_phong_headless::headless_app;
 use std::time::{Duration, Instant};
 
 /// How many frames to measure.
@@ -41,7 +41,7 @@ pub fn median_frame_time(
     culling: PhongLightCulling,
     frames: Frames,
 ) -> Duration {
-    let mut app = headless::headless_app(|app| {
+    let mut app = headless_app(|app| {
         app.add_plugins(MaterialPlugin::<ConstantColor>::default())
             .insert_resource(culling);
     });

@@ -14,19 +14,10 @@
 //! `cargo run --example render_scene -- assets/scenes/showcase.phong_scene.ron --out DIR`;
 //! `--help` lists the options.
 
-#[allow(
-    dead_code,
-    reason = "the render tests' harness, of which this uses a part"
-)]
-#[path = "../../tests/gpu/harness.rs"]
-mod harness;
-#[allow(dead_code, reason = "shared with the tests, of which this uses a part")]
-#[path = "../support/headless.rs"]
-mod headless;
 mod output;
 
 use bevy_phong::prelude::*;
-use harness::Harness;
+use bevy_phong_headless::Harness;
 use std::{path::PathBuf, process::ExitCode};
 
 const HELP: &str = "\

@@ -1,6 +1,6 @@
 //! Writing a read-back float image as OpenEXR (linear, unclipped) or PNG (sRGB, 8 bits).
 
-use crate::harness::FloatImage;
+use bevy_phong_headless::{FloatImage, save_srgb_png};
 use std::path::Path;
 
 /// Writes all four channels as 32-bit floats.
@@ -15,6 +15,6 @@ pub fn write_exr(path: &Path, image: &FloatImage) -> Result<(), String> {
 /// Writes the color sRGB-encoded and clipped to `[0, 1]`, 8 bits per channel.
 pub fn write_png(path: &Path, image: &FloatImage) -> Result<(), String> {
     let rgb: Vec<[f32; 3]> = image.pixels.iter().map(|&[r, g, b, _]| [r, g, b]).collect();
-    crate::harness::save_srgb_png(path, image.width, image.height, &rgb);
+    save_srgb_png(path, image.width, image.height, &rgb);
     Ok(())
 }

@@ -1,9 +1,6 @@
 //! What every example shares: a window where a display exists, else (or with
 //! `--headless PATH`) a render to a PNG file and exit.
 
-#[allow(dead_code, reason = "only the benchmark drives frames itself")]
-pub mod headless;
-
 use bevy::{
     app::{AppExit, ScheduleRunnerPlugin},
     camera::RenderTarget,
@@ -15,9 +12,8 @@ use bevy::{
         render_resource::{PipelineCache, TextureFormat, TextureUsages},
     },
     time::TimeUpdateStrategy,
-    window::ExitCondition,
-    winit::WinitPlugin,
 };
+use bevy_phong_headless::headless_plugins;
 use std::{
     path::PathBuf,
     sync::{
@@ -87,13 +83,7 @@ pub fn example_app(name: &str) -> App {
         }
         RunMode::Headless(_) => {
             app.add_plugins((
-                DefaultPlugins
-                    .set(WindowPlugin {
-                        primary_window: None,
-                        exit_condition: ExitCondition::DontExit,
-                        ..default()
-                    })
-                    .disable::<WinitPlugin>(),
+                headless_plugins(),
                 ScheduleRunnerPlugin::run_loop(Duration::ZERO),
                 HeadlessCapturePlugin,
             ))

@@ -85,7 +85,7 @@ impl GpuLightsHeader {
 }
 
 /// The fixed part at the start of the light grid buffer (`PhongLightGrid` in WGSL, before
-/// its `data` array): 32 bytes. See `render::light_grid` for the array.
+/// its `data` array): 32 bytes. [`CELL_WORDS`](Self::CELL_WORDS) describes the array.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuLightGridHeader {
@@ -100,6 +100,11 @@ pub struct GpuLightGridHeader {
 }
 
 impl GpuLightGridHeader {
+    /// `u32` words per cell record in the array after the header: `[first, point_count,
+    /// spot_count, 0]`, one record per cell (x fastest, then y, then z), then the light
+    /// indices the records point into.
+    pub const CELL_WORDS: u32 = 4;
+
     /// A grid of no cells.
     pub const EMPTY: Self = Self {
         origin: [0.0; 3],

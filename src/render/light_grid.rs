@@ -17,7 +17,7 @@ pub const MAX_CELLS_PER_AXIS: u32 = 64;
 /// Most cells in all (a 512 KiB table of cell records).
 pub const MAX_CELLS: u32 = 1 << 15;
 /// `u32` words per cell record.
-pub const CELL_WORDS: usize = 4;
+const CELL_WORDS: usize = GpuLightGridHeader::CELL_WORDS as usize;
 
 /// The grid as last built, and the scratch space it is built in (kept between frames, so
 /// that rebuilding allocates nothing once the scene's size is reached).

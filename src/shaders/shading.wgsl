@@ -7,7 +7,7 @@
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
-#import bevy_phong::types::{PhongLight, PhongSurface}
+#import bevy_phong::types::{GRID_CELL_WORDS, PhongSurface}
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -66,7 +66,7 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     let cell_index = vec3<u32>(cell);
-    let record = 4u * (cell_index.x + dimensions.x * (cell_index.y + dimensions.y * cell_index.z));
+    let record = GRID_CELL_WORDS * (cell_index.x + dimensions.x * (cell_index.y + dimensions.y * cell_index.z));
     let start = grid_word(record);
     let spot_start = start + grid_word(record + 1u);
     let end = spot_start + grid_word(record + 2u);

@@ -52,6 +52,9 @@ struct PhongLights {
 // cell (x fastest, then y, then z): `[first, point_count, spot_count, 0]`, where
 // `data[first..]` are the indices (into `PhongLights.lights`) of the cell's point lights,
 // then of its spot lights.
+// `u32` words per cell record in `PhongLightGrid.data` (`GpuLightGridHeader::CELL_WORDS`).
+const GRID_CELL_WORDS: u32 = 4u;
+
 struct PhongLightGrid {
     // World-space corner of cell (0, 0, 0).
     origin: vec3<f32>,

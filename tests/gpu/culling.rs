@@ -4,9 +4,9 @@
 //! `ε · (k_d + k_s · strength)` for all skipped lights together.
 
 use crate::frames::{SIZE, TOLERANCE, spawn_objects};
-use crate::harness::{Harness, SurfaceInputs};
 use bevy::prelude::*;
 use bevy_phong::{prelude::*, reference, render::PhongLightBuffer};
+use bevy_phong_headless::{Harness, SurfaceInputs};
 
 /// The frame tests' objects under `count` point lights scattered over the floor, each fading
 /// with `decay` and cut off at `range`.

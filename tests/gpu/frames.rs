@@ -12,9 +12,9 @@
 //! what a wrong term (a missing attenuation, a wrong reflection) produces. The largest
 //! errors measured on lavapipe are near 3e-6.
 
-use crate::harness::{FloatImage, Harness, SurfaceInputs};
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
+use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 
 /// See the module docs: a tenth of an 8-bit step (1/255).
 pub const TOLERANCE: f64 = 4e-4;

@@ -16,9 +16,6 @@
 mod contract;
 mod culling;
 mod frames;
-mod harness;
-#[path = "../../examples/support/headless.rs"]
-mod headless;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
 mod scene_files;

@@ -4,9 +4,9 @@
 //! tests' tolerance (same equation, same inputs; see `frames`).
 
 use crate::frames::{SIZE, TOLERANCE};
-use crate::harness::Harness;
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
+use bevy_phong_headless::Harness;
 
 #[test]
 fn a_scene_file_renders_as_the_reference_model_says() {

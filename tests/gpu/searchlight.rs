@@ -4,12 +4,12 @@
 
 use crate::{
     frames::TOLERANCE,
-    harness::{FloatImage, Harness, SurfaceInputs},
     light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
     searchlight_reference::{ReferenceSearchlight, searchlight_term},
 };
 use bevy::prelude::*;
 use bevy_phong::{extension::PhongLightKindBuffer, prelude::*, reference};
+use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 
 /// Pixels whose f64 distance from a hard beam boundary is below this many world units are
 /// not judged: the f32 shader computes that distance from coordinates of a few units with

@@ -25,7 +25,6 @@
 //! every pixel is within [`TOLERANCE`].
 
 use crate::frames::TOLERANCE;
-use crate::harness::{FloatImage, Harness, SurfaceInputs};
 use bevy::{
     light::{NotShadowCaster, NotShadowReceiver},
     prelude::*,
@@ -35,6 +34,7 @@ use bevy_phong::{
     reference::{self, Shadowing, SurfacePoint},
     shadows::{GpuShadowView, PhongShadowViews},
 };
+use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 use glam::{DMat3, DVec3};
 
 /// Render size.

@@ -1,12 +1,10 @@
 //! Adversarial whole frames, read back as floats: whatever the scene, no pixel is NaN or
 //! infinite.
 
-use crate::{
-    frames::{SIZE, TOLERANCE},
-    harness::{FloatImage, Harness},
-};
+use crate::frames::{SIZE, TOLERANCE};
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
+use bevy_phong_headless::{FloatImage, Harness};
 
 /// Asserts that `image` has covered pixels and that every pixel is finite.
 fn assert_finite(case: &str, image: &FloatImage) {

@@ -10,7 +10,6 @@
 //! it is normalized.
 
 use crate::frames::{SIZE, TOLERANCE};
-use crate::harness::{Harness, SurfaceInputs};
 use bevy::{
     asset::RenderAssetUsages,
     image::{Image, ImageSampler},
@@ -18,6 +17,7 @@ use bevy::{
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
 use bevy_phong::{prelude::*, reference};
+use bevy_phong_headless::{Harness, SurfaceInputs};
 use glam::{DVec3, DVec4};
 use std::collections::HashMap;
 

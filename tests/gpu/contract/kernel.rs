@@ -1,7 +1,6 @@
 //! Runs `kernel.wgsl` (the material's lighting functions in a compute shader) on the render
 //! device and reads the results back.
 
-use crate::headless::headless_app;
 use bevy::{
     prelude::*,
     render::{
@@ -18,6 +17,7 @@ use bevy::{
     shader::{Shader, ShaderCacheError},
 };
 use bevy_phong::render::GpuLight;
+use bevy_phong_headless::headless_app;
 use bytemuck::{Pod, Zeroable};
 
 /// One case as the kernel reads it (`ContractCase` in `kernel.wgsl`).

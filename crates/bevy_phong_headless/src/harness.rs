@@ -1,11 +1,12 @@
-//! Renders scenes headless into a linear `Rgba32Float` image, reads the pixels back with the
-//! inputs each pixel was lit with, and compares them with the f64 reference model.
+//! [`Harness`]: a headless app rendering into a float image, with the per-pixel inputs of the
+//! lighting equation read back beside each frame.
 
 use bevy::{
     asset::RecursiveDependencyLoadState,
     camera::RenderTarget,
     core_pipeline::tonemapping::{DebandDither, Tonemapping},
     image::Image,
+    math::DVec3,
     prelude::*,
     render::{
         RenderApp,
@@ -20,14 +21,12 @@ use bevy_phong::{
     reference::{self, SurfacePoint},
     validation::is_finite_transform,
 };
-use glam::DVec3;
-
-use crate::headless::headless_app_with_assets;
 use std::{
     collections::HashMap,
-    path::PathBuf,
     sync::{Arc, Mutex, MutexGuard},
 };
+
+use crate::{Comparison, FloatImage, app::headless_app_with_assets};
 
 /// The camera every scene is seen from.
 pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
@@ -39,42 +38,19 @@ const MAX_LOAD_FRAMES: u32 = 2_000;
 /// Frames to wait for a readback to arrive before giving up.
 const MAX_READBACK_FRAMES: u32 = 60;
 
-/// An RGBA32F image read back from the GPU.
-#[derive(Clone)]
-pub struct FloatImage {
-    pub width: u32,
-    pub height: u32,
-    pub pixels: Vec<[f32; 4]>,
-}
-
-impl FloatImage {
-    fn from_readback(width: u32, height: u32, bytes: &[u8]) -> Self {
-        let row_bytes = bytes.len() / height as usize;
-        let pixels = (0..height as usize)
-            .flat_map(|row| {
-                let start = row * row_bytes;
-                bytemuck::cast_slice::<u8, [f32; 4]>(&bytes[start..start + width as usize * 16])
-                    .to_vec()
-            })
-            .collect();
-        Self {
-            width,
-            height,
-            pixels,
-        }
-    }
-}
-
 /// Per-pixel inputs of the lighting equation: world position and normal (with texture maps
 /// also UV and tangent), and in alpha the tag of the material that covers the pixel (0 for
 /// background).
 pub struct SurfaceInputs<M: Material = PhongMaterial> {
+    /// World position in xyz, material tag in alpha.
     pub positions: FloatImage,
+    /// The interpolated world normal (not normalized) in xyz, material tag in alpha.
     pub normals: FloatImage,
     /// UV in xy, the tangent's handedness in z (see `SurfaceInput::UvAndTangentSign`).
     pub uvs: Option<FloatImage>,
     /// The interpolated tangent's xyz.
     pub tangents: Option<FloatImage>,
+    /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
 }
 
@@ -83,6 +59,7 @@ struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
 
 /// A headless app with a float render target, the Phong plugin and a camera.
 pub struct Harness {
+    /// The app; [`Self::world_mut`] reaches its main world.
     pub app: App,
     /// Held while the harness lives: one harness renders at a time. Phong materials take
     /// their shadow variant from a process-wide flag (`PhongMaterialKey::shadows`), which
@@ -158,6 +135,7 @@ impl Harness {
         }
     }
 
+    /// The app's main world, where scenes are spawned and edited.
     pub fn world_mut(&mut self) -> &mut World {
         self.app.world_mut()
     }
@@ -165,7 +143,6 @@ impl Harness {
     /// Loads the scene file at `path` (in the asset folder), spawns it, waits until it and
     /// every file it names have loaded, and sees it from its own camera
     /// ([`Self::adopt_scene_camera`]). A file that fails to load is an error with its message.
-    #[allow(dead_code, reason = "not used by the benchmark")]
     pub fn load_scene(&mut self, path: &str) -> Result<Handle<PhongScene>, String> {
         let world = self.app.world_mut();
         let handle: Handle<PhongScene> = world.resource::<AssetServer>().load(path.to_owned());
@@ -214,10 +191,6 @@ impl Harness {
     }
 
     /// Moves the camera to `position`, looking at the origin (before `capture_inputs`).
-    #[allow(
-        dead_code,
-        reason = "used by the benchmark example, which includes this file"
-    )]
     pub fn look_from(&mut self, position: Vec3) {
         let world = self.app.world_mut();
         let mut camera = world.query_filtered::<&mut Transform, With<Camera3d>>();
@@ -274,10 +247,6 @@ impl Harness {
     }
 
     /// As [`Self::capture_inputs`], with the UVs and tangents that texture maps need.
-    #[allow(
-        dead_code,
-        reason = "used by the texture tests, not by the benchmark example that includes this file"
-    )]
     pub fn capture_inputs_with_maps(&mut self) -> SurfaceInputs {
         self.capture::<PhongMaterial>(true)
     }
@@ -430,132 +399,4 @@ impl Harness {
         }
         comparison
     }
-}
-
-/// The result of comparing a rendered image with the reference model.
-pub struct Comparison {
-    width: u32,
-    height: u32,
-    pub lit_pixels: usize,
-    /// Largest `|actual - expected| / max(1, |expected|)` over all channels of lit pixels.
-    pub max_error: f64,
-    pub worst_pixel: Option<(u32, u32, [f32; 3], DVec3)>,
-    /// Pixels not covered by a mesh whose color is not the clear color.
-    pub stray_pixels: usize,
-    /// Covered pixels the reference could not judge (on a discontinuity).
-    pub skipped_pixels: usize,
-    actual: Vec<[f32; 3]>,
-    expected: Vec<[f32; 3]>,
-}
-
-impl Comparison {
-    fn new(width: u32, height: u32) -> Self {
-        let count = (width * height) as usize;
-        Self {
-            width,
-            height,
-            lit_pixels: 0,
-            max_error: 0.0,
-            worst_pixel: None,
-            stray_pixels: 0,
-            skipped_pixels: 0,
-            actual: vec![[0.0; 3]; count],
-            expected: vec![[0.0; 3]; count],
-        }
-    }
-
-    fn record_background(&mut self, index: usize, color: [f32; 4]) {
-        if color != [0.0; 4] {
-            self.stray_pixels += 1;
-        }
-        self.actual[index] = [color[0], color[1], color[2]];
-    }
-
-    fn record(&mut self, index: usize, color: [f32; 4], expected: DVec3) {
-        let actual = [color[0], color[1], color[2]];
-        self.actual[index] = actual;
-        self.expected[index] = expected.as_vec3().to_array();
-        self.lit_pixels += 1;
-        let error = (0..3)
-            .map(|c| {
-                let difference = f64::from(actual[c]) - expected[c];
-                if difference.is_nan() {
-                    f64::INFINITY
-                } else {
-                    difference.abs() / expected[c].abs().max(1.0)
-                }
-            })
-            .fold(0.0, f64::max);
-        if error > self.max_error || self.worst_pixel.is_none() {
-            self.max_error = error;
-            let (x, y) = (index as u32 % self.width, index as u32 / self.width);
-            self.worst_pixel = Some((x, y, actual, expected));
-        }
-    }
-
-    /// Asserts that every lit pixel is within `tolerance` (relative to `max(1, |expected|)`)
-    /// and that some pixels were lit; writes actual, expected and difference PNGs under
-    /// `target/render-tests/` when it fails.
-    pub fn assert_within(&self, case: &str, tolerance: f64) {
-        println!(
-            "{case}: {} lit pixels ({} skipped), largest error {:.3e} (tolerance {tolerance:.1e}) at {:?}",
-            self.lit_pixels, self.skipped_pixels, self.max_error, self.worst_pixel
-        );
-        let failed = self.lit_pixels == 0 || self.stray_pixels > 0 || self.max_error > tolerance;
-        if failed {
-            let directory = self.write_pngs(case);
-            panic!(
-                "{case}: largest error {:.3e} exceeds {tolerance:.1e}, or no lit pixels ({}), \
-                 or {} pixels drawn outside every mesh; images in {}",
-                self.max_error,
-                self.lit_pixels,
-                self.stray_pixels,
-                directory.display()
-            );
-        }
-    }
-
-    fn write_pngs(&self, case: &str) -> PathBuf {
-        // `CARGO_TARGET_TMPDIR` is set for tests; the benchmark example includes this file too.
-        let directory = option_env!("CARGO_TARGET_TMPDIR")
-            .and_then(|tmp| {
-                PathBuf::from(tmp)
-                    .parent()
-                    .map(|target| target.join("render-tests"))
-            })
-            .unwrap_or_else(|| PathBuf::from("target/render-tests"));
-        std::fs::create_dir_all(&directory).expect("create target/render-tests");
-        let difference: Vec<[f32; 3]> = self
-            .actual
-            .iter()
-            .zip(&self.expected)
-            .map(|(a, e)| {
-                let d = (0..3).map(|c| (a[c] - e[c]).abs()).fold(0.0, f32::max);
-                // Scaled so that the tolerance band shows: 1e-3 is full white.
-                [d * 1000.0; 3]
-            })
-            .collect();
-        for (suffix, pixels) in [
-            ("actual", &self.actual),
-            ("expected", &self.expected),
-            ("difference", &difference),
-        ] {
-            let path = directory.join(format!("{case}-{suffix}.png"));
-            save_srgb_png(&path, self.width, self.height, pixels);
-        }
-        directory
-    }
-}
-
-/// Writes linear RGB pixels as an 8-bit sRGB PNG.
-pub fn save_srgb_png(path: &std::path::Path, width: u32, height: u32, pixels: &[[f32; 3]]) {
-    let bytes: Vec<u8> = pixels
-        .iter()
-        .flat_map(|rgb| {
-            let srgb = Color::linear_rgb(rgb[0], rgb[1], rgb[2]).to_srgba();
-            [srgb.red, srgb.green, srgb.blue].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-        })
-        .collect();
-    image::save_buffer(path, &bytes, width, height, image::ExtendedColorType::Rgb8)
-        .expect("write PNG");
 }

@@ -2,7 +2,7 @@
 //! frames themselves.
 
 use bevy::{
-    app::PluginsState,
+    app::{PluginGroupBuilder, PluginsState},
     log::LogPlugin,
     prelude::*,
     render::{RenderApp, pipelined_rendering::PipelinedRenderingPlugin},
@@ -11,28 +11,39 @@ use bevy::{
 };
 use bevy_phong::PhongPlugin;
 
+/// Bevy's default plugins without a window: no primary window, no winit event loop, and an
+/// app that does not exit when it has no window.
+pub fn headless_plugins() -> PluginGroupBuilder {
+    DefaultPlugins
+        .set(WindowPlugin {
+            primary_window: None,
+            exit_condition: ExitCondition::DontExit,
+            ..default()
+        })
+        .disable::<WinitPlugin>()
+}
+
 /// An app with Bevy's default plugins (no window, no log, no pipelined rendering) and
 /// [`PhongPlugin`], plus what `add_plugins` adds, built and ready to `update`. Rendering
 /// happens inside `update`, so the render world can be read between updates.
+///
+/// # Panics
+///
+/// Without a render device (no Vulkan driver), with a message that says what to install.
 pub fn headless_app(add_plugins: impl FnOnce(&mut App)) -> App {
     headless_app_with_assets(AssetPlugin::default().file_path, add_plugins)
 }
 
-/// [`headless_app`] whose assets load from `asset_root` (relative to the crate, or absolute).
+/// [`headless_app`] whose assets load from `asset_root` (relative to the crate being run, or
+/// absolute).
 pub fn headless_app_with_assets(asset_root: String, add_plugins: impl FnOnce(&mut App)) -> App {
     let mut app = App::new();
     app.add_plugins(
-        DefaultPlugins
+        headless_plugins()
             .set(AssetPlugin {
                 file_path: asset_root,
                 ..default()
             })
-            .set(WindowPlugin {
-                primary_window: None,
-                exit_condition: ExitCondition::DontExit,
-                ..default()
-            })
-            .disable::<WinitPlugin>()
             .disable::<LogPlugin>()
             .disable::<PipelinedRenderingPlugin>(),
     )

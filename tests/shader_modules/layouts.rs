@@ -1,6 +1,7 @@
 //! The Rust structs the crate writes for the GPU have the layout the WGSL declares: sizes and
-//! field offsets as naga reflects them from `src/shaders/types.wgsl`.
+//! field offsets as naga lays out the structs of the composed module `bevy_phong::types`.
 
+use crate::library::library;
 use bevy::render::render_resource::ShaderType;
 use bevy_phong::{
     PhongMaterialUniform,
@@ -9,14 +10,9 @@ use bevy_phong::{
 };
 use std::mem::offset_of;
 
-/// The WGSL module `bevy_phong::types`, without its preprocessor directives.
+/// The WGSL module `bevy_phong::types`, composed.
 fn types_module() -> naga::Module {
-    let source: String = include_str!("../src/shaders/types.wgsl")
-        .lines()
-        .filter(|line| !line.trim_start().starts_with('#'))
-        .collect::<Vec<_>>()
-        .join("\n");
-    naga::front::wgsl::parse_str(&source).expect("types.wgsl parses")
+    library().module("bevy_phong::types", &[])
 }
 
 /// `(size, [(member, offset)])` of the WGSL struct `name`, as naga's front end lays it out.
@@ -25,7 +21,7 @@ fn wgsl_struct(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
         .types
         .iter()
         .find(|(_, ty)| ty.name.as_deref() == Some(name))
-        .unwrap_or_else(|| panic!("struct {name} in types.wgsl"));
+        .unwrap_or_else(|| panic!("struct {name} in bevy_phong::types"));
     let naga::TypeInner::Struct { members, span } = &ty.inner else {
         panic!("{name} is a struct");
     };

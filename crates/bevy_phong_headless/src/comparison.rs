@@ -1,0 +1,116 @@
+//! [`Comparison`]: a rendered frame against the reference model, pixel by pixel.
+
+use bevy::math::DVec3;
+use std::path::PathBuf;
+
+use crate::float_image::{render_tests_directory, save_srgb_png};
+
+/// The result of comparing a rendered image with the reference model.
+pub struct Comparison {
+    width: u32,
+    height: u32,
+    /// Pixels covered by a mesh and judged.
+    pub lit_pixels: usize,
+    /// Largest `|actual - expected| / max(1, |expected|)` over all channels of lit pixels.
+    pub max_error: f64,
+    /// Where the largest error is: `(x, y, actual, expected)`.
+    pub worst_pixel: Option<(u32, u32, [f32; 3], DVec3)>,
+    /// Pixels not covered by a mesh whose color is not the clear color.
+    pub stray_pixels: usize,
+    /// Covered pixels the reference could not judge (on a discontinuity).
+    pub skipped_pixels: usize,
+    actual: Vec<[f32; 3]>,
+    expected: Vec<[f32; 3]>,
+}
+
+impl Comparison {
+    pub(crate) fn new(width: u32, height: u32) -> Self {
+        let count = (width * height) as usize;
+        Self {
+            width,
+            height,
+            lit_pixels: 0,
+            max_error: 0.0,
+            worst_pixel: None,
+            stray_pixels: 0,
+            skipped_pixels: 0,
+            actual: vec![[0.0; 3]; count],
+            expected: vec![[0.0; 3]; count],
+        }
+    }
+
+    pub(crate) fn record_background(&mut self, index: usize, color: [f32; 4]) {
+        if color != [0.0; 4] {
+            self.stray_pixels += 1;
+        }
+        self.actual[index] = [color[0], color[1], color[2]];
+    }
+
+    pub(crate) fn record(&mut self, index: usize, color: [f32; 4], expected: DVec3) {
+        let actual = [color[0], color[1], color[2]];
+        self.actual[index] = actual;
+        self.expected[index] = expected.as_vec3().to_array();
+        self.lit_pixels += 1;
+        let error = (0..3)
+            .map(|c| {
+                let difference = f64::from(actual[c]) - expected[c];
+                if difference.is_nan() {
+                    f64::INFINITY
+                } else {
+                    difference.abs() / expected[c].abs().max(1.0)
+                }
+            })
+            .fold(0.0, f64::max);
+        if error > self.max_error || self.worst_pixel.is_none() {
+            self.max_error = error;
+            let (x, y) = (index as u32 % self.width, index as u32 / self.width);
+            self.worst_pixel = Some((x, y, actual, expected));
+        }
+    }
+
+    /// Asserts that every lit pixel is within `tolerance` (relative to `max(1, |expected|)`)
+    /// and that some pixels were lit; writes actual, expected and difference PNGs under
+    /// `target/render-tests/` when it fails.
+    pub fn assert_within(&self, case: &str, tolerance: f64) {
+        println!(
+            "{case}: {} lit pixels ({} skipped), largest error {:.3e} (tolerance {tolerance:.1e}) at {:?}",
+            self.lit_pixels, self.skipped_pixels, self.max_error, self.worst_pixel
+        );
+        let failed = self.lit_pixels == 0 || self.stray_pixels > 0 || self.max_error > tolerance;
+        if failed {
+            let directory = self.write_pngs(case);
+            panic!(
+                "{case}: largest error {:.3e} exceeds {tolerance:.1e}, or no lit pixels ({}), \
+                 or {} pixels drawn outside every mesh; images in {}",
+                self.max_error,
+                self.lit_pixels,
+                self.stray_pixels,
+                directory.display()
+            );
+        }
+    }
+
+    fn write_pngs(&self, case: &str) -> PathBuf {
+        let directory = render_tests_directory();
+        std::fs::create_dir_all(&directory).expect("create target/render-tests");
+        let difference: Vec<[f32; 3]> = self
+            .actual
+            .iter()
+            .zip(&self.expected)
+            .map(|(a, e)| {
+                let d = (0..3).map(|c| (a[c] - e[c]).abs()).fold(0.0, f32::max);
+                // Scaled so that the tolerance band shows: 1e-3 is full white.
+                [d * 1000.0; 3]
+            })
+            .collect();
+        for (suffix, pixels) in [
+            ("actual", &self.actual),
+            ("expected", &self.expected),
+            ("difference", &difference),
+        ] {
+            let path = directory.join(format!("{case}-{suffix}.png"));
+            save_srgb_png(&path, self.width, self.height, pixels);
+        }
+        directory
+    }
+}

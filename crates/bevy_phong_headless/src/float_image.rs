@@ -1,0 +1,67 @@
+//! Linear float images read back from the GPU, and writing them as PNG.
+
+use bevy::color::Color;
+use std::path::{Path, PathBuf};
+
+/// An RGBA32F image read back from the GPU: linear values, rows top to bottom.
+#[derive(Clone)]
+pub struct FloatImage {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width * height` pixels, row by row.
+    pub pixels: Vec<[f32; 4]>,
+}
+
+impl FloatImage {
+    /// The image in `bytes`, a texture readback whose rows may be padded to the device's
+    /// row alignment.
+    pub(crate) fn from_readback(width: u32, height: u32, bytes: &[u8]) -> Self {
+        let row_bytes = bytes.len() / height as usize;
+        let pixels = (0..height as usize)
+            .flat_map(|row| {
+                let start = row * row_bytes;
+                bytemuck::cast_slice::<u8, [f32; 4]>(&bytes[start..start + width as usize * 16])
+                    .to_vec()
+            })
+            .collect();
+        Self {
+            width,
+            height,
+            pixels,
+        }
+    }
+}
+
+/// Writes linear RGB pixels as an 8-bit sRGB PNG (values outside 0–1 clipped).
+///
+/// # Panics
+///
+/// When the file cannot be written.
+pub fn save_srgb_png(path: &Path, width: u32, height: u32, pixels: &[[f32; 3]]) {
+    let bytes: Vec<u8> = pixels
+        .iter()
+        .flat_map(|rgb| {
+            let srgb = Color::linear_rgb(rgb[0], rgb[1], rgb[2]).to_srgba();
+            [srgb.red, srgb.green, srgb.blue].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+        })
+        .collect();
+    image::save_buffer(path, &bytes, width, height, image::ExtendedColorType::Rgb8)
+        .expect("write PNG");
+}
+
+/// `target/render-tests` of the build that made the running binary: the nearest folder above
+/// it that Cargo marked as a target folder (with a `CACHEDIR.TAG`), else `target` in the
+/// working folder.
+pub(crate) fn render_tests_directory() -> PathBuf {
+    let target = std::env::current_exe()
+        .ok()
+        .and_then(|exe| {
+            exe.ancestors()
+                .find(|folder| folder.join("CACHEDIR.TAG").is_file())
+                .map(Path::to_path_buf)
+        })
+        .unwrap_or_else(|| PathBuf::from("target"));
+    target.join("render-tests")
+}

@@ -1,0 +1,27 @@
+//! # bevy_phong_headless
+//!
+//! Renders `bevy_phong` scenes without a window and reads them back as linear floats: the
+//! harness that `bevy_phong`'s render tests, its `render_scene` example and its benchmark
+//! share.
+//!
+//! - [`headless_app`] builds an app with Bevy's renderer and `PhongPlugin`, no window, no
+//!   log and no pipelined rendering: the caller drives frames with `App::update`, and the
+//!   render world can be read between frames.
+//! - [`Harness`] adds a camera rendering into an `Rgba32Float` image, waits for pipelines
+//!   ([`Harness::settle`]), reads frames back ([`Harness::render_next_frame`]) and the
+//!   per-pixel inputs each pixel was lit with ([`Harness::capture_inputs`]), and compares a
+//!   frame with `bevy_phong::reference` pixel by pixel ([`Harness::compare`], giving a
+//!   [`Comparison`]).
+//!
+//! It renders on whatever Vulkan device wgpu picks; `WGPU_ADAPTER_NAME=llvmpipe` selects
+//! Mesa's software renderer, on which the render tests' tolerances were set.
+
+mod app;
+mod comparison;
+mod float_image;
+mod harness;
+
+pub use app::{headless_app, headless_app_with_assets, headless_plugins};
+pub use comparison::Comparison;
+pub use float_image::{FloatImage, save_srgb_png};
+pub use harness::{CAMERA_POSITION, Harness, SurfaceInputs};

@@ -1,0 +1,111 @@
+//! Every entry shader composes and validates in every variant it is specialized in, and
+//! every module of the crate, composed alone (all its functions, used or not), with every
+//! combination of the crate's defs. A WGSL error in a branch no render test draws fails here,
+//! with the variants it breaks and the defs they share.
+
+use crate::{
+    library::{
+        CONSTANT_COLOR, CONTRACT_KERNEL, PHONG_MATERIAL, SEARCHLIGHT, SHADOW_CASTER,
+        SURFACE_INPUTS, library,
+    },
+    variants::{self, Variant},
+};
+use bevy::shader::ShaderDefVal;
+use std::{collections::BTreeSet, time::Instant};
+
+/// Failing variants listed by name before the rest are only counted.
+const LISTED_FAILURES: usize = 8;
+
+/// Composes and validates `path` in each of `variants`; panics with the variants that fail,
+/// the defs they all have and some passing variant lacks, and the first error in full.
+fn assert_every_variant_validates(path: &str, variants: &[Variant]) {
+    let start = Instant::now();
+    let library = library();
+    let mut composer = library.composer_for(path);
+    let (failed, passed): (Vec<_>, Vec<_>) = variants
+        .iter()
+        .map(|variant| {
+            (
+                variant,
+                library.compose(&mut composer, path, &variant.defs).err(),
+            )
+        })
+        .partition(|(_, error)| error.is_some());
+    println!(
+        "{path}: {} variants composed and validated in {:.2} s, {} failed",
+        variants.len(),
+        start.elapsed().as_secs_f64(),
+        failed.len()
+    );
+    let Some((first, Some(error))) = failed.first() else {
+        return;
+    };
+    let names: Vec<&str> = failed
+        .iter()
+        .take(LISTED_FAILURES)
+        .map(|(variant, _)| variant.name.as_str())
+        .collect();
+    let common = |group: &[(&Variant, Option<String>)]| -> BTreeSet<String> {
+        group
+            .iter()
+            .map(|(variant, _)| variant.defs.iter().map(def_name).collect::<BTreeSet<_>>())
+            .reduce(|all, defs| &all & &defs)
+            .unwrap_or_default()
+    };
+    let in_every_passing = common(&passed);
+    let suspects: BTreeSet<String> = &common(&failed) - &in_every_passing;
+    panic!(
+        "{path}: {} of {} variants fail, among them {names:#?}\n\
+         defs every failing variant has (and not every passing one): {suspects:?}\n\
+         the first ({}):\n{error}",
+        failed.len(),
+        variants.len(),
+        first.name
+    );
+}
+
+fn def_name(def: &ShaderDefVal) -> String {
+    match def {
+        ShaderDefVal::Bool(name, _) | ShaderDefVal::Int(name, _) | ShaderDefVal::UInt(name, _) => {
+            name.clone()
+        }
+    }
+}
+
+#[test]
+fn every_module_of_the_crate_validates_whole_with_every_combination_of_its_defs() {
+    let library = library();
+    let modules = library.crate_modules();
+    assert!(modules.len() >= 6, "the crate's modules: {modules:?}");
+    let variants = variants::phong_def_combinations();
+    assert_eq!(
+        variants.len(),
+        3 << 6,
+        "every subset of the six defs, each without, with hard and with soft shadows"
+    );
+    for module in modules {
+        assert_every_variant_validates(module, &variants);
+    }
+}
+
+#[test]
+fn every_phong_material_variant_validates() {
+    assert_every_variant_validates(PHONG_MATERIAL, &variants::phong_material());
+}
+
+#[test]
+fn every_searchlight_variant_validates() {
+    assert_every_variant_validates(SEARCHLIGHT, &variants::phong_material());
+}
+
+#[test]
+fn every_surface_inputs_and_constant_color_variant_validates() {
+    assert_every_variant_validates(SURFACE_INPUTS, &variants::plain_material());
+    assert_every_variant_validates(CONSTANT_COLOR, &variants::plain_material());
+}
+
+#[test]
+fn the_shadow_caster_and_the_contract_kernel_validate() {
+    assert_every_variant_validates(SHADOW_CASTER, &variants::without_defs());
+    assert_every_variant_validates(CONTRACT_KERNEL, &variants::without_defs());
+}

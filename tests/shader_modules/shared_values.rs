@@ -1,0 +1,158 @@
+//! Values that Rust writes and WGSL reads, or that both name, agree: read from the composed
+//! naga modules and compared with the Rust constants.
+
+use crate::{library::library, variants};
+use bevy::{
+    prelude::default,
+    render::render_resource::{
+        BindingType, BufferBindingType, SamplerBindingType, TextureSampleType, TextureViewDimension,
+    },
+};
+use bevy_phong::{
+    PhongMaterial, PhongMaterialUniform, SpecularModel,
+    render::{GpuLightGridHeader, PhongSceneBindings},
+    shadows::GpuShadowView,
+};
+use naga::{Expression, Literal};
+
+fn global_u32(module: &naga::Module, expression: naga::Handle<Expression>) -> Option<u32> {
+    match module.global_expressions[expression] {
+        Expression::Literal(Literal::U32(value)) => Some(value),
+        _ => None,
+    }
+}
+
+/// The `u32` constant `name` of `module`.
+fn constant(module: &naga::Module, name: &str) -> u32 {
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, constant)| constant.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("constant {name}"));
+    global_u32(module, constant.init).unwrap_or_else(|| panic!("{name} is a u32"))
+}
+
+fn flags(material: PhongMaterial) -> u32 {
+    PhongMaterialUniform::from(&material).flags
+}
+
+#[test]
+fn material_flags_are_the_wgsl_constants() {
+    let types = library().module("bevy_phong::types", &[]);
+    let phong = constant(&types, "SPECULAR_MODEL_PHONG");
+    let blinn_phong = constant(&types, "SPECULAR_MODEL_BLINN_PHONG");
+    let flip_y = constant(&types, "FLIP_NORMAL_MAP_Y");
+    assert_eq!(PhongMaterialUniform::FLIP_NORMAL_MAP_Y, flip_y);
+    assert_eq!(flags(PhongMaterial::default()), phong);
+    let blinn = PhongMaterial {
+        specular_model: SpecularModel::BlinnPhong,
+        ..default()
+    };
+    assert_eq!(flags(blinn.clone()), blinn_phong);
+    let flipped = PhongMaterial {
+        flip_normal_map_y: true,
+        ..blinn
+    };
+    assert_eq!(flags(flipped), blinn_phong | flip_y);
+}
+
+#[test]
+fn shadow_projection_kinds_are_the_wgsl_constants() {
+    let types = library().module("bevy_phong::types", &[]);
+    assert_eq!(
+        GpuShadowView::ORTHOGRAPHIC,
+        constant(&types, "SHADOW_PROJECTION_ORTHOGRAPHIC")
+    );
+    assert_eq!(
+        GpuShadowView::PERSPECTIVE,
+        constant(&types, "SHADOW_PROJECTION_PERSPECTIVE")
+    );
+}
+
+/// What a binding holds, in words both sides can be brought to.
+fn wgsl_binding_kind(module: &naga::Module, variable: &naga::GlobalVariable) -> String {
+    match (&variable.space, &module.types[variable.ty].inner) {
+        (naga::AddressSpace::Storage { access }, _) if *access == naga::StorageAccess::LOAD => {
+            "read-only storage buffer".into()
+        }
+        (naga::AddressSpace::Storage { .. }, _) => "writable storage buffer".into(),
+        (naga::AddressSpace::Uniform, _) => "uniform buffer".into(),
+        (
+            _,
+            naga::TypeInner::Image {
+                dim: naga::ImageDimension::D2,
+                arrayed: true,
+                class: naga::ImageClass::Depth { multi: false },
+            },
+        ) => "2D depth texture array".into(),
+        (_, naga::TypeInner::Sampler { comparison: true }) => "comparison sampler".into(),
+        (_, other) => format!("{other:?}"),
+    }
+}
+
+fn rust_binding_kind(binding: &BindingType) -> String {
+    match binding {
+        BindingType::Buffer {
+            ty: BufferBindingType::Storage { read_only: true },
+            ..
+        } => "read-only storage buffer".into(),
+        BindingType::Texture {
+            sample_type: TextureSampleType::Depth,
+            view_dimension: TextureViewDimension::D2Array,
+            multisampled: false,
+        } => "2D depth texture array".into(),
+        BindingType::Sampler(SamplerBindingType::Comparison) => "comparison sampler".into(),
+        other => format!("{other:?}"),
+    }
+}
+
+#[test]
+fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
+    let defs = variants::plain_material().swap_remove(0).defs;
+    let bindings = library().module("bevy_phong::bindings", &defs);
+    let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
+    let variable = |name: &str| {
+        bindings
+            .global_variables
+            .iter()
+            .map(|(_, variable)| variable)
+            .find(|variable| variable.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("bevy_phong::bindings::{name}"))
+    };
+    let named = [
+        ("lights", PhongSceneBindings::LIGHTS),
+        ("light_grid", PhongSceneBindings::LIGHT_GRID),
+        ("shadow_views", PhongSceneBindings::SHADOW_VIEWS),
+        ("shadow_maps", PhongSceneBindings::SHADOW_MAPS),
+        ("shadow_sampler", PhongSceneBindings::SHADOW_SAMPLER),
+    ];
+    for (name, binding) in named {
+        assert_eq!(
+            variable(name).binding,
+            Some(naga::ResourceBinding { group, binding }),
+            "{name}"
+        );
+    }
+    let entries = PhongSceneBindings::layout_entries();
+    assert_eq!(entries.len(), named.len());
+    for entry in entries {
+        let (name, _) = named
+            .iter()
+            .find(|(_, binding)| *binding == entry.binding)
+            .unwrap_or_else(|| panic!("binding {} has a name", entry.binding));
+        assert_eq!(
+            wgsl_binding_kind(&bindings, variable(name)),
+            rust_binding_kind(&entry.ty),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn the_shader_reads_each_grid_cell_record_at_the_rust_stride() {
+    let types = library().module("bevy_phong::types", &[]);
+    assert_eq!(
+        constant(&types, "GRID_CELL_WORDS"),
+        GpuLightGridHeader::CELL_WORDS
+    );
+}

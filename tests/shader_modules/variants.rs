@@ -1,0 +1,215 @@
+//! The shader defs each entry shader is specialized with: the crate's own (from
+//! `PhongMaterialKey::shader_defs`, for every key on every kind of mesh) and those Bevy's
+//! mesh and material pipelines add.
+
+use bevy::{
+    asset::RenderAssetUsages,
+    mesh::{Mesh, MeshVertexBufferLayoutRef, MeshVertexBufferLayouts, PrimitiveTopology},
+    pbr::{
+        MATERIAL_BIND_GROUP_INDEX, TONEMAPPING_LUT_SAMPLER_BINDING_INDEX,
+        TONEMAPPING_LUT_TEXTURE_BINDING_INDEX,
+    },
+    shader::ShaderDefVal,
+};
+use bevy_phong::PhongMaterialKey;
+use std::collections::BTreeSet;
+
+/// One set of shader defs, with a name that says where it comes from.
+pub struct Variant {
+    /// The mesh's attributes, the camera, the crate's defs.
+    pub name: String,
+    pub defs: Vec<ShaderDefVal>,
+}
+
+/// The vertex attributes of the meshes a material may be drawn on: without UVs, with UVs
+/// (Bevy's primitive shapes), with UVs and tangents (`Mesh::with_generated_tangents`), with
+/// tangents but no UVs.
+fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
+    let mut layouts = MeshVertexBufferLayouts::default();
+    let kinds: [(&str, bool, bool); 4] = [
+        ("positions, normals", false, false),
+        ("positions, normals, UVs", true, false),
+        ("positions, normals, UVs, tangents", true, true),
+        ("positions, normals, tangents", false, true),
+    ];
+    kinds
+        .into_iter()
+        .map(|(name, uvs, tangents)| {
+            let mut mesh = Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::all())
+                .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, vec![[0.0f32; 3]; 3])
+                .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 0.0, 1.0]; 3]);
+            if uvs {
+                mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, vec![[0.0f32; 2]; 3]);
+            }
+            if tangents {
+                mesh.insert_attribute(Mesh::ATTRIBUTE_TANGENT, vec![[1.0f32, 0.0, 0.0, 1.0]; 3]);
+            }
+            (name, mesh.get_mesh_vertex_buffer_layout(&mut layouts))
+        })
+        .collect()
+}
+
+/// The defs Bevy's `MeshPipeline::specialize` derives from a mesh's vertex attributes
+/// (bevy_pbr 0.19, `render/mesh.rs`), with those it always adds.
+fn mesh_defs(layout: &MeshVertexBufferLayoutRef) -> Vec<ShaderDefVal> {
+    let mut defs: Vec<ShaderDefVal> = vec![
+        "MESH_PIPELINE".into(),
+        "VERTEX_OUTPUT_INSTANCE_INDEX".into(),
+    ];
+    let attributes = [
+        (Mesh::ATTRIBUTE_POSITION, &["VERTEX_POSITIONS"][..]),
+        (Mesh::ATTRIBUTE_NORMAL, &["VERTEX_NORMALS"]),
+        (Mesh::ATTRIBUTE_UV_0, &["VERTEX_UVS", "VERTEX_UVS_A"]),
+        (Mesh::ATTRIBUTE_UV_1, &["VERTEX_UVS", "VERTEX_UVS_B"]),
+        (Mesh::ATTRIBUTE_TANGENT, &["VERTEX_TANGENTS"]),
+        (Mesh::ATTRIBUTE_COLOR, &["VERTEX_COLORS"]),
+    ];
+    for (attribute, names) in attributes {
+        if layout.0.contains(attribute) {
+            defs.extend(names.iter().map(|&name| name.into()));
+        }
+    }
+    defs
+}
+
+/// The defs Bevy's mesh pipeline derives from the camera, for two cameras: the render
+/// tests' (no MSAA, no tone mapping) and a default `Camera3d` (4× MSAA, tone mapping in the
+/// shader with Bevy's default method, deband dithering). Both see in perspective, with Bevy's
+/// default shadow filter, and add the material bind group's index.
+fn view_setups() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
+    let common = || -> Vec<ShaderDefVal> {
+        vec![
+            "VIEW_PROJECTION_PERSPECTIVE".into(),
+            "SHADOW_FILTER_METHOD_GAUSSIAN".into(),
+            "IRRADIANCE_VOLUMES_ARE_USABLE".into(),
+            ShaderDefVal::Int("SCREEN_SPACE_SPECULAR_TRANSMISSION_BLUR_TAPS".into(), 8),
+            ShaderDefVal::UInt(
+                "MATERIAL_BIND_GROUP".into(),
+                MATERIAL_BIND_GROUP_INDEX as u32,
+            ),
+        ]
+    };
+    let mut default_camera = common();
+    default_camera.extend([
+        "MULTISAMPLED".into(),
+        "TONEMAP_IN_SHADER".into(),
+        ShaderDefVal::UInt(
+            "TONEMAPPING_LUT_TEXTURE_BINDING_INDEX".into(),
+            TONEMAPPING_LUT_TEXTURE_BINDING_INDEX,
+        ),
+        ShaderDefVal::UInt(
+            "TONEMAPPING_LUT_SAMPLER_BINDING_INDEX".into(),
+            TONEMAPPING_LUT_SAMPLER_BINDING_INDEX,
+        ),
+        "TONEMAP_METHOD_TONY_MC_MAPFACE".into(),
+        "DEBAND_DITHER".into(),
+    ]);
+    vec![
+        ("render tests' camera", common()),
+        ("default Camera3d", default_camera),
+    ]
+}
+
+/// Every `PhongMaterialKey`: each of its switches on and off.
+fn material_keys() -> Vec<PhongMaterialKey> {
+    (0..1u32 << 8)
+        .map(|bits| {
+            let bit = |index: u32| bits & (1 << index) != 0;
+            PhongMaterialKey {
+                specular: bit(0),
+                base_color_texture: bit(1),
+                specular_texture: bit(2),
+                emissive_texture: bit(3),
+                normal_map: bit(4),
+                alpha_mask: bit(5),
+                shadows: bit(6),
+                soft_shadows: bit(7),
+            }
+        })
+        .collect()
+}
+
+/// The fragment variants of a material that specializes as `PhongMaterial` does
+/// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
+/// some key gives on some mesh, under each camera.
+pub fn phong_material() -> Vec<Variant> {
+    let mut variants = Vec::new();
+    for (mesh, layout) in mesh_layouts() {
+        let phong_defs: BTreeSet<Vec<&str>> = material_keys()
+            .iter()
+            .map(|key| {
+                let mut defs = key.shader_defs(&layout);
+                defs.sort_unstable();
+                defs
+            })
+            .collect();
+        for (view, view_defs) in view_setups() {
+            for phong in &phong_defs {
+                let mut defs = mesh_defs(&layout);
+                defs.extend(view_defs.iter().cloned());
+                defs.extend(phong.iter().map(|&def| def.into()));
+                variants.push(Variant {
+                    name: format!("mesh of {mesh}, {view}, {phong:?}"),
+                    defs,
+                });
+            }
+        }
+    }
+    variants
+}
+
+/// Every combination of the crate's own defs (all keys on a mesh with UVs and tangents, where
+/// none is left out), seen by the render tests' camera: for the crate's modules composed
+/// alone, whose other defs the entry shaders vary.
+pub fn phong_def_combinations() -> Vec<Variant> {
+    let (mesh, layout) = mesh_layouts()
+        .into_iter()
+        .find(|(mesh, _)| *mesh == "positions, normals, UVs, tangents")
+        .expect("a mesh with UVs and tangents");
+    let (view, view_defs) = view_setups().swap_remove(0);
+    let combinations: BTreeSet<Vec<&str>> = material_keys()
+        .iter()
+        .map(|key| {
+            let mut defs = key.shader_defs(&layout);
+            defs.sort_unstable();
+            defs
+        })
+        .collect();
+    combinations
+        .into_iter()
+        .map(|phong| {
+            let mut defs = mesh_defs(&layout);
+            defs.extend(view_defs.iter().cloned());
+            defs.extend(phong.iter().map(|&def| def.into()));
+            Variant {
+                name: format!("mesh of {mesh}, {view}, {phong:?}"),
+                defs,
+            }
+        })
+        .collect()
+}
+
+/// The fragment variants of a material that adds no defs of its own (`SurfaceInputsMaterial`,
+/// the benchmark's constant color): one per mesh and camera.
+pub fn plain_material() -> Vec<Variant> {
+    let mut variants = Vec::new();
+    for (mesh, layout) in mesh_layouts() {
+        for (view, view_defs) in view_setups() {
+            let mut defs = mesh_defs(&layout);
+            defs.extend(view_defs);
+            variants.push(Variant {
+                name: format!("mesh of {mesh}, {view}"),
+                defs,
+            });
+        }
+    }
+    variants
+}
+
+/// A pipeline the crate builds itself, without defs (the shadow caster, the contract kernel).
+pub fn without_defs() -> Vec<Variant> {
+    vec![Variant {
+        name: "no defs".into(),
+        defs: Vec::new(),
+    }]
+}
