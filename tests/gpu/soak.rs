@@ -10,8 +10,9 @@
 //! - no NaN or infinite pixel in a float readback every [`READBACK_EVERY`] frames;
 //! - the resident set grows by at most [`RSS_GROWTH_BOUND`] after the warm-up;
 //! - the frame time follows the light count, not the frame number: for each band of light
-//!   counts, the median frame time of the falling half of the run is at most
-//!   [`BAND_RATIO_BOUND`] times that of the rising half, and the mean of the falling
+//!   counts with enough frames (the long run), the median frame time of the falling half of
+//!   the run is at most [`BAND_RATIO_BOUND`] times that of the rising half; over all counts
+//!   (either run), the mean of the falling
 //!   half at most [`HALF_RATIO_BOUND`] times that of the rising half.
 //!
 //! ```sh
@@ -55,11 +56,18 @@ const RSS_GROWTH_BOUND: u64 = 48 << 20;
 /// light count and the same shadow-casting lights, so the ratio is 1 but for chance: which
 /// lights reach every pixel, how many meshes there are, shadow maps allocated the first time
 /// a caster appears, other work on the machine. With a dozen frames per band in the short
-/// run, chance alone reached 1.7 in the band of the fewest lights (a few ms a frame). A cost
+/// run, chance alone reached 1.7 (see also [`MIN_BAND_FRAMES`]). A cost
 /// that grows with the frame number (records left in the light buffer, a grid never
 /// cleared, change detection running over dead entities) grows without bound and passes
 /// any such ratio within the long run.
 const BAND_RATIO_BOUND: f64 = 2.5;
+/// Bands with fewer frames than this in either half are printed but not held to
+/// [`BAND_RATIO_BOUND`]: the short run has a dozen frames per band, in which the light count
+/// changes by 40 a frame and a frame's time still carries some of the previous frame's work
+/// (more lights in the falling half, fewer in the rising one); its medians differed by a
+/// factor of up to 4 in the band of the fewest lights. The long run has about 160 frames
+/// per band and changes the count by 3 a frame.
+const MIN_BAND_FRAMES: usize = 30;
 /// Largest ratio of the mean frame time of the falling half to that of the rising half,
 /// over all light counts: chance evens out over the whole half; a cost growing with the
 /// frame number does not.
@@ -717,7 +725,9 @@ fn soak_of_random_light_and_mesh_churn_stays_finite_flat_and_steady() {
             continue;
         }
         let ratio = quantile(&late, 0.5) / quantile(&early, 0.5);
-        worst_ratio = worst_ratio.max(ratio);
+        if early.len().min(late.len()) >= MIN_BAND_FRAMES {
+            worst_ratio = worst_ratio.max(ratio);
+        }
         println!(
             "  {:>4}..{:<4} lights: {}, {}, ratio {ratio:.2}",
             band * (PEAK_LIGHTS + 1) / BANDS,
@@ -740,7 +750,7 @@ fn soak_of_random_light_and_mesh_churn_stays_finite_flat_and_steady() {
          panics {panics}\n  readbacks {readbacks}, covered pixels {covered_pixels}, \
          NaN or infinite pixels {bad_pixels}\n  most lights {most_lights}\n  \
          RSS at warm-up {:.1} MB, at the end {:.1} MB, peak {:.1} MB, growth {:.1} MB \
-         (bound {:.0} MB)\n  frame time, falling half / rising half: worst band \
+         (bound {:.0} MB)\n  frame time, falling half / rising half: worst band held to the bound \
          {worst_ratio:.2} (bound {BAND_RATIO_BOUND}), whole halves {whole_ratio:.2} (bound \
          {HALF_RATIO_BOUND})",
         start.elapsed().as_secs_f64(),
@@ -764,7 +774,7 @@ fn soak_of_random_light_and_mesh_churn_stays_finite_flat_and_steady() {
         megabytes(end_rss)
     );
     assert!(
-        worst_ratio > 0.0 && worst_ratio <= BAND_RATIO_BOUND,
+        worst_ratio <= BAND_RATIO_BOUND,
         "for the same light count, frames late in the run take {worst_ratio:.2} times as \
          long as early on"
     );
