@@ -46,9 +46,9 @@ const SEED: u64 = 0x50a4_0013;
 /// Largest growth of the resident set between the end of the warm-up and the end of the
 /// run, in bytes. The warm-up has already reached the peak light count with shadows on, so
 /// every buffer, shadow map and pipeline is as large as it gets; what may still grow is
-/// allocator fragmentation and the driver's caches. Measured on lavapipe: a few MB for 300
-/// frames, about 10 MB for 2,000. A leak of one light buffer (3,000 × 80 bytes) per frame
-/// would add 72 MB in 300 frames.
+/// allocator fragmentation and the driver's caches. Measured on lavapipe: 0 to 2 MB in the
+/// 150 frames of the short run, 14 MB in the 2,000 of the long one. A leak of one light
+/// buffer (3,000 × 80 bytes) per frame would add 36 MB in 150 frames.
 const RSS_GROWTH_BOUND: u64 = 48 << 20;
 
 /// Largest ratio of the median frame time in the falling half of the run to that in the
