@@ -142,9 +142,13 @@ fn for_each_cell(header: &GpuLightGridHeader, light: &GpuLight, mut visit: impl 
     let cell_size = header.cell_size;
     let dimensions = UVec3::from(header.dimensions);
     let center = Vec3::from(light.position) - origin;
-    let far_corner = dimensions.as_vec3() * cell_size;
-    let margin = cell_size * 1e-3
-        + 8.0 * f32::EPSILON * (origin.abs().max_element() + far_corner.max_element());
+    // In f64: a grid stretched by lights near f32::MAX has its far corner (the last cell's
+    // edge, rounded up) past f32::MAX, which in f32 would make the margin infinite and put
+    // every light in every cell.
+    let far_corner = f64::from(dimensions.max_element()) * f64::from(cell_size);
+    let margin = (f64::from(cell_size) * 1e-3
+        + 8.0 * f64::from(f32::EPSILON) * (f64::from(origin.abs().max_element()) + far_corner))
+        as f32;
     let reach = light.range + margin;
     // For coordinates ≥ 0 the (saturating) conversion truncates, which is `floor`.
     let cell_of = |x: Vec3| {
@@ -273,6 +277,30 @@ mod tests {
         assert!(dimensions.element_product() <= MAX_CELLS);
         assert_eq!(lights_at(&grid, Vec3::splat(1e6)), vec![1]);
         assert_eq!(lights_at(&grid, Vec3::splat(-1e6)), vec![0]);
+    }
+
+    #[test]
+    fn lights_near_the_largest_float_keep_every_light_in_its_own_cells() {
+        // Lights at the edge of f32's range stretch the grid to cells of ~1e37: the grid's
+        // far corner then lies past f32::MAX. Every light of reach far below a cell still
+        // touches at most 2 cells along each axis, 8 in all.
+        let mut lights: Vec<GpuLight> = (0..100)
+            .map(|i| point(Vec3::new(i as f32 * 0.1, 0.0, 0.0), 2.0))
+            .collect();
+        for far in [Vec3::X, Vec3::Y, Vec3::Z] {
+            lights.push(point(far * f32::MAX, 2.5));
+        }
+        let mut grid = LightGrid::default();
+        grid.build(&lights, 0..lights.len(), lights.len()..lights.len());
+        let cells = UVec3::from(grid.header().dimensions).element_product() as usize;
+        assert!(
+            grid.data().len() <= cells * CELL_WORDS + lights.len() * 8,
+            "{} words for {cells} cells and {} lights",
+            grid.data().len(),
+            lights.len()
+        );
+        assert!(lights_at(&grid, Vec3::ZERO).contains(&0));
+        assert!(lights_at(&grid, Vec3::X * f32::MAX).contains(&100));
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! the scenes that load, and checks what came of each: an error that says where, or lights
 //! and materials whose every float is finite.
 
+use crate::cases::{CANARY_SHININESS, Case, Kind, write_asset_folder};
 use bevy::{
     asset::{AssetPlugin, LoadState, UntypedAssetId},
     camera::visibility::VisibilitySystems,
@@ -24,10 +25,6 @@ use std::{
     },
     time::{Duration, Instant},
 };
-
-/// The shininess of the canary, a material file just outside the asset folder that no case
-/// may read.
-const CANARY_SHININESS: f32 = 4242.0;
 
 /// How long a batch may take to load before its unfinished files count as hung.
 const BATCH_TIMEOUT: Duration = Duration::from_secs(60);
@@ -54,37 +51,6 @@ pub fn count_panics() {
 pub fn panics() -> (usize, Vec<String>) {
     let messages = PANIC_MESSAGES.lock().unwrap_or_else(|e| e.into_inner());
     (PANICS.load(Ordering::SeqCst), messages.clone())
-}
-
-/// Scene or material file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Kind {
-    /// `*.phong_scene.ron`, in `scenes/`.
-    Scene,
-    /// `*.phong.ron`, in `materials/`.
-    Material,
-}
-
-impl Kind {
-    /// The asset path of case `index`.
-    pub fn path(self, index: usize) -> String {
-        match self {
-            Kind::Scene => format!("scenes/case{index}.phong_scene.ron"),
-            Kind::Material => format!("materials/case{index}.phong.ron"),
-        }
-    }
-}
-
-/// One generated file.
-pub struct Case {
-    /// Its number, which names the file.
-    pub index: usize,
-    /// Scene or material.
-    pub kind: Kind,
-    /// What generated it, for reports.
-    pub generator: &'static str,
-    /// Its contents.
-    pub bytes: Vec<u8>,
 }
 
 /// What the cases came to.
@@ -130,22 +96,10 @@ pub struct Harness {
 }
 
 impl Harness {
-    /// An asset folder under `root` with `scenes/`, `materials/` and `files` (the material
-    /// files the seeds name, as `(path, text)`) and, beside it, the canary.
-    pub fn new(root: &Path, files: &[(&str, &str)]) -> Self {
-        let _ = std::fs::remove_dir_all(root);
-        let assets = root.join("assets");
-        for folder in ["scenes", "materials"] {
-            std::fs::create_dir_all(assets.join(folder)).unwrap();
-        }
-        for (path, text) in files {
-            std::fs::write(assets.join(path), text).unwrap();
-        }
-        std::fs::write(
-            root.join("canary.phong.ron"),
-            format!("(shininess: {CANARY_SHININESS:?})"),
-        )
-        .unwrap();
+    /// An app whose asset folder is `root/assets` ([`write_asset_folder`]), with the
+    /// canary's absolute path.
+    pub fn new(root: &Path) -> (Self, String) {
+        let (assets, canary) = write_asset_folder(root);
         let mut app = App::new();
         app.add_plugins((
             MinimalPlugins,
@@ -166,17 +120,7 @@ impl Harness {
             propagate_visibility.in_set(VisibilitySystems::VisibilityPropagate),
         );
         app.update();
-        Self { app, assets }
-    }
-
-    /// The absolute path of the canary, for cases that name it.
-    pub fn canary(&self) -> String {
-        self.assets
-            .parent()
-            .unwrap()
-            .join("canary.phong.ron")
-            .to_string_lossy()
-            .into_owned()
+        (Self { app, assets }, canary)
     }
 
     /// Writes, loads and (scenes) spawns every case of `batch`, then checks the light buffer

@@ -11,17 +11,34 @@
 //! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
 //! - `shadows`: every pixel's shadowing against rays cast in `f64` to each light, within a
 //!   band around the exact shadow's edge;
-//! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel.
+//! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel;
+//! - `huge_vectors`: light directions of any scale and colors past the bound, against the
+//!   reference model;
+//! - `fuzzed_scenes`: a sample of the fuzzer's files (`tests/fuzz`), rendered: no NaN or
+//!   infinite pixel;
+//! - `soak`: hundreds (or thousands) of frames of random light and mesh churn with invalid
+//!   values: no panic, no NaN or infinite pixel, flat memory, a steady frame time.
 
+#[path = "../fuzz/cases.rs"]
+mod cases;
 mod contract;
 mod culling;
 mod frames;
+mod fuzzed_scenes;
+mod huge_vectors;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
+#[path = "../fuzz/mutations.rs"]
+mod mutations;
+#[path = "../fuzz/random.rs"]
+mod random;
 mod scene_files;
 mod searchlight;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
 mod shadows;
+#[path = "../fuzz/shapes.rs"]
+mod shapes;
+mod soak;
 mod stress;
 mod texture_maps;

@@ -10,6 +10,7 @@ use bevy::{
     prelude::*,
     render::{
         RenderApp,
+        error_handler::RenderErrorHandler,
         gpu_readback::{Readback, ReadbackComplete},
         render_resource::{PipelineCache, TextureFormat, TextureUsages},
         view::Msaa,
@@ -101,6 +102,11 @@ impl Harness {
                 .add_plugins(SurfaceInputsPlugin);
             add_plugins(app);
         });
+        // A wgpu validation error would otherwise stop rendering without a word (the log is
+        // off) and surface only as a readback that never arrives.
+        app.insert_resource(RenderErrorHandler(|error, _, _| {
+            panic!("render error ({:?}): {}", error.ty, error.description)
+        }));
         let received = Received::default();
         let sink = received.clone();
         app.insert_resource(received);
