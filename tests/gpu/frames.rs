@@ -257,17 +257,12 @@ fn material_changes_show_in_the_next_frame() {
     check(&mut harness, &inputs, "material_without_specular");
 }
 
-/// Pixels a mesh covers: the background is cleared to alpha 0, materials draw alpha 1.
-fn covered_pixels(image: &FloatImage) -> usize {
-    image.pixels.iter().filter(|pixel| pixel[3] > 0.0).count()
-}
-
 #[test]
 fn a_new_shader_variant_leaves_a_gap_once_and_cached_ones_none() {
     let (mut harness, inputs, materials) = scene();
     harness.world_mut().spawn(red_point_light());
     harness.settle();
-    let all_drawn = covered_pixels(&harness.render_next_frame());
+    let all_drawn = harness.render_next_frame().covered_pixels();
 
     // First switch to the variant without specular: Bevy skips the floor until it compiled.
     let start = std::time::Instant::now();
@@ -275,7 +270,7 @@ fn a_new_shader_variant_leaves_a_gap_once_and_cached_ones_none() {
         floor.specular_strength = 0.0
     });
     let mut gap_frames = 0;
-    while covered_pixels(&harness.render_next_frame()) < all_drawn {
+    while harness.render_next_frame().covered_pixels() < all_drawn {
         gap_frames += 1;
         assert!(gap_frames < 600, "the variant never compiled");
     }
@@ -291,7 +286,7 @@ fn a_new_shader_variant_leaves_a_gap_once_and_cached_ones_none() {
             floor.specular_strength = strength
         });
         let rendered = harness.render_next_frame();
-        assert_eq!(covered_pixels(&rendered), all_drawn, "{case}: no gap");
+        assert_eq!(rendered.covered_pixels(), all_drawn, "{case}: no gap");
         harness
             .compare(&rendered, &inputs)
             .assert_within(case, TOLERANCE);

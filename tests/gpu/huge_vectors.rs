@@ -42,12 +42,11 @@ fn asset_folder(case: &str, files: &[(&str, String)]) -> std::path::PathBuf {
 }
 
 fn assert_finite(case: &str, image: &FloatImage) {
-    let bad = image
-        .pixels
-        .iter()
-        .filter(|p| p.iter().any(|c| !c.is_finite()))
-        .count();
-    assert_eq!(bad, 0, "{case}: NaN or infinite pixels");
+    assert_eq!(
+        image.non_finite_pixels(),
+        0,
+        "{case}: NaN or infinite pixels"
+    );
 }
 
 /// The four directions of the scene file, as the file writes them and as `f64` holds them

@@ -510,13 +510,7 @@ impl Soak {
     /// Reads the frame back: (covered pixels, NaN or infinite pixels).
     fn read_back(&mut self) -> (usize, usize) {
         let image = self.harness.render_next_frame();
-        let covered = image.pixels.iter().filter(|p| p[3] > 0.0).count();
-        let bad = image
-            .pixels
-            .iter()
-            .filter(|p| p.iter().any(|c| !c.is_finite()))
-            .count();
-        (covered, bad)
+        (image.covered_pixels(), image.non_finite_pixels())
     }
 
     /// Every pipeline, buffer and table at its largest before measuring: a light of each

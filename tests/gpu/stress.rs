@@ -8,12 +8,8 @@ use bevy_phong_headless::{FloatImage, Harness};
 
 /// Asserts that `image` has covered pixels and that every pixel is finite.
 fn assert_finite(case: &str, image: &FloatImage) {
-    let bad = image
-        .pixels
-        .iter()
-        .filter(|p| p.iter().any(|c| !c.is_finite()))
-        .count();
-    let covered = image.pixels.iter().filter(|p| p[3] > 0.0).count();
+    let bad = image.non_finite_pixels();
+    let covered = image.covered_pixels();
     println!("{case}: {covered} covered pixels, {bad} NaN or infinite");
     assert!(covered > 0, "{case}: nothing was drawn");
     assert_eq!(bad, 0, "{case}: NaN or infinite pixels");

@@ -32,6 +32,20 @@ impl FloatImage {
             pixels,
         }
     }
+
+    /// Pixels with a NaN or infinite channel.
+    pub fn non_finite_pixels(&self) -> usize {
+        self.pixels
+            .iter()
+            .filter(|pixel| pixel.iter().any(|channel| !channel.is_finite()))
+            .count()
+    }
+
+    /// Pixels a mesh covers: the harness clears the background to alpha 0, materials draw
+    /// alpha 1.
+    pub fn covered_pixels(&self) -> usize {
+        self.pixels.iter().filter(|pixel| pixel[3] > 0.0).count()
+    }
 }
 
 /// Writes linear RGB pixels as an 8-bit sRGB PNG (values outside 0–1 clipped).
