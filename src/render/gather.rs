@@ -186,13 +186,6 @@ pub fn gather_lights(
         &mut state.records,
         with_shadow(PhongDirectionalLight::to_gpu),
     );
-    // Shadow-casting directional lights first (a stable sort keeps the others' order).
-    state.records.sort_by_key(|light| light.shadow == 0);
-    let shadowed_directional_count = state
-        .records
-        .iter()
-        .filter(|light| light.shadow != 0)
-        .count() as u32;
     push_visible(
         &point,
         &slots,
@@ -212,12 +205,10 @@ pub fn gather_lights(
         lights.retain_mut(|light| limit_reach(light, per_light_epsilon));
     }
 
-    // Unlimited reach first (every fragment loops over them), the shadow-casting lights of
-    // each kind leading, then the grid's lights (which cast no shadows).
-    let casts_shadow = |light: &GpuLight| light.shadow != 0;
-    let in_grid =
-        |light: &GpuLight| culling.grid && has_finite_reach(light) && !casts_shadow(light);
-    let plain = |light: &GpuLight| !casts_shadow(light) && !in_grid(light);
+    // Unlimited reach first (every fragment loops over them), then the grid's lights (the
+    // grid's loop applies no shadows, so shadow-casting lights stay out of it).
+    let in_grid = |light: &GpuLight| culling.grid && has_finite_reach(light) && light.shadow == 0;
+    let unlimited = |light: &GpuLight| !in_grid(light);
     let mut append = |lights: &[GpuLight], include: &dyn Fn(&GpuLight) -> bool| {
         let start = state.records.len();
         state
@@ -225,10 +216,8 @@ pub fn gather_lights(
             .extend(lights.iter().filter(|light| include(light)));
         (state.records.len() - start) as u32
     };
-    let shadowed_point_count = append(&state.points, &casts_shadow);
-    let point_count = shadowed_point_count + append(&state.points, &plain);
-    let shadowed_spot_count = append(&state.spots, &casts_shadow);
-    let spot_count = shadowed_spot_count + append(&state.spots, &plain);
+    let point_count = append(&state.points, &unlimited);
+    let spot_count = append(&state.spots, &unlimited);
     let grid_point_count = append(&state.points, &in_grid);
     let grid_spot_count = append(&state.spots, &in_grid);
     let grid_start = (directional_count + point_count + spot_count) as usize;
@@ -246,10 +235,6 @@ pub fn gather_lights(
         spot_count,
         grid_point_count,
         grid_spot_count,
-        shadowed_directional_count,
-        shadowed_point_count,
-        shadowed_spot_count,
-        padding: 0,
     };
     let lights_resized = state
         .buffer
@@ -362,7 +347,7 @@ mod tests {
     }
 
     #[test]
-    fn shadow_casting_lights_lead_their_kind_and_stay_out_of_the_grid() {
+    fn shadow_casting_lights_stay_out_of_the_grid() {
         let mut app = test_app(|_| {});
         let world = app.world_mut();
         world.spawn((
@@ -384,13 +369,9 @@ mod tests {
         let state = app.world().resource::<PhongLightBuffer>();
         let header = state.header();
         assert_eq!(
-            (
-                header.shadowed_point_count,
-                header.point_count,
-                header.grid_point_count
-            ),
-            (1, 1, 1),
-            "the shadow-casting light leads the unlimited run; the other is in the grid"
+            (header.point_count, header.grid_point_count),
+            (1, 1),
+            "the shadow-casting light is in the unlimited run; the other is in the grid"
         );
         assert_eq!(state.records()[0].position, [2.0, 1.0, 0.0]);
         assert_eq!(state.records()[0].shadow, 1, "its first view, plus one");

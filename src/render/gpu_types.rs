@@ -38,16 +38,14 @@ pub struct GpuLight {
 }
 
 /// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its
-/// `lights` array): 48 bytes.
+/// `lights` array): 32 bytes.
 ///
 /// The array that follows holds `directional_count` directional lights, then `point_count`
 /// point lights and `spot_count` spot lights of unlimited reach (every fragment loops over
 /// these), then `grid_point_count` point lights and `grid_spot_count` spot lights of finite
-/// reach, which fragments find through the light grid ([`GpuLightGridHeader`]). The first
-/// `shadowed_directional_count` directional lights, `shadowed_point_count` point lights and
-/// `shadowed_spot_count` spot lights of each run cast shadows; shadow-casting point and spot
-/// lights are never in the grid. Fragments loop over them apart, so that lights without
-/// shadows cost what they cost without the shadow code.
+/// reach, which fragments find through the light grid ([`GpuLightGridHeader`]).
+/// Shadow-casting point and spot lights are never in the grid (the grid's loop applies no
+/// shadows).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightsHeader {
@@ -63,14 +61,6 @@ pub struct GpuLightsHeader {
     pub grid_point_count: u32,
     /// Number of spot lights of finite reach at the end of the array (in the grid).
     pub grid_spot_count: u32,
-    /// How many of the directional lights, from the first, cast shadows.
-    pub shadowed_directional_count: u32,
-    /// How many of the point lights of unlimited reach, from the first, cast shadows.
-    pub shadowed_point_count: u32,
-    /// How many of the spot lights of unlimited reach, from the first, cast shadows.
-    pub shadowed_spot_count: u32,
-    /// Unused; the array starts at a 16-byte boundary.
-    pub padding: u32,
 }
 
 impl GpuLightsHeader {
@@ -121,5 +111,5 @@ impl Default for GpuLightGridHeader {
 }
 
 const _: () = assert!(size_of::<GpuLight>() == 80);
-const _: () = assert!(size_of::<GpuLightsHeader>() == 48);
+const _: () = assert!(size_of::<GpuLightsHeader>() == 32);
 const _: () = assert!(size_of::<GpuLightGridHeader>() == 32);

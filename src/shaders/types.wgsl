@@ -31,7 +31,8 @@ struct PhongLight {
 // `directional_count` directional lights,
 // `point_count` point lights and `spot_count` spot lights of unlimited reach (every fragment
 // loops over them), then `grid_point_count` point lights and `grid_spot_count` spot lights
-// of finite reach (fragments find these through the light grid), in that order.
+// of finite reach (fragments find these through the light grid), in that order. No
+// shadow-casting light is in the grid.
 struct PhongLights {
     ambient: vec3<f32>,
     directional_count: u32,
@@ -39,12 +40,6 @@ struct PhongLights {
     spot_count: u32,
     grid_point_count: u32,
     grid_spot_count: u32,
-    // The first this many directional, point and spot lights (of unlimited reach) cast
-    // shadows; no shadow-casting light is in the grid.
-    shadowed_directional_count: u32,
-    shadowed_point_count: u32,
-    shadowed_spot_count: u32,
-    padding: u32,
     lights: array<PhongLight>,
 }
 

@@ -86,22 +86,6 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
         offset("grid_spot_count"),
         offset_of!(GpuLightsHeader, grid_spot_count)
     );
-    for (name, rust) in [
-        (
-            "shadowed_directional_count",
-            offset_of!(GpuLightsHeader, shadowed_directional_count),
-        ),
-        (
-            "shadowed_point_count",
-            offset_of!(GpuLightsHeader, shadowed_point_count),
-        ),
-        (
-            "shadowed_spot_count",
-            offset_of!(GpuLightsHeader, shadowed_spot_count),
-        ),
-    ] {
-        assert_eq!(offset(name), rust, "{name}");
-    }
     assert_eq!(offset("lights"), size_of::<GpuLightsHeader>());
 }
 
