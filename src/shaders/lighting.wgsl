@@ -178,7 +178,7 @@ fn phong_light(
 
 // A directional light: L = -direction, no attenuation.
 fn directional_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
-    return phong_light(surface, -light.direction, light.color, light.specular);
+    return unshadowed_light(surface, light, LIGHT_DIRECTIONAL);
 }
 
 // The unit vector from the surface toward a light at `position` (L), and the light's
@@ -208,30 +208,12 @@ fn ray_toward(surface: PhongSurface, position: vec3<f32>, decay: vec3<f32>, rang
 
 // A point light: L toward its position, attenuated by distance.
 fn point_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
-    let ray = ray_toward(surface, light.position, light.decay, light.range);
-    if ray.attenuation == 0.0 {
-        return vec3<f32>(0.0);
-    }
-    return ray.attenuation * phong_light(surface, ray.to_light, light.color, light.specular);
+    return unshadowed_light(surface, light, LIGHT_POINT);
 }
 
 // A spot light: a point light times its cone factor.
 fn spot_light(surface: PhongSurface, light: PhongLight) -> vec3<f32> {
-    let ray = ray_toward(surface, light.position, light.decay, light.range);
-    if ray.attenuation == 0.0 {
-        return vec3<f32>(0.0);
-    }
-    let cone = spot_cone(
-        -ray.to_light,
-        light.direction,
-        light.outer_versine,
-        light.cone_scale,
-        light.spot_exponent,
-    );
-    if cone == 0.0 {
-        return vec3<f32>(0.0);
-    }
-    return (ray.attenuation * cone) * phong_light(surface, ray.to_light, light.color, light.specular);
+    return unshadowed_light(surface, light, LIGHT_SPOT);
 }
 
 // The built-in kinds of light, by where a record sits in the light buffer.
@@ -247,10 +229,11 @@ struct Incidence {
     attenuation: f32,
 }
 
-// The light of `kind` as `directional_light`, `point_light` and `spot_light` see it, with
-// the kind selected rather than branched on: one loop then lights every kind, and a SIMD
-// rasterizer on the CPU (lavapipe), which runs every branch and every loop at least once
-// under a mask, does one light's work per light instead of a loop's body per kind.
+// How the light of `kind` arrives at the surface point, with the kind selected rather than
+// branched on: one loop then lights every kind, and a SIMD rasterizer on the CPU
+// (lavapipe), which runs every branch and every loop at least once under a mask, does one
+// light's work per light instead of a loop's body per kind. `directional_light`,
+// `point_light` and `spot_light` are this, unshadowed.
 fn incidence(surface: PhongSurface, light: PhongLight, kind: u32) -> Incidence {
     let ray = ray_toward(surface, light.position, light.decay, light.range);
     let cone = spot_cone(-ray.to_light, light.direction, light.outer_versine, light.cone_scale, light.spot_exponent);
@@ -261,9 +244,14 @@ fn incidence(surface: PhongSurface, light: PhongLight, kind: u32) -> Incidence {
     );
 }
 
-// `directional_light`, `point_light` or `spot_light` by `kind`, with the light's color and
+// The term of a light of `kind` arriving as `incidence`, with the light's color and
 // specular color scaled by `factors` (its shadow factors; (1, 1) unshadowed).
 fn light_of_kind(surface: PhongSurface, light: PhongLight, kind: u32, incidence: Incidence, factors: vec2<f32>) -> vec3<f32> {
     let lit = phong_light(surface, incidence.to_light, light.color * factors.x, light.specular * factors.y);
     return select(lit, incidence.attenuation * lit, kind != LIGHT_DIRECTIONAL);
+}
+
+// The light of `kind` without shadows: `light_of_kind` with factors (1, 1).
+fn unshadowed_light(surface: PhongSurface, light: PhongLight, kind: u32) -> vec3<f32> {
+    return light_of_kind(surface, light, kind, incidence(surface, light, kind), vec2<f32>(1.0));
 }

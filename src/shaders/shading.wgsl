@@ -2,7 +2,7 @@
 #define_import_path bevy_phong::shading
 
 #import bevy_phong::bindings::material
-#import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface}
+#import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface, unshadowed_light}
 #import bevy_phong::scene::{ambient_color, directional_count, grid_cell_size, grid_dimensions, grid_origin, grid_word, light_at, point_count, spot_count}
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
@@ -74,7 +74,7 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     for (var slot = start; slot < end; slot += 1u) {
         let light = light_at(grid_word(slot));
         let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_start);
-        color += light_of_kind(surface, light, kind, incidence(surface, light, kind), vec2<f32>(1.0));
+        color += unshadowed_light(surface, light, kind);
     }
     return color;
 }
