@@ -367,7 +367,7 @@ fn time_against_error(options: &Options, directory: &Path) {
         });
     }
     println!(
-        "\nRun time against error: the field of {lights} point lights, with ranges (4 units) and \
+        "\nRun time against error, the field of {lights} point lights, with ranges (4 units) and \
          without (1 / (1 + 4d²)), at {size}² (error at {}²):\n\n{table}",
         accuracy::ERROR_SIZE
     );
