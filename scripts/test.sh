@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: unit tests, the headless render tests (on the Vulkan device; Mesa's
-# lavapipe where there is no GPU), the doc tests, and each example rendered headless. Installs a Vulkan driver first if
+# lavapipe where there is no GPU), the doc tests, and each example rendered headless; then
+# the render tests and the examples again under WebGL2's limits. Installs a Vulkan driver first if
 # there is none. The render tests compare against the reference model with tolerances set
 # on lavapipe, so they always run on it.
 set -euo pipefail
@@ -15,6 +16,8 @@ cargo test --doc "$@"
 for example in showcase searchlight orbiting_light many_lights textured_cubes; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
+# The showcase's sphere shows its three highlights where the lighting model puts them.
+cargo run --quiet --example showcase -- --check target/examples/showcase.png
 # A scene file rendered to PNG and OpenEXR, as the README shows.
 cargo run --quiet --example render_scene -- assets/scenes/shapes.phong_scene.ron \
     --out target/examples/render_scene --size 480x270
@@ -23,3 +26,14 @@ cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ro
 cargo run --quiet --example render_scene -- --help >/dev/null
 # The benchmark still runs (a small scene, two frames).
 cargo run --quiet --example bench -- --quick
+
+# Again under WebGL2's limits (no storage buffers: the scene data travels in a texture):
+# the render tests with the same tolerances, and every example.
+export WGPU_SETTINGS_PRIO=webgl2
+cargo test --test gpu "$@"
+for example in showcase searchlight orbiting_light many_lights textured_cubes; do
+    cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
+done
+cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png
+cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \
+    --out target/examples/webgl2/render_scene_shadows --size 480x270

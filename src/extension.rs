@@ -62,12 +62,16 @@
 //! }
 //! ```
 //!
-//! [`PhongLightKindBuffer<Lamp>`](PhongLightKindBuffer) holds its handle, for the material.
+//! [`PhongLightKindBuffer<Lamp>`](PhongLightKindBuffer) holds its handle, for the material,
+//! and a data texture with the same bytes ([`PhongLightKindBuffer::texture`]): devices
+//! without storage buffers (WebGL2, where the crate's own lights travel the same way) bind
+//! that instead.
 //!
 //! ## 3. The material
 //!
-//! The lamp lights meshes whose material binds its buffer: Bevy's `ExtendedMaterial` with
-//! [`PhongMaterial`](crate::PhongMaterial) as the base keeps every Phong field and adds the binding:
+//! The lamp lights meshes whose material binds its lights: Bevy's `ExtendedMaterial` with
+//! [`PhongMaterial`](crate::PhongMaterial) as the base keeps every Phong field and adds the
+//! binding. The data texture binds on every device:
 //!
 //! ```
 //! # use bevy::prelude::*;
@@ -87,15 +91,15 @@
 //! # }
 //! use bevy::{
 //!     pbr::{ExtendedMaterial, MaterialExtension},
-//!     render::{render_resource::AsBindGroup, storage::ShaderBuffer},
+//!     render::render_resource::AsBindGroup,
 //!     shader::ShaderRef,
 //! };
 //! use bevy_phong::{extension::PhongLightKindPlugin, prelude::*};
 //!
 //! #[derive(Asset, AsBindGroup, Reflect, Clone)]
 //! struct LampExtension {
-//!     #[storage(100, read_only)]
-//!     lamps: Handle<ShaderBuffer>,
+//!     #[texture(100, sample_type = "u_int")]
+//!     lamps: Handle<Image>,
 //! }
 //!
 //! impl MaterialExtension for LampExtension {
@@ -110,8 +114,10 @@
 //! }
 //! ```
 //!
-//! Create the material with the buffer's handle, from
-//! `Res<PhongLightKindBuffer<Lamp>>`: `LampExtension { lamps: buffer.handle().clone() }`.
+//! Create the material with the texture's handle, from
+//! `Res<PhongLightKindBuffer<Lamp>>`: `LampExtension { lamps: buffer.texture().clone() }`.
+//! An extension for native devices only can bind the storage buffer instead:
+//! `#[storage(100, read_only)] lamps: Handle<ShaderBuffer>` with `buffer.handle()`.
 //!
 //! Register the material with
 //! [`add_phong_material`](crate::PhongMaterialAppExt::add_phong_material) rather than
@@ -127,24 +133,36 @@
 //! #import bevy_pbr::{forward_io::VertexOutput, mesh_view_bindings::view}
 //! #import bevy_phong::{
 //!     bindings::material,
+//!     data_texture::data_texel,
 //!     lighting::{phong_light, normalize_or_zero},
 //!     shading::{material_surface, phong_shade},
 //! }
 //!
-//! @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> lamps: Lamps;
+//! @group(#{MATERIAL_BIND_GROUP}) @binding(100) var lamps: texture_2d<u32>;
+//!
+//! // Texel 0 holds the count; each 32-byte lamp takes 2 texels after it.
+//! fn lamp_at(index: u32) -> Lamp {
+//!     let a = data_texel(lamps, 1u + 2u * index);
+//!     let b = data_texel(lamps, 2u + 2u * index);
+//!     return Lamp(bitcast<vec3<f32>>(a.xyz), bitcast<vec3<f32>>(b.xyz));
+//! }
 //!
 //! @fragment
 //! fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
 //!     let surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
 //!     var color = phong_shade(surface);
-//!     for (var i = 0u; i < lamps.count; i += 1u) {
-//!         let lamp = lamps.lights[i];
+//!     let count = data_texel(lamps, 0u).x;
+//!     for (var i = 0u; i < count; i += 1u) {
+//!         let lamp = lamp_at(i);
 //!         let to_light = normalize_or_zero(lamp.position - surface.position);
 //!         color += phong_light(surface, to_light, lamp.color, lamp.color);
 //!     }
 //!     return vec4(color, material.base_color.a);
 //! }
 //! ```
+//!
+//! Bound as a storage buffer, the same lamps read `lamps.lights[i]` from
+//! `var<storage, read> lamps: Lamps` (the struct above).
 //!
 //! ## 5. The reference
 //!
@@ -184,17 +202,19 @@
 //! with the extended material run the new loop. Per frame, the extension's gather system
 //! checks its change queries and returns when nothing changed.
 
+use crate::render::DATA_TEXTURE_MAX_TEXELS;
 use crate::{
     plugin::PhongSystems,
     render::{
-        LightBuffer, LightBufferResized, LightChanges, LightQuery, MIN_CAPACITY, push_visible,
+        DataTexture, DataTextureWrite, LightBuffer, LightBufferResized, LightChanges, LightQuery,
+        MIN_CAPACITY, push_visible, words_of,
     },
     shadows::{PhongShadowRequest, ShadowRequests, ShadowSlots},
     validation::is_finite_transform,
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
-    asset::{Assets, Handle},
+    asset::{AssetApp, Assets, Handle},
     ecs::{
         change_detection::DetectChanges,
         component::Component,
@@ -203,6 +223,8 @@ use bevy::{
         schedule::IntoScheduleConfigs,
         system::{Res, ResMut},
     },
+    image::Image,
+    log::warn_once,
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
@@ -246,17 +268,33 @@ pub struct GpuLightCount {
     pub padding: [u32; 3],
 }
 
-/// The buffer that holds every visible `L`, for a material's `#[storage]` binding.
+/// Every visible `L`, for a material to bind: as a storage buffer ([`Self::handle`]) and
+/// as a data texture holding the same bytes ([`Self::texture`]), which devices without
+/// storage buffers (WebGL2) can bind too.
 #[derive(Resource)]
 pub struct PhongLightKindBuffer<L: PhongLightKind> {
     buffer: LightBuffer,
+    texture: DataTexture,
     records: Vec<L::Gpu>,
+    /// The header and records as `u32`s, for the texture.
+    words: Vec<u32>,
 }
 
 impl<L: PhongLightKind> PhongLightKindBuffer<L> {
-    /// The buffer asset to bind.
+    /// The storage buffer to bind with `#[storage(N, read_only)]`: a [`GpuLightCount`]
+    /// header, then the records.
     pub fn handle(&self) -> &Handle<ShaderBuffer> {
         self.buffer.handle()
+    }
+
+    /// The same bytes in a data texture, to bind with `#[texture(N, sample_type = "u_int")]`
+    /// on every device, WebGL2 included: texel 0 is the [`GpuLightCount`] header, record
+    /// `i` starts at texel `1 + i · size_of::<L::Gpu>() / 16`. WGSL reads texel `t` with
+    /// `bevy_phong::data_texture::data_texel(texture, t)`. It holds up to
+    /// [`DATA_TEXTURE_MAX_TEXELS`] texels; past
+    /// them the last records are left out, with a warning.
+    pub fn texture(&self) -> &Handle<Image> {
+        self.texture.handle()
     }
 
     /// The records last written.
@@ -285,13 +323,19 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
             )
         };
         crate::render::init_shader_buffers(app);
-        let handle = app
-            .world_mut()
+        if !app.world().contains_resource::<Assets<Image>>() {
+            app.init_asset::<Image>();
+        }
+        let world = app.world_mut();
+        let buffer = world
             .resource_mut::<Assets<ShaderBuffer>>()
             .reserve_handle();
+        let texture = world.resource_mut::<Assets<Image>>().reserve_handle();
         app.insert_resource(PhongLightKindBuffer::<L> {
-            buffer: LightBuffer::new(handle),
+            buffer: LightBuffer::new(buffer),
+            texture: DataTexture::new(texture),
             records: Vec::with_capacity(MIN_CAPACITY),
+            words: Vec::new(),
         })
         .add_systems(
             PostUpdate,
@@ -326,6 +370,7 @@ pub(crate) fn gather_light_kind<L: PhongLightKind>(
     mut changes: LightChanges<L>,
     mut state: ResMut<PhongLightKindBuffer<L>>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut images: ResMut<Assets<Image>>,
     mut resized: MessageWriter<LightBufferResized>,
 ) {
     let changed = changes.any() || slots.is_changed();
@@ -348,11 +393,37 @@ pub(crate) fn gather_light_kind<L: PhongLightKind>(
         count,
         padding: [0; 3],
     };
-    if state.buffer.write(&mut buffers, &header, &state.records) {
+    let buffer_resized = state.buffer.write(&mut buffers, &header, &state.records);
+    let texture_resized = write_texture::<L>(state, &mut images, header);
+    if buffer_resized || texture_resized {
         resized.write(LightBufferResized {
             buffer: state.buffer.handle().clone(),
         });
     }
+}
+
+/// Writes the header and records into the kind's data texture, leaving out the last records
+/// past its capacity (with a warning). Returns whether the texture changed size.
+fn write_texture<L: PhongLightKind>(
+    state: &mut PhongLightKindBuffer<L>,
+    images: &mut Assets<Image>,
+    mut header: GpuLightCount,
+) -> bool {
+    let record_texels = size_of::<L::Gpu>() / 16;
+    let room = (DATA_TEXTURE_MAX_TEXELS - 1) / record_texels;
+    if state.records.len() > room {
+        warn_once!(
+            "bevy_phong: {} {} lights do not fit their data texture ({room} do): the last ones are left out",
+            state.records.len(),
+            core::any::type_name::<L>()
+        );
+        header.count = room as u32;
+    }
+    let kept = &state.records[..state.records.len().min(room)];
+    state.words.clear();
+    state.words.extend(words_of(bytemuck::bytes_of(&header)));
+    state.words.extend(words_of(bytemuck::cast_slice(kept)));
+    state.texture.write(images, &state.words) == DataTextureWrite::Resized
 }
 
 #[cfg(test)]

@@ -113,6 +113,7 @@ impl Plugin for PhongPlugin {
             load_shader_library!(app, "shaders/types.wgsl");
             load_shader_library!(app, "shaders/lighting.wgsl");
             load_shader_library!(app, "shaders/bindings.wgsl");
+            load_shader_library!(app, "shaders/data_texture.wgsl");
             load_shader_library!(app, "shaders/scene.wgsl");
             load_shader_library!(app, "shaders/shading.wgsl");
             load_shader_library!(app, "shaders/texture_maps.wgsl");
@@ -126,6 +127,17 @@ impl Plugin for PhongPlugin {
             return;
         }
         crate::shadows::add_shadow_rendering(app);
+        // Where the device lacks storage buffers, the scene data also goes into a texture.
+        app.add_systems(
+            PostUpdate,
+            crate::render::pack_scene_texture
+                .after(gather_lights)
+                .in_set(PhongSystems::GatherLights),
+        );
+        app.sub_app_mut(RenderApp).add_systems(
+            bevy::render::RenderStartup,
+            crate::render::announce_scene_data_path,
+        );
         app.add_phong_material::<PhongMaterial>()
             .register_asset_loader(PhongMaterialLoader);
     }

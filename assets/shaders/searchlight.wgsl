@@ -1,9 +1,10 @@
 // The fragment stage of `SearchlitMaterial` (examples/searchlight): Phong lighting from the
-// crate's lights, plus every searchlight in the extension's buffer, each lit with the
+// crate's lights, plus every searchlight in the extension's data texture, each lit with the
 // crate's own `phong_light`.
 #import bevy_pbr::{forward_io::VertexOutput, mesh_view_bindings::view}
 #import bevy_phong::{
     bindings::material,
+    data_texture::data_texel,
     lighting::{distance_attenuation, phong_light},
     shading::{material_surface, phong_shade, receives_shadows},
     shadows::shadow_factors,
@@ -30,12 +31,37 @@ struct Searchlight {
     padding2: f32,
 }
 
-struct Searchlights {
-    count: u32,
-    lights: array<Searchlight>,
+// `PhongLightKindBuffer::texture`: texel 0 holds the count, then each searchlight takes 6
+// texels (96 bytes).
+@group(#{MATERIAL_BIND_GROUP}) @binding(100) var searchlights: texture_2d<u32>;
+
+fn searchlight_count() -> u32 {
+    return data_texel(searchlights, 0u).x;
 }
 
-@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> searchlights: Searchlights;
+fn searchlight_at(index: u32) -> Searchlight {
+    let first = 1u + 6u * index;
+    let a = data_texel(searchlights, first);
+    let b = data_texel(searchlights, first + 1u);
+    let c = data_texel(searchlights, first + 2u);
+    let d = data_texel(searchlights, first + 3u);
+    let e = data_texel(searchlights, first + 4u);
+    let f = data_texel(searchlights, first + 5u);
+    return Searchlight(
+        bitcast<vec3<f32>>(a.xyz),
+        bitcast<f32>(a.w),
+        bitcast<vec3<f32>>(b.xyz),
+        bitcast<f32>(b.w),
+        bitcast<vec3<f32>>(c.xyz),
+        c.w,
+        bitcast<vec3<f32>>(d.xyz),
+        d.w,
+        bitcast<vec3<f32>>(e.xyz),
+        bitcast<f32>(e.w),
+        bitcast<vec3<f32>>(f.xyz),
+        bitcast<f32>(f.w),
+    );
+}
 
 const HALF_SQRT_3: f32 = 0.8660254037844386;
 const FRAC_1_SQRT_2: f32 = 0.7071067811865476;
@@ -96,8 +122,9 @@ fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
     var surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
     surface.receives_shadows = receives_shadows(in.instance_index);
     var color = phong_shade(surface);
-    for (var index = 0u; index < searchlights.count; index += 1u) {
-        color += searchlight(surface, searchlights.lights[index]);
+    let count = searchlight_count();
+    for (var index = 0u; index < count; index += 1u) {
+        color += searchlight(surface, searchlight_at(index));
     }
     return vec4<f32>(color, material.base_color.a);
 }

@@ -9,7 +9,11 @@
 //! cargo run --example bench -- --quick  # a small smoke run (what CI runs)
 //! cargo run --example bench -- --scene showcase --size 1024 --no-variants  # one row
 //! cargo run --example bench -- --shadows  # only the cost of shadows
+//! cargo run --example bench -- --webgl2   # only the storage path beside the WebGL2 one
 //! ```
+//!
+//! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
+//! fourth table runs each of its measurements that way, in a process of its own.
 //!
 //! `--scene` (`showcase`, `field16`, `field256`, `field4096`) and `--size` may be repeated
 //! to pick rows of the frame-time table; `--culling` (`none`, `exact`, `default`) sets the
@@ -17,7 +21,10 @@
 //! gives the cost of shadows: the showcase on a floor with its three lights casting shadows
 //! or not, Phong beside `StandardMaterial` (each with 1024² shadow maps), at 1024²
 //! (`--shadows` runs it alone; its rows take turns over five rounds, each the median of
-//! its rounds).
+//! its rounds). A fourth table sets the scene data's two paths side by side: storage
+//! buffers, and the data texture that devices without them (WebGL2) read, on a device
+//! created with WebGL2's limits; the showcase and the 256-light field at 1024², taking turns
+//! in the same way (`--webgl2` runs it alone).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -40,6 +47,10 @@ struct Options {
     variants: bool,
     /// Whether to run only the shadow table.
     shadows_only: bool,
+    /// Whether to run only the table of the storage path beside the WebGL2 one.
+    fallback_only: bool,
+    /// Whether to print one measurement and exit (see `one_row_in_own_process`).
+    one_row: bool,
     /// The shadow table's image size.
     shadow_size: u32,
     /// How many times each row of the shadow table is measured, taking turns.
@@ -59,12 +70,17 @@ impl Options {
         let mut options = Self::defaults(args.iter().any(|arg| arg == "--quick"));
         options.variants = !args.iter().any(|arg| arg == "--no-variants");
         options.shadows_only = args.iter().any(|arg| arg == "--shadows");
+        options.fallback_only = args.iter().any(|arg| arg == "--webgl2");
+        options.one_row = args.iter().any(|arg| arg == "--one-row");
         let values = |flag: &str| -> Vec<String> {
             args.windows(2)
                 .filter(|pair| pair[0] == flag)
                 .map(|pair| pair[1].clone())
                 .collect()
         };
+        if let Some(frames) = values("--frames").first().and_then(|v| v.parse().ok()) {
+            options.frames.measured = frames;
+        }
         for name in values("--culling") {
             match name.as_str() {
                 "none" => options.culling = PhongLightCulling::NONE,
@@ -104,6 +120,8 @@ impl Options {
             return Self {
                 variants: true,
                 shadows_only: false,
+                fallback_only: false,
+                one_row: false,
                 shadow_size: 128,
                 shadow_rounds: 1,
                 culling: PhongLightCulling::default(),
@@ -121,6 +139,8 @@ impl Options {
         Self {
             variants: true,
             shadows_only: false,
+            fallback_only: false,
+            one_row: false,
             shadow_size: 1024,
             shadow_rounds: 5,
             culling: PhongLightCulling::default(),
@@ -198,17 +218,124 @@ fn ms(duration: Duration) -> f64 {
 
 fn main() {
     let options = Options::from_args();
+    if options.one_row {
+        return one_row(&options);
+    }
     let directory = Path::new("target/bench");
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
     }
-    if !options.shadows_only {
+    let everything = !options.shadows_only && !options.fallback_only;
+    if everything {
         frame_times(&options, directory);
         if options.variants {
             time_against_error(&options, directory);
         }
     }
-    shadow_costs(&options, directory);
+    if everything || options.shadows_only {
+        shadow_costs(&options, directory);
+    }
+    if everything || options.fallback_only {
+        fallback_costs(&options, directory);
+    }
+}
+
+/// The median of each row's measurements over `rounds` rounds in which the rows take turns:
+/// a change in the machine's load then falls on every row alike, not on one.
+/// `measure(row, round)` gives one measurement in ms.
+fn alternating_medians<const ROWS: usize>(
+    rounds: usize,
+    mut measure: impl FnMut(usize, usize) -> f64,
+) -> [f64; ROWS] {
+    let mut times = [const { Vec::new() }; ROWS];
+    for round in 0..rounds {
+        for (row, row_times) in times.iter_mut().enumerate() {
+            row_times.push(measure(row, round));
+        }
+    }
+    times.map(|mut times: Vec<f64>| {
+        times.sort_by(f64::total_cmp);
+        times[times.len() / 2]
+    })
+}
+
+/// The scene data in storage buffers beside the data texture of devices without them
+/// (WebGL2), all measured in this run. Each measurement runs in a process of its own, the
+/// texture's with `WGPU_SETTINGS_PRIO=webgl2`, as a game gets its device: Bevy 0.19 does
+/// not load shaders in a second app of one process whose device has WebGL2's limits after
+/// one with full limits.
+fn fallback_costs(options: &Options, directory: &Path) {
+    let size = options.shadow_size;
+    let scenes = [
+        ("showcase", Scene::Showcase),
+        ("field256", Scene::Field { lights: 256 }),
+    ];
+    let paths = [
+        ("storage buffers", None),
+        ("data texture (WebGL2 limits)", Some("webgl2")),
+    ];
+    let mut csv = String::from("scene,size,path,round,median_ms\n");
+    let times: [f64; 4] = alternating_medians(options.shadow_rounds, |row, round| {
+        let ((argument, scene), (path, priority)) = (scenes[row / 2], paths[row % 2]);
+        let median = one_row_in_own_process(argument, size, options.frames.measured, priority);
+        let _ = writeln!(csv, "{},{size},{path},{round},{median:.3}", scene.name());
+        eprintln!(
+            "{} {size}² {path}, round {round}: {median:.1} ms",
+            scene.name()
+        );
+        median
+    });
+    let mut table = String::from(
+        "| scene | size | storage buffers ms | data texture ms | texture / storage |\n|---|---|---|---|---|\n",
+    );
+    for ((_, scene), pair) in scenes.iter().zip(times.chunks(2)) {
+        let _ = writeln!(
+            table,
+            "| {} | {size}² | {:.1} | {:.1} | {:.2} |",
+            scene.name(),
+            pair[0],
+            pair[1],
+            pair[1] / pair[0]
+        );
+    }
+    println!(
+        "\nThe scene data's two paths, Phong, median ms (the median of {} rounds):\n\n{table}",
+        options.shadow_rounds
+    );
+    write(&directory.join("webgl2.csv"), &csv);
+}
+
+/// The Phong median frame time (ms) of `scene` at `size`², measured by this benchmark in a
+/// child process (`--one-row`) whose `WGPU_SETTINGS_PRIO` is `priority` (unset for `None`).
+fn one_row_in_own_process(scene: &str, size: u32, frames: usize, priority: Option<&str>) -> f64 {
+    let mut command = std::process::Command::new(std::env::current_exe().expect("own path"));
+    command.args(["--one-row", "--scene", scene, "--size", &size.to_string()]);
+    command.args(["--frames", &frames.to_string()]);
+    match priority {
+        Some(priority) => command.env("WGPU_SETTINGS_PRIO", priority),
+        None => command.env_remove("WGPU_SETTINGS_PRIO"),
+    };
+    let output = command.output().expect("the benchmark runs itself");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    stdout.trim().parse().unwrap_or_else(|_| {
+        panic!(
+            "--one-row {scene} {size} printed {stdout:?}: {}",
+            String::from_utf8_lossy(&output.stderr)
+        )
+    })
+}
+
+/// `--one-row`: prints the Phong median frame time (ms) of the first `--scene` at the first
+/// `--size`, for [`one_row_in_own_process`].
+fn one_row(options: &Options) {
+    let time = median_frame_time(
+        options.scenes[0],
+        options.sizes[0],
+        Shading::Phong(Some(SpecularModel::Phong)),
+        options.culling,
+        options.frames,
+    );
+    println!("{:.3}", ms(time));
 }
 
 /// The cost of shadows: the showcase on a floor with its lights casting shadows or not,
@@ -223,30 +350,22 @@ fn shadow_costs(options: &Options, directory: &Path) {
         ("Standard", Shading::Standard, false),
         ("Standard", Shading::Standard, true),
     ];
-    // The rows take turns, round after round, and each keeps the median of its rounds: a
-    // change in the machine's load then falls on every row alike, not on one.
-    let mut rounds = [const { Vec::new() }; 4];
-    for round in 0..options.shadow_rounds {
-        for ((name, shading, shadows), times) in rows.iter().zip(&mut rounds) {
-            let scene = Scene::ShowcaseOnFloor { shadows: *shadows };
-            let median = ms(median_frame_time(
-                scene,
-                size,
-                *shading,
-                options.culling,
-                options.frames,
-            ));
-            let _ = writeln!(csv, "{size},{name},{shadows},{round},{median:.3}");
-            eprintln!(
-                "{} {size}² {name}, round {round}: {median:.1} ms",
-                scene.name()
-            );
-            times.push(median);
-        }
-    }
-    let times = rounds.map(|mut times| {
-        times.sort_by(f64::total_cmp);
-        times[times.len() / 2]
+    let times: [f64; 4] = alternating_medians(options.shadow_rounds, |row, round| {
+        let (name, shading, shadows) = rows[row];
+        let scene = Scene::ShowcaseOnFloor { shadows };
+        let median = ms(median_frame_time(
+            scene,
+            size,
+            shading,
+            options.culling,
+            options.frames,
+        ));
+        let _ = writeln!(csv, "{size},{name},{shadows},{round},{median:.3}");
+        eprintln!(
+            "{} {size}² {name}, round {round}: {median:.1} ms",
+            scene.name()
+        );
+        median
     });
     let [phong_off, phong_on, standard_off, standard_on] = times;
     let table = format!(

@@ -8,7 +8,7 @@
 use bevy::{
     pbr::{ExtendedMaterial, MaterialExtension},
     prelude::*,
-    render::{render_resource::AsBindGroup, storage::ShaderBuffer},
+    render::render_resource::AsBindGroup,
     shader::ShaderRef,
 };
 use bevy_phong::{
@@ -177,19 +177,21 @@ impl PhongLightKind for Searchlight {
     }
 }
 
-/// The searchlight buffer binding that [`SearchlitMaterial`] adds to `PhongMaterial`.
+/// The searchlight binding that [`SearchlitMaterial`] adds to `PhongMaterial`: the data
+/// texture of [`PhongLightKindBuffer<Searchlight>`], which every device binds, WebGL2
+/// included (a native-only extension could bind its storage buffer instead).
 #[derive(Asset, AsBindGroup, Reflect, Clone, Debug)]
 pub struct SearchlightExtension {
-    /// The buffer of [`PhongLightKindBuffer<Searchlight>`].
-    #[storage(100, read_only)]
-    pub searchlights: Handle<ShaderBuffer>,
+    /// The data texture of [`PhongLightKindBuffer<Searchlight>`].
+    #[texture(100, sample_type = "u_int")]
+    pub searchlights: Handle<Image>,
 }
 
 impl SearchlightExtension {
-    /// The extension bound to the app's searchlight buffer.
+    /// The extension bound to the app's searchlights.
     pub fn new(buffer: &PhongLightKindBuffer<Searchlight>) -> Self {
         Self {
-            searchlights: buffer.handle().clone(),
+            searchlights: buffer.texture().clone(),
         }
     }
 }

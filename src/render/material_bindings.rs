@@ -60,15 +60,25 @@ impl From<&PhongMaterial> for SurfaceBindings {
 /// shadow map array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`). A
 /// material of its own that lights with the crate's shader functions adds these bindings
 /// the same way [`PhongMaterial`] does.
+///
+/// Where a shader stage has fewer than [`Self::STORAGE_BUFFERS_NEEDED`] storage buffers
+/// (WebGL2 has none), binding 1 is instead one `texture_2d<u32>` that holds the lights, the
+/// grid and the shadow views (`scene_data`), and bindings 2 and 11 are absent; the shaders
+/// choose the same way from Bevy's `AVAILABLE_STORAGE_BUFFER_BINDINGS`.
 #[derive(SystemParam)]
 pub struct PhongSceneBindings<'w> {
+    device: Res<'w, RenderDevice>,
     buffers: Res<'w, RenderAssets<GpuShaderBuffer>>,
+    images: Res<'w, RenderAssets<GpuImage>>,
     shadow_maps: Option<Res<'w, ShadowAtlas>>,
 }
 
 impl PhongSceneBindings<'_> {
     /// Binding index of the light buffer.
     pub const LIGHTS: u32 = 1;
+    /// Binding index of the scene data texture, where storage buffers are missing (in
+    /// place of the light buffer).
+    pub const SCENE_DATA: u32 = 1;
     /// Binding index of the light grid.
     pub const LIGHT_GRID: u32 = 2;
     /// Binding index of the shadow views.
@@ -77,9 +87,19 @@ impl PhongSceneBindings<'_> {
     pub const SHADOW_MAPS: u32 = 12;
     /// Binding index of the shadow maps' comparison sampler.
     pub const SHADOW_SAMPLER: u32 = 13;
+    /// Storage buffers per shader stage the scene data needs to stay in buffers; with fewer
+    /// it is read from the data texture.
+    pub const STORAGE_BUFFERS_NEEDED: u32 = crate::render::STORAGE_BUFFERS_NEEDED;
 
-    /// The layout entries of the scene bindings (read in the fragment stage).
-    pub fn layout_entries() -> Vec<BindGroupLayoutEntry> {
+    /// The layout entries of the scene bindings (read in the fragment stage) on
+    /// `render_device`.
+    pub fn layout_entries(render_device: &RenderDevice) -> Vec<BindGroupLayoutEntry> {
+        Self::layout_entries_for(crate::render::needs_scene_texture(render_device))
+    }
+
+    /// The layout entries of the scene bindings, with the scene data in storage buffers or,
+    /// when `scene_texture`, in the data texture.
+    pub fn layout_entries_for(scene_texture: bool) -> Vec<BindGroupLayoutEntry> {
         let entry = |binding, ty| BindGroupLayoutEntry {
             binding,
             visibility: ShaderStages::FRAGMENT,
@@ -91,10 +111,23 @@ impl PhongSceneBindings<'_> {
             has_dynamic_offset: false,
             min_binding_size: None,
         };
-        vec![
-            entry(Self::LIGHTS, storage),
-            entry(Self::LIGHT_GRID, storage),
-            entry(Self::SHADOW_VIEWS, storage),
+        let scene_data = if scene_texture {
+            vec![entry(
+                Self::SCENE_DATA,
+                BindingType::Texture {
+                    sample_type: TextureSampleType::Uint,
+                    view_dimension: TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            )]
+        } else {
+            vec![
+                entry(Self::LIGHTS, storage),
+                entry(Self::LIGHT_GRID, storage),
+                entry(Self::SHADOW_VIEWS, storage),
+            ]
+        };
+        let shadows = [
             entry(
                 Self::SHADOW_MAPS,
                 BindingType::Texture {
@@ -107,17 +140,13 @@ impl PhongSceneBindings<'_> {
                 Self::SHADOW_SAMPLER,
                 BindingType::Sampler(SamplerBindingType::Comparison),
             ),
-        ]
+        ];
+        scene_data.into_iter().chain(shadows).collect()
     }
 
-    /// The scene's GPU resources for those entries; `RetryNextUpdate` until the plugin has
-    /// uploaded them (in the first frame).
-    pub fn bindings(&self) -> Result<Vec<(u32, OwnedBindingResource)>, AsBindGroupError> {
-        let shadow_maps = self
-            .shadow_maps
-            .as_ref()
-            .ok_or(AsBindGroupError::RetryNextUpdate)?;
-        let mut bindings = [
+    /// The three storage buffers' bindings.
+    fn buffer_bindings(&self) -> Result<Vec<(u32, OwnedBindingResource)>, AsBindGroupError> {
+        [
             (Self::LIGHTS, &PHONG_LIGHT_BUFFER),
             (Self::LIGHT_GRID, &PHONG_LIGHT_GRID_BUFFER),
             (Self::SHADOW_VIEWS, &PHONG_SHADOW_VIEW_BUFFER),
@@ -130,7 +159,31 @@ impl PhongSceneBindings<'_> {
                 .ok_or(AsBindGroupError::RetryNextUpdate)?;
             Ok((binding, OwnedBindingResource::Buffer(buffer.buffer.clone())))
         })
-        .collect::<Result<Vec<_>, AsBindGroupError>>()?;
+        .collect()
+    }
+
+    /// The scene's GPU resources for those entries; `RetryNextUpdate` until the plugin has
+    /// uploaded them (in the first frame).
+    pub fn bindings(&self) -> Result<Vec<(u32, OwnedBindingResource)>, AsBindGroupError> {
+        let shadow_maps = self
+            .shadow_maps
+            .as_ref()
+            .ok_or(AsBindGroupError::RetryNextUpdate)?;
+        let mut bindings = if crate::render::needs_scene_texture(&self.device) {
+            let texture = self
+                .images
+                .get(&crate::render::PHONG_SCENE_TEXTURE)
+                .ok_or(AsBindGroupError::RetryNextUpdate)?;
+            vec![(
+                Self::SCENE_DATA,
+                OwnedBindingResource::TextureView(
+                    TextureViewDimension::D2,
+                    texture.texture_view.clone(),
+                ),
+            )]
+        } else {
+            self.buffer_bindings()?
+        };
         bindings.push((
             Self::SHADOW_MAPS,
             OwnedBindingResource::TextureView(
@@ -191,7 +244,7 @@ impl AsBindGroup for PhongMaterial {
         _force_no_bindless: bool,
     ) -> Vec<BindGroupLayoutEntry> {
         let mut entries = SurfaceBindings::bind_group_layout_entries(render_device, true);
-        entries.extend(PhongSceneBindings::layout_entries());
+        entries.extend(PhongSceneBindings::layout_entries(render_device));
         entries
     }
 }

@@ -43,6 +43,7 @@ where
         bevy::render::Render,
         order_after_light_buffers::<M>
             .after(prepare_assets::<GpuShaderBuffer>)
+            .after(prepare_assets::<bevy::render::texture::GpuImage>)
             .after(crate::shadows::prepare_shadow_atlas)
             .before(prepare_erased_assets::<MeshMaterial3d<M>>),
     );

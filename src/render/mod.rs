@@ -26,7 +26,12 @@
 //! modified in that same frame, and the render world uploads the new buffer before it
 //! rebuilds those bind groups. Buffers grow to the next power of two and shrink below a
 //! quarter, so this happens rarely.
+//!
+//! Where the device has too few storage buffers (WebGL2), the same bytes travel in one
+//! data texture instead (`scene_texture`, read in WGSL through `bevy_phong::scene`), chosen
+//! once at render startup from the device's limits; see `docs/design/webgl2.md`.
 
+mod data_texture;
 mod gather;
 mod gpu_types;
 mod light_buffer;
@@ -34,7 +39,10 @@ mod light_grid;
 mod light_records;
 mod material_bindings;
 mod material_upkeep;
+mod scene_texture;
 
+pub use data_texture::{DATA_TEXTURE_MAX_ROWS, DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
+pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub use gather::{LightChanges, PhongLightBuffer, gather_lights};
 pub(crate) use gather::{LightQuery, push_visible};
 pub use gpu_types::{GpuLight, GpuLightGridHeader, GpuLightsHeader};
@@ -43,6 +51,10 @@ pub(crate) use light_buffer::{LightBuffer, MIN_CAPACITY, init_shader_buffers};
 pub use light_records::{light_direction, linear_rgb};
 pub use material_bindings::PhongSceneBindings;
 pub(crate) use material_upkeep::{refresh_material_bind_groups, schedule_light_buffers_before};
+pub(crate) use scene_texture::{
+    PHONG_SCENE_TEXTURE, STORAGE_BUFFERS_NEEDED, announce_scene_data_path, needs_scene_texture,
+    pack_scene_texture,
+};
 
 use bevy::{
     asset::{Handle, uuid_handle},

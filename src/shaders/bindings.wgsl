@@ -5,8 +5,17 @@
 #import bevy_phong::types::{PhongLightGrid, PhongLights, PhongMaterialUniform, PhongShadowViews}
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> material: PhongMaterialUniform;
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
+// Where a stage has fewer than 8 storage buffers (WebGL2 has none; Bevy's pipeline cache
+// gives every shader the device's count): the lights, the grid and the shadow views in one
+// texture (src/render/scene_texture.rs), read through `bevy_phong::scene`. The 8 is
+// `PhongSceneBindings::STORAGE_BUFFERS_NEEDED`.
+@group(#{MATERIAL_BIND_GROUP}) @binding(1) var scene_data: texture_2d<u32>;
+#else
 @group(#{MATERIAL_BIND_GROUP}) @binding(1) var<storage, read> lights: PhongLights;
 @group(#{MATERIAL_BIND_GROUP}) @binding(2) var<storage, read> light_grid: PhongLightGrid;
+@group(#{MATERIAL_BIND_GROUP}) @binding(11) var<storage, read> shadow_views: PhongShadowViews;
+#endif
 @group(#{MATERIAL_BIND_GROUP}) @binding(3) var base_color_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(4) var base_color_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(5) var specular_texture: texture_2d<f32>;
@@ -15,6 +24,5 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(8) var emissive_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(9) var normal_map_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(10) var normal_map_sampler: sampler;
-@group(#{MATERIAL_BIND_GROUP}) @binding(11) var<storage, read> shadow_views: PhongShadowViews;
 @group(#{MATERIAL_BIND_GROUP}) @binding(12) var shadow_maps: texture_depth_2d_array;
 @group(#{MATERIAL_BIND_GROUP}) @binding(13) var shadow_sampler: sampler_comparison;

@@ -4,9 +4,123 @@
 // touching them. See docs/design/webgl2.md.
 #define_import_path bevy_phong::scene
 
-#import bevy_phong::bindings::{light_grid, lights, shadow_views}
 #import bevy_phong::types::{PhongLight, PhongShadowView}
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
+#import bevy_phong::bindings::scene_data
+#import bevy_phong::data_texture::data_texel
+#else
+#import bevy_phong::bindings::{light_grid, lights, shadow_views}
+#endif
 
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
+// Texel `index` of the scene data texture (src/render/scene_texture.rs).
+fn texel(index: u32) -> vec4<u32> {
+    return data_texel(scene_data, index);
+}
+
+// The first texel of region `region` (1 grid, 2 shadow views), from texel 0.
+fn region_start(region: u32) -> u32 {
+    return texel(0u)[region];
+}
+
+// The lights' region always follows the directory texel.
+const LIGHTS_START: u32 = 1u;
+
+// The light buffer's header is texels 0–1 of its region (`GpuLightsHeader`), its records 5
+// texels each from texel 2.
+fn ambient_color() -> vec3<f32> {
+    return bitcast<vec3<f32>>(texel(LIGHTS_START).xyz);
+}
+
+fn directional_count() -> u32 {
+    return texel(LIGHTS_START).w;
+}
+
+fn point_count() -> u32 {
+    return texel(LIGHTS_START + 1u).x;
+}
+
+fn spot_count() -> u32 {
+    return texel(LIGHTS_START + 1u).y;
+}
+
+fn light_at(index: u32) -> PhongLight {
+    let first = LIGHTS_START + 2u + 5u * index;
+    let a = texel(first);
+    let b = texel(first + 1u);
+    let c = texel(first + 2u);
+    let d = texel(first + 3u);
+    let e = texel(first + 4u);
+    return PhongLight(
+        bitcast<vec3<f32>>(a.xyz),
+        bitcast<f32>(a.w),
+        bitcast<vec3<f32>>(b.xyz),
+        bitcast<f32>(b.w),
+        bitcast<vec3<f32>>(c.xyz),
+        bitcast<f32>(c.w),
+        bitcast<vec3<f32>>(d.xyz),
+        bitcast<f32>(d.w),
+        bitcast<vec3<f32>>(e.xyz),
+        e.w,
+    );
+}
+
+// The grid's header is texels 0–1 of its region (`GpuLightGridHeader`), its words four to
+// a texel from texel 2.
+fn grid_origin() -> vec3<f32> {
+    return bitcast<vec3<f32>>(texel(region_start(1u)).xyz);
+}
+
+fn grid_cell_size() -> f32 {
+    return bitcast<f32>(texel(region_start(1u)).w);
+}
+
+fn grid_dimensions() -> vec3<u32> {
+    return texel(region_start(1u) + 1u).xyz;
+}
+
+fn grid_word(index: u32) -> u32 {
+    return texel(region_start(1u) + 2u + index / 4u)[index % 4u];
+}
+
+// The shadow views' header is texel 0 of its region, each view 9 texels from texel 1.
+fn shadow_view_count() -> u32 {
+    return texel(region_start(2u)).x;
+}
+
+fn shadow_view_at(index: u32) -> PhongShadowView {
+    let first = region_start(2u) + 1u + 9u * index;
+    let plane = texel(first + 4u);
+    let a = texel(first + 5u);
+    let b = texel(first + 6u);
+    let c = texel(first + 7u);
+    let d = texel(first + 8u);
+    return PhongShadowView(
+        mat4x4<f32>(
+            bitcast<vec4<f32>>(texel(first)),
+            bitcast<vec4<f32>>(texel(first + 1u)),
+            bitcast<vec4<f32>>(texel(first + 2u)),
+            bitcast<vec4<f32>>(texel(first + 3u)),
+        ),
+        bitcast<vec4<f32>>(plane),
+        a.x,
+        a.y,
+        a.z,
+        bitcast<f32>(a.w),
+        bitcast<f32>(b.x),
+        bitcast<f32>(b.y),
+        bitcast<f32>(b.z),
+        bitcast<f32>(b.w),
+        bitcast<f32>(c.x),
+        bitcast<f32>(c.y),
+        bitcast<f32>(c.z),
+        bitcast<f32>(c.w),
+        bitcast<f32>(d.x),
+        bitcast<f32>(d.y),
+        d.zw,
+    );
+}
+#else
 // The ambient light, linear RGB.
 fn ambient_color() -> vec3<f32> {
     return lights.ambient;
@@ -60,3 +174,4 @@ fn shadow_view_count() -> u32 {
 fn shadow_view_at(index: u32) -> PhongShadowView {
     return shadow_views.views[index];
 }
+#endif

@@ -24,11 +24,14 @@ use std::collections::HashMap;
 /// Texels per side of every test map.
 const TEXELS: u32 = 4;
 
-/// A `TEXELS`² float map with nearest filtering whose texel `(x, y)` is `texel(x, y)`.
+/// A `TEXELS`² map with nearest filtering whose texel `(x, y)` is `texel(x, y)` (each
+/// channel in `[0, 1]`), stored as `Rgba8Unorm`: the 8-bit format games ship, which every
+/// device filters (WebGL2 cannot filter 32-bit floats). The reference reads the stored
+/// bytes, so the rounding to 1/255 is in both.
 fn float_map(texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
     let data: Vec<u8> = (0..TEXELS * TEXELS)
         .flat_map(|index| texel(index % TEXELS, index / TEXELS))
-        .flat_map(f32::to_le_bytes)
+        .map(|channel| (channel.clamp(0.0, 1.0) * 255.0).round() as u8)
         .collect();
     let mut image = Image::new(
         Extent3d {
@@ -38,7 +41,7 @@ fn float_map(texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
         },
         TextureDimension::D2,
         data,
-        TextureFormat::Rgba32Float,
+        TextureFormat::Rgba8Unorm,
         RenderAssetUsages::default(),
     );
     image.sampler = ImageSampler::nearest();
@@ -83,10 +86,10 @@ fn texel_at(image: &Image, uv: [f32; 2]) -> Option<DVec4> {
         }
     }
     let data = image.data.as_ref().expect("test maps keep their data");
-    let start = (texel[1] * TEXELS as usize + texel[0]) * 16;
-    let channels: Vec<f64> = data[start..start + 16]
-        .chunks_exact(4)
-        .map(|bytes| f64::from(f32::from_le_bytes(bytes.try_into().unwrap())))
+    let start = (texel[1] * TEXELS as usize + texel[0]) * 4;
+    let channels: Vec<f64> = data[start..start + 4]
+        .iter()
+        .map(|&byte| f64::from(byte) / 255.0)
         .collect();
     Some(DVec4::from_slice(&channels))
 }

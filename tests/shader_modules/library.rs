@@ -31,7 +31,7 @@ pub const SURFACE_INPUTS: &str = "embedded://bevy_phong/shaders/surface_inputs.w
 pub const SEARCHLIGHT: &str = "shaders/searchlight.wgsl";
 /// The benchmark's constant-color floor.
 pub const CONSTANT_COLOR: &str = "shaders/constant_color.wgsl";
-/// The shader contract's compute kernel (`tests/gpu/contract/`), not an asset.
+/// The shader contract's kernel (`tests/gpu/contract/`), not an asset.
 pub const CONTRACT_KERNEL: &str = "tests/gpu/contract/kernel.wgsl";
 
 /// Frames to wait for the shaders to load before giving up (a frame takes a millisecond or

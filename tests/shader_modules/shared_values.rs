@@ -7,6 +7,7 @@ use bevy::{
     render::render_resource::{
         BindingType, BufferBindingType, SamplerBindingType, TextureSampleType, TextureViewDimension,
     },
+    shader::ShaderDefVal,
 };
 use bevy_phong::{
     PhongMaterial, PhongMaterialUniform, SpecularModel,
@@ -85,6 +86,18 @@ fn wgsl_binding_kind(module: &naga::Module, variable: &naga::GlobalVariable) -> 
                 class: naga::ImageClass::Depth { multi: false },
             },
         ) => "2D depth texture array".into(),
+        (
+            _,
+            naga::TypeInner::Image {
+                dim: naga::ImageDimension::D2,
+                arrayed: false,
+                class:
+                    naga::ImageClass::Sampled {
+                        kind: naga::ScalarKind::Uint,
+                        multi: false,
+                    },
+            },
+        ) => "2D u32 texture".into(),
         (_, naga::TypeInner::Sampler { comparison: true }) => "comparison sampler".into(),
         (_, other) => format!("{other:?}"),
     }
@@ -101,6 +114,11 @@ fn rust_binding_kind(binding: &BindingType) -> String {
             view_dimension: TextureViewDimension::D2Array,
             multisampled: false,
         } => "2D depth texture array".into(),
+        BindingType::Texture {
+            sample_type: TextureSampleType::Uint,
+            view_dimension: TextureViewDimension::D2,
+            multisampled: false,
+        } => "2D u32 texture".into(),
         BindingType::Sampler(SamplerBindingType::Comparison) => "comparison sampler".into(),
         other => format!("{other:?}"),
     }
@@ -108,44 +126,70 @@ fn rust_binding_kind(binding: &BindingType) -> String {
 
 #[test]
 fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
-    let defs = variants::plain_material().swap_remove(0).defs;
-    let bindings = library().module("bevy_phong::bindings", &defs);
-    let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
-    let variable = |name: &str| {
-        bindings
-            .global_variables
-            .iter()
-            .map(|(_, variable)| variable)
-            .find(|variable| variable.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("bevy_phong::bindings::{name}"))
-    };
-    let named = [
-        ("lights", PhongSceneBindings::LIGHTS),
-        ("light_grid", PhongSceneBindings::LIGHT_GRID),
-        ("shadow_views", PhongSceneBindings::SHADOW_VIEWS),
+    let shadows = [
         ("shadow_maps", PhongSceneBindings::SHADOW_MAPS),
         ("shadow_sampler", PhongSceneBindings::SHADOW_SAMPLER),
     ];
-    for (name, binding) in named {
-        assert_eq!(
-            variable(name).binding,
-            Some(naga::ResourceBinding { group, binding }),
-            "{name}"
-        );
+    let storage = [
+        ("lights", PhongSceneBindings::LIGHTS),
+        ("light_grid", PhongSceneBindings::LIGHT_GRID),
+        ("shadow_views", PhongSceneBindings::SHADOW_VIEWS),
+    ];
+    let texture = [("scene_data", PhongSceneBindings::SCENE_DATA)];
+    // Bevy gives every shader the device's storage buffers per stage: one fewer than the
+    // scene data needs is the texture path, as on the Rust side.
+    let needed = PhongSceneBindings::STORAGE_BUFFERS_NEEDED;
+    for (storage_buffers, scene) in [(needed, &storage[..]), (needed - 1, &texture[..])] {
+        let scene_texture = storage_buffers < needed;
+        let mut defs = variants::plain_material().swap_remove(0).defs;
+        defs.push(ShaderDefVal::UInt(
+            "AVAILABLE_STORAGE_BUFFER_BINDINGS".into(),
+            storage_buffers,
+        ));
+        let bindings = library().module("bevy_phong::bindings", &defs);
+        let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
+        let variable = |name: &str| {
+            bindings
+                .global_variables
+                .iter()
+                .map(|(_, variable)| variable)
+                .find(|variable| variable.name.as_deref() == Some(name))
+                .unwrap_or_else(|| panic!("bevy_phong::bindings::{name}"))
+        };
+        let named: Vec<_> = scene.iter().chain(&shadows).collect();
+        for (name, binding) in &named {
+            assert_eq!(
+                variable(name).binding,
+                Some(naga::ResourceBinding {
+                    group,
+                    binding: *binding
+                }),
+                "{name}"
+            );
+        }
+        let entries = PhongSceneBindings::layout_entries_for(scene_texture);
+        assert_eq!(entries.len(), named.len());
+        for entry in entries {
+            let (name, _) = named
+                .iter()
+                .find(|(_, binding)| *binding == entry.binding)
+                .unwrap_or_else(|| panic!("binding {} has a name", entry.binding));
+            assert_eq!(
+                wgsl_binding_kind(&bindings, variable(name)),
+                rust_binding_kind(&entry.ty),
+                "{name}, scene texture {scene_texture}"
+            );
+        }
     }
-    let entries = PhongSceneBindings::layout_entries();
-    assert_eq!(entries.len(), named.len());
-    for entry in entries {
-        let (name, _) = named
-            .iter()
-            .find(|(_, binding)| *binding == entry.binding)
-            .unwrap_or_else(|| panic!("binding {} has a name", entry.binding));
-        assert_eq!(
-            wgsl_binding_kind(&bindings, variable(name)),
-            rust_binding_kind(&entry.ty),
-            "{name}"
-        );
-    }
+}
+
+#[test]
+fn every_data_texture_has_the_rust_width() {
+    let module = library().module("bevy_phong::data_texture", &[]);
+    assert_eq!(
+        constant(&module, "DATA_TEXTURE_WIDTH"),
+        bevy_phong::render::DATA_TEXTURE_WIDTH
+    );
 }
 
 #[test]

@@ -72,11 +72,48 @@ fn mesh_defs(layout: &MeshVertexBufferLayoutRef) -> Vec<ShaderDefVal> {
     defs
 }
 
+/// `AVAILABLE_STORAGE_BUFFER_BINDINGS`, which Bevy's pipeline cache gives every shader, on
+/// the two kinds of device: wgpu's default limits (8 storage buffers per stage) and WebGL2's
+/// (none: the crate reads its scene data from a texture, Bevy its lights from uniforms).
+pub fn devices() -> [(&'static str, ShaderDefVal); 2] {
+    let storage_buffers =
+        |count: u32| ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), count);
+    [
+        (
+            "full limits",
+            storage_buffers(
+                bevy::render::settings::WgpuLimits::default().max_storage_buffers_per_shader_stage,
+            ),
+        ),
+        (
+            "WebGL2 limits",
+            storage_buffers(
+                bevy::render::settings::WgpuLimits::downlevel_webgl2_defaults()
+                    .max_storage_buffers_per_shader_stage,
+            ),
+        ),
+    ]
+}
+
 /// The defs Bevy's mesh pipeline derives from the camera, for two cameras: the render
 /// tests' (no MSAA, no tone mapping) and a default `Camera3d` (4× MSAA, tone mapping in the
-/// shader with Bevy's default method, deband dithering). Both see in perspective, with Bevy's
-/// default shadow filter, and add the material bind group's index.
-fn view_setups() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
+/// shader with Bevy's default method, deband dithering), each on both [`devices`]. All see
+/// in perspective, with Bevy's default shadow filter, and add the material bind group's
+/// index.
+fn view_setups() -> Vec<(String, Vec<ShaderDefVal>)> {
+    cameras()
+        .into_iter()
+        .flat_map(|(camera, camera_defs)| {
+            devices().map(|(device, device_def)| {
+                let mut defs = camera_defs.clone();
+                defs.push(device_def);
+                (format!("{camera}, {device}"), defs)
+            })
+        })
+        .collect()
+}
+
+fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
     let common = || -> Vec<ShaderDefVal> {
         vec![
             "VIEW_PROJECTION_PERSPECTIVE".into(),
@@ -159,14 +196,13 @@ pub fn phong_material() -> Vec<Variant> {
 }
 
 /// Every combination of the crate's own defs (all keys on a mesh with UVs and tangents, where
-/// none is left out), seen by the render tests' camera: for the crate's modules composed
-/// alone, whose other defs the entry shaders vary.
+/// none is left out), seen by the render tests' camera on both [`devices`]: for the crate's
+/// modules composed alone, whose other defs the entry shaders vary.
 pub fn phong_def_combinations() -> Vec<Variant> {
     let (mesh, layout) = mesh_layouts()
         .into_iter()
         .find(|(mesh, _)| *mesh == "positions, normals, UVs, tangents")
         .expect("a mesh with UVs and tangents");
-    let (view, view_defs) = view_setups().swap_remove(0);
     let combinations: BTreeSet<Vec<&str>> = material_keys()
         .iter()
         .map(|key| {
@@ -175,18 +211,22 @@ pub fn phong_def_combinations() -> Vec<Variant> {
             defs
         })
         .collect();
-    combinations
-        .into_iter()
-        .map(|phong| {
+    let mut variants = Vec::new();
+    for (view, view_defs) in view_setups() {
+        if !view.starts_with("render tests' camera") {
+            continue;
+        }
+        for phong in &combinations {
             let mut defs = mesh_defs(&layout);
             defs.extend(view_defs.iter().cloned());
             defs.extend(phong.iter().map(|&def| def.into()));
-            Variant {
+            variants.push(Variant {
                 name: format!("mesh of {mesh}, {view}, {phong:?}"),
                 defs,
-            }
-        })
-        .collect()
+            });
+        }
+    }
+    variants
 }
 
 /// The fragment variants of a material that adds no defs of its own (`SurfaceInputsMaterial`,

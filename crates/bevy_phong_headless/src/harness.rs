@@ -27,7 +27,7 @@ use std::{
     sync::{Arc, Mutex, MutexGuard},
 };
 
-use crate::{Comparison, FloatImage, app::headless_app_with_assets};
+use crate::{Comparison, FloatImage, app::headless_app_with_assets, pipelines_compiling};
 
 /// The camera every scene is seen from.
 pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
@@ -211,11 +211,8 @@ impl Harness {
         for _ in 0..MAX_SETTLE_FRAMES {
             self.app.update();
             let render_world = self.app.sub_app(RenderApp).world();
-            let waiting = render_world
-                .resource::<PipelineCache>()
-                .waiting_pipelines()
-                .count();
-            ready_frames = if waiting == 0 { ready_frames + 1 } else { 0 };
+            let compiling = pipelines_compiling(render_world.resource::<PipelineCache>());
+            ready_frames = if compiling { 0 } else { ready_frames + 1 };
             if ready_frames >= 3 {
                 return;
             }

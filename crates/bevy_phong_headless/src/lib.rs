@@ -15,13 +15,26 @@
 //!
 //! It renders on whatever Vulkan device wgpu picks; `WGPU_ADAPTER_NAME=llvmpipe` selects
 //! Mesa's software renderer, on which the render tests' tolerances were set.
+//!
+//! For wasm32 only [`pipelines_compiling`] is built: the showcase's browser build uses it to
+//! tell when it has drawn.
 
+#[cfg(not(target_arch = "wasm32"))]
 mod app;
+#[cfg(not(target_arch = "wasm32"))]
 mod comparison;
+#[cfg(not(target_arch = "wasm32"))]
 mod float_image;
+#[cfg(not(target_arch = "wasm32"))]
 mod harness;
+mod pipelines;
 
+#[cfg(not(target_arch = "wasm32"))]
 pub use app::{headless_app, headless_app_with_assets, headless_plugins};
+#[cfg(not(target_arch = "wasm32"))]
 pub use comparison::Comparison;
+#[cfg(not(target_arch = "wasm32"))]
 pub use float_image::{FloatImage, save_srgb_png};
+#[cfg(not(target_arch = "wasm32"))]
 pub use harness::{CAMERA_POSITION, Harness, SurfaceInputs};
+pub use pipelines::pipelines_compiling;

@@ -1,5 +1,7 @@
-//! Runs `kernel.wgsl` (the material's lighting functions in a compute shader) on the render
-//! device and reads the results back.
+//! Runs `kernel.wgsl` (the material's lighting functions in a fragment shader, the stage
+//! the material runs in) on the render device and reads the results back: the cases go in
+//! as a data texture and come out as one pixel each of an `Rgba32Float` target. Both work on
+//! every device, WebGL2 limits included.
 
 use bevy::{
     prelude::*,
@@ -7,20 +9,23 @@ use bevy::{
         RenderApp,
         render_resource::{
             BindGroupEntries, BindGroupLayoutDescriptor, BindGroupLayoutEntries, BufferDescriptor,
-            BufferUsages, CachedComputePipelineId, CachedPipelineState, CommandEncoderDescriptor,
-            ComputePassDescriptor, ComputePipelineDescriptor, MapMode, PipelineCache, PollType,
-            ShaderStages,
-            binding_types::{storage_buffer_read_only_sized, storage_buffer_sized},
+            BufferUsages, CachedPipelineState, CachedRenderPipelineId, ColorTargetState,
+            ColorWrites, CommandEncoderDescriptor, Extent3d, FragmentState, LoadOp, MapMode,
+            Operations, Origin3d, PipelineCache, PollType, RenderPassColorAttachment,
+            RenderPassDescriptor, RenderPipelineDescriptor, ShaderStages, StoreOp,
+            TexelCopyBufferInfo, TexelCopyBufferLayout, TexelCopyTextureInfo, TextureAspect,
+            TextureDescriptor, TextureDimension, TextureFormat, TextureSampleType, TextureUsages,
+            TextureViewDescriptor, VertexState, binding_types::texture_2d,
         },
         renderer::{RenderDevice, RenderQueue},
     },
     shader::{Shader, ShaderCacheError},
 };
-use bevy_phong::render::GpuLight;
+use bevy_phong::render::{DATA_TEXTURE_WIDTH, GpuLight};
 use bevy_phong_headless::headless_app;
 use bytemuck::{Pod, Zeroable};
 
-/// One case as the kernel reads it (`ContractCase` in `kernel.wgsl`).
+/// One case as the kernel reads it (`ContractCase` in `kernel.wgsl`): 10 texels.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct GpuCase {
@@ -37,22 +42,24 @@ pub struct GpuCase {
     pub light: GpuLight,
 }
 
-/// Cases per dispatch: well under the device's storage binding limit.
+/// Pixels per row of the results target (`RESULTS_WIDTH` in `kernel.wgsl`).
+const RESULTS_WIDTH: u32 = 1024;
+/// Cases per pass: 256 rows of results, and 10 · 2¹⁸ + 1 texels of cases (1,281 rows of
+/// the data texture, within WebGL2's 2,048).
 const BATCH: usize = 1 << 18;
-const WORKGROUP_SIZE: usize = 64;
 const MAX_COMPILE_FRAMES: u32 = 600;
 
 /// The compiled kernel and the app whose render device runs it.
 pub struct ContractKernel {
     app: App,
-    pipeline: CachedComputePipelineId,
+    pipeline: CachedRenderPipelineId,
     layout: BindGroupLayoutDescriptor,
 }
 
 impl ContractKernel {
-    /// Compiles the kernel's `entry_point` through Bevy's pipeline cache, as material shaders
-    /// are: `main` lights each case, `crate_highlight` and `naive_highlight` give the highlight
-    /// factor of a directional light.
+    /// Compiles the kernel's fragment `entry_point` through Bevy's pipeline cache, as
+    /// material shaders are: `main` lights each case, `crate_highlight` and
+    /// `naive_highlight` give the highlight factor of a directional light.
     pub fn new(entry_point: &'static str) -> Self {
         let mut app = headless_app(|_| {});
         let shader = app
@@ -64,30 +71,39 @@ impl ContractKernel {
             ));
         let layout = BindGroupLayoutDescriptor::new(
             "phong_contract",
-            &BindGroupLayoutEntries::sequential(
-                ShaderStages::COMPUTE,
-                (
-                    storage_buffer_read_only_sized(false, None),
-                    storage_buffer_sized(false, None),
-                ),
+            &BindGroupLayoutEntries::single(
+                ShaderStages::FRAGMENT,
+                texture_2d(TextureSampleType::Uint),
             ),
         );
         let pipeline = app
             .sub_app(RenderApp)
             .world()
             .resource::<PipelineCache>()
-            .queue_compute_pipeline(ComputePipelineDescriptor {
+            .queue_render_pipeline(RenderPipelineDescriptor {
                 label: Some("phong_contract".into()),
                 layout: vec![layout.clone()],
-                shader,
-                entry_point: Some(entry_point.into()),
-                zero_initialize_workgroup_memory: true,
+                vertex: VertexState {
+                    shader: shader.clone(),
+                    entry_point: Some("cover".into()),
+                    ..default()
+                },
+                fragment: Some(FragmentState {
+                    shader,
+                    entry_point: Some(entry_point.into()),
+                    targets: vec![Some(ColorTargetState {
+                        format: TextureFormat::Rgba32Float,
+                        blend: None,
+                        write_mask: ColorWrites::ALL,
+                    })],
+                    ..default()
+                }),
                 ..default()
             });
         for _ in 0..MAX_COMPILE_FRAMES {
             app.update();
             let cache = app.sub_app(RenderApp).world().resource::<PipelineCache>();
-            match cache.get_compute_pipeline_state(pipeline) {
+            match cache.get_render_pipeline_state(pipeline) {
                 CachedPipelineState::Ok(_) => {
                     return Self {
                         app,
@@ -121,41 +137,99 @@ impl ContractKernel {
         let queue = world.resource::<RenderQueue>();
         let cache = world.resource::<PipelineCache>();
         let pipeline = cache
-            .get_compute_pipeline(self.pipeline)
+            .get_render_pipeline(self.pipeline)
             .expect("compiled in new()");
-        let input =
-            device.create_buffer_with_data(&bevy::render::render_resource::BufferInitDescriptor {
+
+        // The count in texel 0, then the cases, in whole rows of the data texture.
+        let mut texels: Vec<u8> = bytemuck::bytes_of(&[cases.len() as u32, 0, 0, 0]).to_vec();
+        texels.extend_from_slice(bytemuck::cast_slice(cases));
+        let input_rows = (texels.len() / 16).div_ceil(DATA_TEXTURE_WIDTH as usize) as u32;
+        texels.resize((input_rows * DATA_TEXTURE_WIDTH * 16) as usize, 0);
+        let input = device.create_texture_with_data(
+            queue,
+            &TextureDescriptor {
                 label: Some("contract_cases"),
-                contents: bytemuck::cast_slice(cases),
-                usage: BufferUsages::STORAGE,
-            });
-        let output_size = (cases.len() * 16) as u64;
-        let output = device.create_buffer(&BufferDescriptor {
+                size: Extent3d {
+                    width: DATA_TEXTURE_WIDTH,
+                    height: input_rows,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: TextureDimension::D2,
+                format: TextureFormat::Rgba32Uint,
+                usage: TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            bevy::render::render_resource::TextureDataOrder::LayerMajor,
+            &texels,
+        );
+        let rows = (cases.len() as u32).div_ceil(RESULTS_WIDTH);
+        let size = Extent3d {
+            width: RESULTS_WIDTH,
+            height: rows,
+            depth_or_array_layers: 1,
+        };
+        let results = device.create_texture(&TextureDescriptor {
             label: Some("contract_results"),
-            size: output_size,
-            usage: BufferUsages::STORAGE | BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: TextureDimension::D2,
+            format: TextureFormat::Rgba32Float,
+            usage: TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC,
+            view_formats: &[],
         });
+        // 16 bytes a pixel: a row of 1,024 is 16 KiB, a multiple of wgpu's 256-byte alignment.
+        let bytes_per_row = RESULTS_WIDTH * 16;
+        let staging_size = u64::from(bytes_per_row * rows);
         let staging = device.create_buffer(&BufferDescriptor {
             label: Some("contract_staging"),
-            size: output_size,
+            size: staging_size,
             usage: BufferUsages::MAP_READ | BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let layout = cache.get_bind_group_layout(&self.layout);
-        let bind_group = device.create_bind_group(
-            "contract",
-            &layout,
-            &BindGroupEntries::sequential((input.as_entire_binding(), output.as_entire_binding())),
-        );
+        let input_view = input.create_view(&TextureViewDescriptor::default());
+        let bind_group =
+            device.create_bind_group("contract", &layout, &BindGroupEntries::single(&input_view));
+        let results_view = results.create_view(&TextureViewDescriptor::default());
         let mut encoder = device.create_command_encoder(&CommandEncoderDescriptor::default());
         {
-            let mut pass = encoder.begin_compute_pass(&ComputePassDescriptor::default());
+            let mut pass = encoder.begin_render_pass(&RenderPassDescriptor {
+                label: Some("contract"),
+                color_attachments: &[Some(RenderPassColorAttachment {
+                    view: &results_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: Operations {
+                        load: LoadOp::Clear(Default::default()),
+                        store: StoreOp::Store,
+                    },
+                })],
+                ..default()
+            });
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(cases.len().div_ceil(WORKGROUP_SIZE) as u32, 1, 1);
+            pass.draw(0..3, 0..1);
         }
-        encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, output_size);
+        encoder.copy_texture_to_buffer(
+            TexelCopyTextureInfo {
+                texture: &results,
+                mip_level: 0,
+                origin: Origin3d::ZERO,
+                aspect: TextureAspect::All,
+            },
+            TexelCopyBufferInfo {
+                buffer: &staging,
+                layout: TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(bytes_per_row),
+                    rows_per_image: Some(rows),
+                },
+            },
+            size,
+        );
         queue.submit([encoder.finish()]);
 
         let slice = staging.slice(..);
@@ -167,6 +241,7 @@ impl ContractKernel {
             .expect("the device finishes the kernel");
         let results = bytemuck::cast_slice::<u8, [f32; 4]>(&slice.get_mapped_range())
             .iter()
+            .take(cases.len())
             .map(|rgba| [rgba[0], rgba[1], rgba[2]])
             .collect();
         staging.unmap();

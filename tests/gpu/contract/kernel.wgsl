@@ -1,5 +1,7 @@
 // The shader contract kernel: runs the material's own lighting functions
-// (`bevy_phong::lighting`, imported as the material imports them) on a batch of cases.
+// (`bevy_phong::lighting`, imported as the material imports them) on a batch of cases, in
+// the fragment stage the material runs in: one pixel of the results target per case.
+#import bevy_phong::data_texture::data_texel
 #import bevy_phong::lighting::{directional_light, highlight, phong_surface, point_light, spot_light}
 #import bevy_phong::types::SPECULAR_MODEL_BLINN_PHONG
 #import bevy_phong::types::{PhongLight, PhongSurface}
@@ -19,8 +21,62 @@ struct ContractCase {
     light: PhongLight,
 }
 
-@group(0) @binding(0) var<storage, read> cases: array<ContractCase>;
-@group(0) @binding(1) var<storage, read_write> results: array<vec4<f32>>;
+// The cases as a data texture (`bevy_phong::data_texture`): texel 0 holds their count,
+// then each case takes 10 texels. Every device binds it, WebGL2 included.
+@group(0) @binding(0) var cases: texture_2d<u32>;
+
+// Pixels per row of the results target; pixel (x, y) holds case `y * RESULTS_WIDTH + x`.
+const RESULTS_WIDTH: u32 = 1024u;
+
+fn case_count() -> u32 {
+    return data_texel(cases, 0u).x;
+}
+
+fn case_at(index: u32) -> ContractCase {
+    let first = 1u + 10u * index;
+    var t: array<vec4<u32>, 10>;
+    for (var i = 0u; i < 10u; i += 1u) {
+        t[i] = data_texel(cases, first + i);
+    }
+    let light = PhongLight(
+        bitcast<vec3<f32>>(t[5].xyz),
+        bitcast<f32>(t[5].w),
+        bitcast<vec3<f32>>(t[6].xyz),
+        bitcast<f32>(t[6].w),
+        bitcast<vec3<f32>>(t[7].xyz),
+        bitcast<f32>(t[7].w),
+        bitcast<vec3<f32>>(t[8].xyz),
+        bitcast<f32>(t[8].w),
+        bitcast<vec3<f32>>(t[9].xyz),
+        t[9].w,
+    );
+    return ContractCase(
+        bitcast<vec3<f32>>(t[0].xyz),
+        t[0].w,
+        bitcast<vec3<f32>>(t[1].xyz),
+        bitcast<f32>(t[1].w),
+        bitcast<vec3<f32>>(t[2].xyz),
+        t[2].w,
+        bitcast<vec3<f32>>(t[3].xyz),
+        bitcast<f32>(t[3].w),
+        bitcast<vec3<f32>>(t[4].xyz),
+        bitcast<f32>(t[4].w),
+        light,
+    );
+}
+
+// The case a fragment of the results target stands for (past the last case, the
+// fragments of the last row repeat it; their results are not read).
+fn case_index(position: vec4<f32>) -> u32 {
+    return u32(position.y) * RESULTS_WIDTH + u32(position.x);
+}
+
+// A triangle that covers the whole target.
+@vertex
+fn cover(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
+    let corner = vec2<f32>(f32((vertex << 1u) & 2u), f32(vertex & 2u));
+    return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
+}
 
 fn case_surface(input: ContractCase) -> PhongSurface {
     return phong_surface(
@@ -35,16 +91,13 @@ fn case_surface(input: ContractCase) -> PhongSurface {
 }
 
 // The highlight factor H of a directional light, as the crate computes it.
-@compute @workgroup_size(64)
-fn crate_highlight(@builtin(global_invocation_id) id: vec3<u32>) {
-    let index = id.x;
-    if index >= arrayLength(&cases) {
-        return;
-    }
-    let surface = case_surface(cases[index]);
-    let to_light = -cases[index].light.direction;
+@fragment
+fn crate_highlight(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let input = case_at(min(case_index(position), case_count() - 1u));
+    let surface = case_surface(input);
+    let to_light = -input.light.direction;
     let n_dot_l = dot(surface.normal, to_light);
-    results[index] = vec4<f32>(highlight(surface, to_light, max(n_dot_l, 0.0)), 0.0, 0.0, 0.0);
+    return vec4<f32>(highlight(surface, to_light, max(n_dot_l, 0.0)), 0.0, 0.0, 0.0);
 }
 
 // `pow(base, α)` with `0^0 = 1`, for the straightforward formula below.
@@ -60,30 +113,23 @@ fn naive_power(base: f32, exponent: f32) -> f32 {
 
 // The same factor by the straightforward formula, `pow(max(cos, 0), α)`: kept here only to
 // measure what the crate's formula gains near the peak.
-@compute @workgroup_size(64)
-fn naive_highlight(@builtin(global_invocation_id) id: vec3<u32>) {
-    let index = id.x;
-    if index >= arrayLength(&cases) {
-        return;
-    }
-    let surface = case_surface(cases[index]);
-    let to_light = -cases[index].light.direction;
+@fragment
+fn naive_highlight(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let input = case_at(min(case_index(position), case_count() - 1u));
+    let surface = case_surface(input);
+    let to_light = -input.light.direction;
     var cosine: f32;
     if surface.specular_model == SPECULAR_MODEL_BLINN_PHONG {
         cosine = dot(surface.normal, normalize(to_light + surface.view));
     } else {
         cosine = dot(2.0 * dot(surface.normal, to_light) * surface.normal - to_light, surface.view);
     }
-    results[index] = vec4<f32>(naive_power(max(cosine, 0.0), surface.shininess), 0.0, 0.0, 0.0);
+    return vec4<f32>(naive_power(max(cosine, 0.0), surface.shininess), 0.0, 0.0, 0.0);
 }
 
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let index = id.x;
-    if index >= arrayLength(&cases) {
-        return;
-    }
-    let input = cases[index];
+@fragment
+fn main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let input = case_at(min(case_index(position), case_count() - 1u));
     let surface = case_surface(input);
     var color: vec3<f32>;
     switch input.kind {
@@ -97,5 +143,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             color = spot_light(surface, input.light);
         }
     }
-    results[index] = vec4<f32>(color, 0.0);
+    return vec4<f32>(color, 0.0);
 }

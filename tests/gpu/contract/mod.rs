@@ -1,6 +1,6 @@
 //! The shader contract: the WGSL lighting functions the material uses, compiled into a
-//! compute kernel and run on the render device on a corpus of cases, compared with the f64
-//! reference model on identical inputs.
+//! fragment shader kernel and run on the render device on a corpus of cases, compared with
+//! the f64 reference model on identical inputs.
 //!
 //! `PHONG_CONTRACT_CASES=4000000 cargo test --test gpu contract -- --nocapture` runs the
 //! benchmark size (millions of random cases) and prints the same table.

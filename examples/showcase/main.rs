@@ -11,19 +11,88 @@
 //! ```sh
 //! cargo run --example showcase                       # a window, where a display exists
 //! cargo run --example showcase -- --headless out.png # a PNG, and exit
+//! cargo run --example showcase -- --check out.png    # are the sphere's three highlights there?
+//! scripts/browser.sh --serve                         # in a browser (WebGL2)
 //! ```
 //!
 //! Keys: S switches the shadows on and off.
 
+#[path = "../support/mod.rs"]
 mod support;
+
+#[cfg(not(target_arch = "wasm32"))]
+mod check;
 
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
 
 /// The floor's height, below the lowest shape.
 const FLOOR_HEIGHT: f32 = -1.6;
+/// The sphere's center, world units.
+const SPHERE_CENTER: Vec3 = Vec3::new(-1.5, 0.0, 0.0);
+/// The sphere's radius, world units.
+const SPHERE_RADIUS: f32 = 1.0;
+/// The sphere's color (seed 000's magenta).
+const SPHERE_COLOR: &str = "#ff00ff";
+
+/// The camera: 8.5 units in front of the shapes and 1 above, looking at the origin, with
+/// Bevy's default perspective (45° vertical field of view).
+fn camera_transform() -> Transform {
+    Transform::from_xyz(0.0, 1.0, 8.5).looking_at(Vec3::ZERO, Vec3::Y)
+}
+
+/// A light of the scene.
+enum SceneLight {
+    Directional(PhongDirectionalLight),
+    Point(PhongPointLight),
+}
+
+/// The three lights, each with the name the highlight check gives it.
+fn lights() -> [(&'static str, SceneLight, Transform); 3] {
+    [
+        (
+            "the directional light (along -X)",
+            SceneLight::Directional(PhongDirectionalLight::default()),
+            Transform::default().looking_to(Vec3::NEG_X, Vec3::Y),
+        ),
+        (
+            "the red point light (at (-3, 3, 0))",
+            SceneLight::Point(PhongPointLight {
+                color: Color::linear_rgb(1.0, 0.0, 0.0),
+                specular: Some(Color::WHITE),
+                shadows: point_light_shadows(),
+                ..default()
+            }),
+            Transform::from_xyz(-3.0, 3.0, 0.0),
+        ),
+        (
+            "the blue point light (at (3, 3, 0))",
+            SceneLight::Point(PhongPointLight {
+                color: Color::linear_rgb(0.0, 0.0, 1.0),
+                specular: Some(Color::WHITE),
+                shadows: point_light_shadows(),
+                ..default()
+            }),
+            Transform::from_xyz(3.0, 3.0, 0.0),
+        ),
+    ]
+}
+
+/// Seed 000's material: `hex` as the base color, specular strength 2, shininess 50.
+fn seed_material(hex: &str) -> PhongMaterial {
+    PhongMaterial {
+        base_color: Srgba::hex(hex).expect("valid hex color").into(),
+        specular_strength: 2.0,
+        shininess: 50.0,
+        ..default()
+    }
+}
 
 fn main() {
+    #[cfg(not(target_arch = "wasm32"))]
+    if let Some(path) = check::path_from_args() {
+        std::process::exit(check::run(&path));
+    }
     let mut app = support::example_app("showcase");
     support::show_key_help(&mut app, "S shadows on / off")
         .add_plugins(PhongPlugin)
@@ -57,12 +126,6 @@ fn setup(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<PhongMaterial>>,
 ) {
-    let seed_material = |hex: &str| PhongMaterial {
-        base_color: Srgba::hex(hex).expect("valid hex color").into(),
-        specular_strength: 2.0,
-        shininess: 50.0,
-        ..default()
-    };
     let objects: [(Mesh, &str, Vec3); 4] = [
         (
             Cuboid::new(1.6, 1.6, 1.6).into(),
@@ -70,9 +133,9 @@ fn setup(
             Vec3::new(-4.5, 0.0, 0.0),
         ),
         (
-            Sphere::new(1.0).mesh().uv(64, 48),
-            "#ff00ff",
-            Vec3::new(-1.5, 0.0, 0.0),
+            Sphere::new(SPHERE_RADIUS).mesh().uv(64, 48),
+            SPHERE_COLOR,
+            SPHERE_CENTER,
         ),
         (
             Cylinder::new(0.9, 1.8).into(),
@@ -108,30 +171,12 @@ fn setup(
         Transform::from_xyz(0.0, FLOOR_HEIGHT, 0.0),
     ));
 
-    commands.spawn((
-        PhongDirectionalLight::default(),
-        Transform::default().looking_to(Vec3::NEG_X, Vec3::Y),
-    ));
-    commands.spawn((
-        PhongPointLight {
-            color: Color::linear_rgb(1.0, 0.0, 0.0),
-            specular: Some(Color::WHITE),
-            shadows: point_light_shadows(),
-            ..default()
-        },
-        Transform::from_xyz(-3.0, 3.0, 0.0),
-    ));
-    commands.spawn((
-        PhongPointLight {
-            color: Color::linear_rgb(0.0, 0.0, 1.0),
-            specular: Some(Color::WHITE),
-            shadows: point_light_shadows(),
-            ..default()
-        },
-        Transform::from_xyz(3.0, 3.0, 0.0),
-    ));
+    for (_, light, transform) in lights() {
+        match light {
+            SceneLight::Directional(light) => commands.spawn((light, transform)),
+            SceneLight::Point(light) => commands.spawn((light, transform)),
+        };
+    }
 
-    commands.spawn(support::example_camera(
-        Transform::from_xyz(0.0, 1.0, 8.5).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
+    commands.spawn(support::example_camera(camera_transform()));
 }

@@ -1,0 +1,94 @@
+// Opens the showcase page in headless Chromium, waits until the app marks the page as drawn
+// (`<body data-drawn>`, set by examples/support/web.rs), and screenshots its canvas.
+//
+// node screenshot.cjs URL PNG MODULES_DIR
+// MODULES_DIR holds playwright-core (scripts/browser.sh installs it there). Exits 1 with a
+// message when the page fails (a panic, a page error, data-failed) or has not drawn within
+// the time limit.
+"use strict";
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+
+const [url, png, modules] = process.argv.slice(2);
+const { chromium } = require(require.resolve("playwright-core", { paths: [modules] }));
+
+// Loading the wasm and compiling every shader in software WebGL2 takes about a minute on
+// a 2-core machine; this leaves room for a slower one.
+const DRAWN_TIMEOUT_MS = 600_000;
+
+const FLAGS = [
+  "--headless",
+  "--no-sandbox",
+  "--disable-gpu",
+  "--disable-quic",
+  "--no-first-run",
+  "--disable-background-networking",
+  "--disable-component-update",
+  "--disable-sync",
+  // WebGL2 without a GPU: ANGLE on SwiftShader, Chromium's software Vulkan.
+  "--use-angle=swiftshader",
+  "--enable-unsafe-swiftshader",
+];
+
+async function main() {
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), "bevy-phong-chromium-"));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: "/usr/bin/chromium",
+    headless: true,
+    // Playwright adds its own flags (the profile, the pipe it drives Chromium through).
+    args: FLAGS,
+    viewport: { width: 1000, height: 600 },
+    deviceScaleFactor: 1,
+  });
+  let failure = null;
+  try {
+    const page = context.pages()[0] ?? (await context.newPage());
+    page.on("console", (message) => {
+      // Bevy's log styles its lines with %c and CSS arguments; print them plain.
+      const text = message
+        .text()
+        .replace(/%c/g, "")
+        .replace(/(\s+(background|color|font-style|font-weight): [^;]*;?)+\s*$/, "");
+      console.log(`page ${message.type()}: ${text}`);
+      // A panic, a Bevy error, a resource that did not load: the page is not as it should be.
+      if (message.type() === "error") {
+        failure = failure ?? `the page logged an error: ${text}`;
+      }
+    });
+    page.on("pageerror", (error) => {
+      failure = failure ?? `the page threw: ${error.message}`;
+    });
+    const started = Date.now();
+    await page.goto(url);
+    const deadline = started + DRAWN_TIMEOUT_MS;
+    while (failure === null) {
+      const state = await page.evaluate(() => ({
+        drawn: document.body.hasAttribute("data-drawn"),
+        failed: document.body.getAttribute("data-failed"),
+      }));
+      if (state.failed !== null) failure = `the page failed: ${state.failed}`;
+      else if (state.drawn) break;
+      else if (Date.now() > deadline) {
+        failure = `the app had not drawn after ${DRAWN_TIMEOUT_MS / 1000} s`;
+      } else await page.waitForTimeout(250);
+    }
+    if (failure === null) {
+      console.log(`drawn after ${((Date.now() - started) / 1000).toFixed(1)} s`);
+      await page.locator("#bevy").screenshot({ path: png });
+      console.log(`wrote ${png}`);
+    }
+  } finally {
+    await context.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+  if (failure !== null) {
+    console.error(`browser test failed: ${failure}`);
+    process.exit(1);
+  }
+}
+
+main().catch((error) => {
+  console.error(`browser test failed: ${error.message}`);
+  process.exit(1);
+});

@@ -1,0 +1,290 @@
+//! The scene data in one data texture, for devices without enough storage buffers (WebGL2).
+//!
+//! The lights, the light grid and the shadow views are written as usual into their
+//! [`ShaderBuffer`] assets; on such a device [`pack_scene_texture`] then copies their bytes,
+//! unchanged, into one data texture (see [`super::data_texture`]) that materials bind
+//! instead of the three buffers. The shaders read it through the same accessors
+//! (`bevy_phong::scene`), choosing the path from the shader def Bevy gives every shader,
+//! `AVAILABLE_STORAGE_BUFFER_BINDINGS`. See `docs/design/webgl2.md`.
+//!
+//! Layout, in texels: texel 0 holds the first texel of each region
+//! `[lights, grid, shadow views, 0]`; then the three buffers' bytes, each region starting on
+//! a texel of its own. The lights always start at texel 1 (`LIGHTS_START` in WGSL).
+//!
+//! # Capacity
+//!
+//! The texture holds [`DATA_TEXTURE_MAX_TEXELS`] texels (64 MiB): a light takes 5, its
+//! place in the light grid a word per cell it reaches, a shadow view 9. That is about
+//! 800,000 lights outside the grid. Past it, lights are left out in this order, with one
+//! warning each time the count left out changes:
+//! 1. the light grid and every light in it (finite reach, no shadow);
+//! 2. then lights of unlimited reach from the end of the buffer: spot lights, then point
+//!    lights, then directional lights.
+//!
+//! The lights that remain are lit exactly as they would be with room for all.
+
+use super::{
+    GpuLight, GpuLightGridHeader, GpuLightsHeader, LightBufferResized, PHONG_LIGHT_BUFFER,
+    PHONG_LIGHT_GRID_BUFFER,
+    data_texture::{DATA_TEXTURE_MAX_TEXELS, DataTexture, DataTextureWrite, words_of},
+};
+use crate::shadows::PHONG_SHADOW_VIEW_BUFFER;
+use bevy::{
+    asset::{Assets, Handle, uuid_handle},
+    ecs::{
+        message::MessageWriter,
+        system::{Local, Res, ResMut},
+    },
+    image::Image,
+    log::{info, warn},
+    render::{renderer::RenderDevice, storage::ShaderBuffer},
+};
+
+/// The texture that holds the scene data where storage buffers are missing.
+pub(crate) const PHONG_SCENE_TEXTURE: Handle<Image> =
+    uuid_handle!("3f6c2a71-8e0b-4d52-a9e4-1c7b5d3e8f90");
+
+/// Storage buffers a shader stage needs for the scene data to stay in buffers: the plugin's
+/// three beside Bevy's own (its clustered lights and meshes take up to five). Every native
+/// backend with full WebGPU limits has 8; WebGL2 has none. The shaders compare
+/// `AVAILABLE_STORAGE_BUFFER_BINDINGS` with the same number.
+pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 8;
+
+/// Whether `device` has too few storage buffers per shader stage for the scene data, which
+/// then travels in the data texture.
+pub(crate) fn needs_scene_texture(device: &RenderDevice) -> bool {
+    device.limits().max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED
+}
+
+/// Render startup: says once when the device reads the scene data from the texture.
+pub(crate) fn announce_scene_data_path(device: Res<RenderDevice>) {
+    if needs_scene_texture(&device) {
+        info!(
+            "bevy_phong: the device has {} storage buffers per shader stage (fewer than \
+             {STORAGE_BUFFERS_NEEDED}): the lights, light grid and shadow views are read from \
+             a data texture",
+            device.limits().max_storage_buffers_per_shader_stage
+        );
+    }
+}
+
+/// The scene texture and how many lights the last packing left out.
+pub(crate) struct SceneTexture {
+    texture: DataTexture,
+    left_out: usize,
+}
+
+impl Default for SceneTexture {
+    fn default() -> Self {
+        Self {
+            texture: DataTexture::new(PHONG_SCENE_TEXTURE),
+            left_out: 0,
+        }
+    }
+}
+
+/// Copies the three scene buffers into [`PHONG_SCENE_TEXTURE`] where the device reads it
+/// (the main world holds the render device too), when their bytes changed.
+///
+/// Runs in [`PhongSystems::GatherLights`](crate::PhongSystems::GatherLights), after the
+/// buffers are written.
+pub(crate) fn pack_scene_texture(
+    device: Option<Res<RenderDevice>>,
+    buffers: Res<Assets<ShaderBuffer>>,
+    mut images: ResMut<Assets<Image>>,
+    mut scene: Local<SceneTexture>,
+    mut resized: MessageWriter<LightBufferResized>,
+) {
+    if !device.is_some_and(|device| needs_scene_texture(&device)) {
+        return;
+    }
+    let [lights, grid, views] = [
+        &PHONG_LIGHT_BUFFER,
+        &PHONG_LIGHT_GRID_BUFFER,
+        &PHONG_SHADOW_VIEW_BUFFER,
+    ]
+    .map(|handle| {
+        buffers
+            .get(handle)
+            .and_then(|buffer| buffer.data.as_deref())
+            .unwrap_or(&[])
+    });
+    let packed = pack(lights, grid, views, DATA_TEXTURE_MAX_TEXELS);
+    if packed.left_out != scene.left_out {
+        if packed.left_out > 0 {
+            warn!(
+                "bevy_phong: the scene data texture holds {DATA_TEXTURE_MAX_TEXELS} texels: \
+                 {} lights are left out (the light grid's first, then spot, point and \
+                 directional lights from the last)",
+                packed.left_out
+            );
+        }
+        scene.left_out = packed.left_out;
+    }
+    if scene.texture.write(&mut images, &packed.words) == DataTextureWrite::Resized {
+        // A new size is a new GPU texture: bind groups holding the old one are rebuilt.
+        resized.write(LightBufferResized {
+            buffer: PHONG_LIGHT_BUFFER,
+        });
+    }
+}
+
+/// The texture's words, and how many lights did not fit.
+#[derive(Debug)]
+struct Packed {
+    words: Vec<u32>,
+    left_out: usize,
+}
+
+const HEADER_BYTES: usize = size_of::<GpuLightsHeader>();
+const RECORD_BYTES: usize = size_of::<GpuLight>();
+
+/// The directory texel, then the light buffer (its header and used records), the grid and
+/// the shadow views, each from a texel of its own, within `max_texels` texels (see the
+/// module documentation for what is left out past it).
+fn pack(lights: &[u8], grid: &[u8], views: &[u8], max_texels: usize) -> Packed {
+    let mut header = lights
+        .get(..HEADER_BYTES)
+        .map(bytemuck::pod_read_unaligned::<GpuLightsHeader>)
+        .unwrap_or_default();
+    let body = lights.get(HEADER_BYTES..).unwrap_or(&[]);
+    let stored = body.len() / RECORD_BYTES;
+    let records =
+        |header: &GpuLightsHeader| &body[..header.light_count().min(stored) * RECORD_BYTES];
+    let texels = |bytes: usize| bytes.div_ceil(16);
+    let total = |header: &GpuLightsHeader, grid: &[u8]| {
+        1 + texels(HEADER_BYTES + records(header).len()) + texels(grid.len()) + texels(views.len())
+    };
+    let full = header.light_count();
+    let empty_grid = bytemuck::bytes_of(&GpuLightGridHeader::EMPTY);
+    let mut grid = grid;
+    if total(&header, grid) > max_texels {
+        header.grid_point_count = 0;
+        header.grid_spot_count = 0;
+        grid = empty_grid;
+    }
+    while total(&header, grid) > max_texels && header.light_count() > 0 {
+        let counts = [
+            &mut header.spot_count,
+            &mut header.point_count,
+            &mut header.directional_count,
+        ];
+        if let Some(count) = counts.into_iter().find(|count| **count > 0) {
+            *count -= 1;
+        }
+    }
+    let mut words = vec![0u32; 4];
+    let regions: [&[&[u8]]; 3] = [
+        &[bytemuck::bytes_of(&header), records(&header)],
+        &[grid],
+        &[views],
+    ];
+    for (region, parts) in regions.into_iter().enumerate() {
+        words[region] = (words.len() / 4) as u32;
+        for part in parts {
+            words.extend(words_of(part));
+        }
+        words.resize(words.len().next_multiple_of(4), 0);
+    }
+    Packed {
+        words,
+        left_out: full - header.light_count(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light_buffer(directional: u32, point: u32, spot: u32, grid_point: u32) -> Vec<u8> {
+        let header = GpuLightsHeader {
+            directional_count: directional,
+            point_count: point,
+            spot_count: spot,
+            grid_point_count: grid_point,
+            ..bytemuck::Zeroable::zeroed()
+        };
+        let count = header.light_count();
+        let mut bytes = bytemuck::bytes_of(&header).to_vec();
+        for index in 0..count {
+            let record = GpuLight {
+                range: index as f32,
+                ..bytemuck::Zeroable::zeroed()
+            };
+            bytes.extend_from_slice(bytemuck::bytes_of(&record));
+        }
+        // Spare capacity, zero-filled, as the light buffer keeps it.
+        bytes.resize(bytes.len() + 3 * RECORD_BYTES, 0);
+        bytes
+    }
+
+    #[test]
+    fn each_region_starts_on_its_own_texel_after_the_directory() {
+        let lights = light_buffer(1, 0, 0, 0);
+        let grid = [2u8; 36];
+        let views = [3u8; 16];
+        let packed = pack(&lights, &grid, &views, usize::MAX);
+        // Directory, 2 texels of header and 5 of one light (spare capacity left out), 3 of
+        // grid (36 bytes rounded up), 1 of views.
+        assert_eq!(&packed.words[..4], &[1, 8, 11, 0]);
+        assert_eq!(packed.words.len(), 4 * 12);
+        assert_eq!(packed.words[4 + 3], 1, "directional count");
+        assert_eq!(packed.words[8 * 4], u32::from_le_bytes([2; 4]));
+        assert_eq!(
+            packed.words[8 * 4 + 9],
+            0,
+            "the grid's last texel is zero-padded"
+        );
+        assert_eq!(packed.words[11 * 4], u32::from_le_bytes([3; 4]));
+        assert_eq!(packed.left_out, 0);
+    }
+
+    #[test]
+    fn past_capacity_the_grid_goes_first_then_spot_point_and_directional_lights() {
+        let lights = light_buffer(2, 3, 4, 5);
+        let grid = [1u8; 16 * 10];
+        let views = [0u8; 16];
+        let header_of = |packed: &Packed| -> GpuLightsHeader {
+            let start = packed.words[0] as usize * 4;
+            bytemuck::pod_read_unaligned(bytemuck::cast_slice(&packed.words[start..start + 8]))
+        };
+        // Everything: 1 + 2 + 5 · 14 + 10 + 1 = 84 texels.
+        assert_eq!(pack(&lights, &grid, &views, 84).left_out, 0);
+        // One texel short: the grid and its 5 lights go; the grid region is an empty header.
+        let packed = pack(&lights, &grid, &views, 83);
+        assert_eq!(packed.left_out, 5);
+        let header = header_of(&packed);
+        assert_eq!(
+            (
+                header.grid_point_count,
+                header.grid_spot_count,
+                header.spot_count
+            ),
+            (0, 0, 4)
+        );
+        let grid_start = packed.words[1] as usize * 4;
+        assert_eq!(
+            &packed.words[grid_start + 4..grid_start + 7],
+            &[0, 0, 0],
+            "no cells"
+        );
+        // Room for 1 + 2 + 5 · 4 + 2 + 1 = 26 texels: the 4 spots go, then a point light.
+        let packed = pack(&lights, &grid, &views, 26);
+        assert_eq!(packed.left_out, 10);
+        let header = header_of(&packed);
+        assert_eq!(
+            (
+                header.directional_count,
+                header.point_count,
+                header.spot_count
+            ),
+            (2, 2, 0)
+        );
+        // The records kept are the first ones, unchanged (`range` is word 3 of 20).
+        let first = packed.words[0] as usize * 4 + 8;
+        assert_eq!(f32::from_bits(packed.words[first + 3]), 0.0);
+        assert_eq!(f32::from_bits(packed.words[first + 3 * 20 + 3]), 3.0);
+        // No room at all: every light is left out, never a panic.
+        assert_eq!(pack(&lights, &grid, &views, 0).left_out, 14);
+    }
+}

@@ -1,0 +1,12 @@
+// Data textures: bytes in an `Rgba32Uint` texture, for devices without storage buffers
+// (WebGL2). Texel `i`, counting row after row, holds bytes `16 i .. 16 i + 16` as four
+// `u32`s (src/render/data_texture.rs); rebuild structs from them with `bitcast`.
+#define_import_path bevy_phong::data_texture
+
+// Texels per row of every data texture (`DATA_TEXTURE_WIDTH` in Rust).
+const DATA_TEXTURE_WIDTH: u32 = 2048u;
+
+// Texel `index` of `data`, counting row after row.
+fn data_texel(data: texture_2d<u32>, index: u32) -> vec4<u32> {
+    return textureLoad(data, vec2<u32>(index % DATA_TEXTURE_WIDTH, index / DATA_TEXTURE_WIDTH), 0);
+}
