@@ -7,13 +7,13 @@ use bevy::{
     prelude::*,
     render::{
         RenderApp,
-        render_resource::{PipelineCache, PollType, TextureFormat, TextureUsages},
+        render_resource::{PollType, TextureFormat, TextureUsages},
         renderer::RenderDevice,
         view::Msaa,
     },
 };
 use bevy_phong::PhongLightCulling;
-use bevy_phong_headless::{headless_app, pipelines_compiling};
+use bevy_phong_headless::{headless_app, run_until_settled};
 use std::time::{Duration, Instant};
 
 /// How many frames to measure.
@@ -48,21 +48,10 @@ pub fn median_frame_time(
     spawn_camera(app.world_mut(), scene, size);
     spawn_scene(app.world_mut(), scene, shading);
 
-    // Until no pipeline has been compiling for three frames (materials whose scene data
-    // arrives a frame late queue theirs a frame late), then the warm-up frames.
-    let mut ready_frames = 0;
-    for _ in 0..600 {
-        frame(&mut app);
-        let cache = app.sub_app(RenderApp).world().resource::<PipelineCache>();
-        ready_frames = if pipelines_compiling(cache) {
-            0
-        } else {
-            ready_frames + 1
-        };
-        if ready_frames >= 3 {
-            break;
-        }
-    }
+    // Until every pipeline has compiled, then the warm-up frames.
+    run_until_settled(&mut app, 600, |app| {
+        frame(app);
+    });
     for _ in 0..frames.warmup {
         frame(&mut app);
     }

@@ -7,7 +7,7 @@
 #import bevy_phong::types::{PhongLight, PhongShadowView}
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
 #import bevy_phong::bindings::scene_data
-#import bevy_phong::data_texture::data_texel
+#import bevy_phong::data_texture::{data_light, data_texel}
 #else
 #import bevy_phong::bindings::{light_grid, lights, shadow_views}
 #endif
@@ -45,24 +45,7 @@ fn spot_count() -> u32 {
 }
 
 fn light_at(index: u32) -> PhongLight {
-    let first = LIGHTS_START + 2u + 5u * index;
-    let a = texel(first);
-    let b = texel(first + 1u);
-    let c = texel(first + 2u);
-    let d = texel(first + 3u);
-    let e = texel(first + 4u);
-    return PhongLight(
-        bitcast<vec3<f32>>(a.xyz),
-        bitcast<f32>(a.w),
-        bitcast<vec3<f32>>(b.xyz),
-        bitcast<f32>(b.w),
-        bitcast<vec3<f32>>(c.xyz),
-        bitcast<f32>(c.w),
-        bitcast<vec3<f32>>(d.xyz),
-        bitcast<f32>(d.w),
-        bitcast<vec3<f32>>(e.xyz),
-        e.w,
-    );
+    return data_light(scene_data, LIGHTS_START + 2u + 5u * index);
 }
 
 // The grid's header is texels 0–1 of its region (`GpuLightGridHeader`), its words four to

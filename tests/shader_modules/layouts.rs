@@ -32,6 +32,14 @@ fn wgsl_struct(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
     (*span, members)
 }
 
+/// `[(member, offset)]` of a Rust struct in the form [`wgsl_struct`] gives.
+fn rust_members(members: &[(&str, usize)]) -> Vec<(String, u32)> {
+    members
+        .iter()
+        .map(|(name, offset)| (name.to_string(), *offset as u32))
+        .collect()
+}
+
 #[test]
 fn gpu_light_matches_wgsl_phong_light() {
     let (size, members) = wgsl_struct(&types_module(), "PhongLight");
@@ -48,45 +56,31 @@ fn gpu_light_matches_wgsl_phong_light() {
         ("decay", offset_of!(GpuLight, decay)),
         ("shadow", offset_of!(GpuLight, shadow)),
     ];
-    let rust: Vec<(String, u32)> = rust
-        .iter()
-        .map(|(name, offset)| (name.to_string(), *offset as u32))
-        .collect();
-    assert_eq!(members, rust);
+    assert_eq!(members, rust_members(&rust));
 }
 
 #[test]
 fn light_buffer_header_matches_wgsl_phong_lights() {
     let (_, members) = wgsl_struct(&types_module(), "PhongLights");
-    let offset = |name: &str| {
-        members
-            .iter()
-            .find(|(member, _)| member == name)
-            .map(|(_, offset)| *offset as usize)
-            .unwrap_or_else(|| panic!("member {name}"))
-    };
-    assert_eq!(offset("ambient"), offset_of!(GpuLightsHeader, ambient));
-    assert_eq!(
-        offset("directional_count"),
-        offset_of!(GpuLightsHeader, directional_count)
-    );
-    assert_eq!(
-        offset("point_count"),
-        offset_of!(GpuLightsHeader, point_count)
-    );
-    assert_eq!(
-        offset("spot_count"),
-        offset_of!(GpuLightsHeader, spot_count)
-    );
-    assert_eq!(
-        offset("grid_point_count"),
-        offset_of!(GpuLightsHeader, grid_point_count)
-    );
-    assert_eq!(
-        offset("grid_spot_count"),
-        offset_of!(GpuLightsHeader, grid_spot_count)
-    );
-    assert_eq!(offset("lights"), size_of::<GpuLightsHeader>());
+    let rust = [
+        ("ambient", offset_of!(GpuLightsHeader, ambient)),
+        (
+            "directional_count",
+            offset_of!(GpuLightsHeader, directional_count),
+        ),
+        ("point_count", offset_of!(GpuLightsHeader, point_count)),
+        ("spot_count", offset_of!(GpuLightsHeader, spot_count)),
+        (
+            "grid_point_count",
+            offset_of!(GpuLightsHeader, grid_point_count),
+        ),
+        (
+            "grid_spot_count",
+            offset_of!(GpuLightsHeader, grid_spot_count),
+        ),
+        ("lights", size_of::<GpuLightsHeader>()),
+    ];
+    assert_eq!(members, rust_members(&rust));
 }
 
 #[test]
@@ -99,11 +93,7 @@ fn light_grid_header_matches_wgsl_phong_light_grid() {
         ("padding", offset_of!(GpuLightGridHeader, padding)),
         ("data", size_of::<GpuLightGridHeader>()),
     ];
-    let rust: Vec<(String, u32)> = rust
-        .iter()
-        .map(|(name, offset)| (name.to_string(), *offset as u32))
-        .collect();
-    assert_eq!(members, rust);
+    assert_eq!(members, rust_members(&rust));
 }
 
 #[test]
@@ -141,11 +131,7 @@ fn shadow_view_matches_wgsl_phong_shadow_view() {
         ),
         ("padding", offset_of!(GpuShadowView, padding)),
     ];
-    let rust: Vec<(String, u32)> = rust
-        .iter()
-        .map(|(name, offset)| (name.to_string(), *offset as u32))
-        .collect();
-    assert_eq!(members, rust);
+    assert_eq!(members, rust_members(&rust));
     let (_, views) = wgsl_struct(&types_module(), "PhongShadowViews");
     let views_offset = views.iter().find(|(name, _)| name == "views").unwrap().1;
     assert_eq!(views_offset as usize, size_of::<GpuShadowViewsHeader>());

@@ -172,27 +172,45 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 pub fn phong_material() -> Vec<Variant> {
     let mut variants = Vec::new();
     for (mesh, layout) in mesh_layouts() {
-        let phong_defs: BTreeSet<Vec<&str>> = material_keys()
-            .iter()
-            .map(|key| {
-                let mut defs = key.shader_defs(&layout);
-                defs.sort_unstable();
-                defs
-            })
-            .collect();
+        let phong_defs = distinct_phong_defs(&layout);
         for (view, view_defs) in view_setups() {
             for phong in &phong_defs {
-                let mut defs = mesh_defs(&layout);
-                defs.extend(view_defs.iter().cloned());
-                defs.extend(phong.iter().map(|&def| def.into()));
-                variants.push(Variant {
-                    name: format!("mesh of {mesh}, {view}, {phong:?}"),
-                    defs,
-                });
+                variants.push(phong_variant(mesh, &layout, &view, &view_defs, phong));
             }
         }
     }
     variants
+}
+
+/// Every distinct set of the crate's own defs that some `PhongMaterialKey` gives on a mesh
+/// with `layout`, each sorted.
+fn distinct_phong_defs(layout: &MeshVertexBufferLayoutRef) -> BTreeSet<Vec<&'static str>> {
+    material_keys()
+        .iter()
+        .map(|key| {
+            let mut defs = key.shader_defs(layout);
+            defs.sort_unstable();
+            defs
+        })
+        .collect()
+}
+
+/// The variant of a Phong material on `mesh` (with `layout`), under `view`, with the
+/// crate's defs `phong`.
+fn phong_variant(
+    mesh: &str,
+    layout: &MeshVertexBufferLayoutRef,
+    view: &str,
+    view_defs: &[ShaderDefVal],
+    phong: &[&str],
+) -> Variant {
+    let mut defs = mesh_defs(layout);
+    defs.extend(view_defs.iter().cloned());
+    defs.extend(phong.iter().map(|&def| def.into()));
+    Variant {
+        name: format!("mesh of {mesh}, {view}, {phong:?}"),
+        defs,
+    }
 }
 
 /// Every combination of the crate's own defs (all keys on a mesh with UVs and tangents, where
@@ -203,27 +221,14 @@ pub fn phong_def_combinations() -> Vec<Variant> {
         .into_iter()
         .find(|(mesh, _)| *mesh == "positions, normals, UVs, tangents")
         .expect("a mesh with UVs and tangents");
-    let combinations: BTreeSet<Vec<&str>> = material_keys()
-        .iter()
-        .map(|key| {
-            let mut defs = key.shader_defs(&layout);
-            defs.sort_unstable();
-            defs
-        })
-        .collect();
+    let combinations = distinct_phong_defs(&layout);
     let mut variants = Vec::new();
     for (view, view_defs) in view_setups() {
         if !view.starts_with("render tests' camera") {
             continue;
         }
         for phong in &combinations {
-            let mut defs = mesh_defs(&layout);
-            defs.extend(view_defs.iter().cloned());
-            defs.extend(phong.iter().map(|&def| def.into()));
-            variants.push(Variant {
-                name: format!("mesh of {mesh}, {view}, {phong:?}"),
-                defs,
-            });
+            variants.push(phong_variant(mesh, &layout, &view, &view_defs, phong));
         }
     }
     variants

@@ -9,10 +9,9 @@ use bevy::{
     math::DVec3,
     prelude::*,
     render::{
-        RenderApp,
         error_handler::RenderErrorHandler,
         gpu_readback::{Readback, ReadbackComplete},
-        render_resource::{PipelineCache, TextureFormat, TextureUsages},
+        render_resource::{TextureFormat, TextureUsages},
         view::Msaa,
     },
 };
@@ -27,7 +26,7 @@ use std::{
     sync::{Arc, Mutex, MutexGuard},
 };
 
-use crate::{Comparison, FloatImage, app::headless_app_with_assets, pipelines_compiling};
+use crate::{Comparison, FloatImage, app::headless_app_with_assets, run_until_settled};
 
 /// The camera every scene is seen from.
 pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
@@ -205,19 +204,12 @@ impl Harness {
         }
     }
 
-    /// Runs frames until every pipeline has compiled and two more frames were drawn.
+    /// Runs frames until no pipeline has been compiling for three frames in a row
+    /// ([`run_until_settled`]).
     pub fn settle(&mut self) {
-        let mut ready_frames = 0;
-        for _ in 0..MAX_SETTLE_FRAMES {
-            self.app.update();
-            let render_world = self.app.sub_app(RenderApp).world();
-            let compiling = pipelines_compiling(render_world.resource::<PipelineCache>());
-            ready_frames = if compiling { 0 } else { ready_frames + 1 };
-            if ready_frames >= 3 {
-                return;
-            }
+        if !run_until_settled(&mut self.app, MAX_SETTLE_FRAMES, App::update) {
+            panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
         }
-        panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
     }
 
     /// Runs exactly one frame and returns what it rendered.

@@ -37,4 +37,4 @@ pub use comparison::Comparison;
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
 pub use harness::{CAMERA_POSITION, Harness, SurfaceInputs};
-pub use pipelines::pipelines_compiling;
+pub use pipelines::{pipelines_compiling, run_until_settled};

@@ -1,10 +1,37 @@
 //! Whether the render pipelines a frame needs have compiled.
 
 use bevy::{
+    app::App,
     asset::AssetId,
-    render::render_resource::{PipelineCache, PipelineDescriptor},
+    render::{
+        RenderApp,
+        render_resource::{PipelineCache, PipelineDescriptor},
+    },
     shader::Shader,
 };
+
+/// Frames in a row without a pipeline compiling after which [`run_until_settled`] stops:
+/// a material whose data arrives a frame late queues its pipeline a frame late.
+const SETTLED_FRAMES: u32 = 3;
+
+/// Runs `frame` on `app` until no pipeline has been compiling for three frames in a row;
+/// `false` if that did not happen within `max_frames`.
+pub fn run_until_settled(app: &mut App, max_frames: u32, mut frame: impl FnMut(&mut App)) -> bool {
+    let mut ready_frames = 0;
+    for _ in 0..max_frames {
+        frame(app);
+        let cache = app.sub_app(RenderApp).world().resource::<PipelineCache>();
+        ready_frames = if pipelines_compiling(cache) {
+            0
+        } else {
+            ready_frames + 1
+        };
+        if ready_frames >= SETTLED_FRAMES {
+            return true;
+        }
+    }
+    false
+}
 
 /// Whether some pipeline is still on its way to compiling.
 ///

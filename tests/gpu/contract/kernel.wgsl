@@ -1,7 +1,7 @@
 // The shader contract kernel: runs the material's own lighting functions
 // (`bevy_phong::lighting`, imported as the material imports them) on a batch of cases, in
 // the fragment stage the material runs in: one pixel of the results target per case.
-#import bevy_phong::data_texture::data_texel
+#import bevy_phong::data_texture::{data_light, data_texel}
 #import bevy_phong::lighting::{directional_light, highlight, phong_surface, point_light, spot_light}
 #import bevy_phong::types::SPECULAR_MODEL_BLINN_PHONG
 #import bevy_phong::types::{PhongLight, PhongSurface}
@@ -34,22 +34,11 @@ fn case_count() -> u32 {
 
 fn case_at(index: u32) -> ContractCase {
     let first = 1u + 10u * index;
-    var t: array<vec4<u32>, 10>;
-    for (var i = 0u; i < 10u; i += 1u) {
+    var t: array<vec4<u32>, 5>;
+    for (var i = 0u; i < 5u; i += 1u) {
         t[i] = data_texel(cases, first + i);
     }
-    let light = PhongLight(
-        bitcast<vec3<f32>>(t[5].xyz),
-        bitcast<f32>(t[5].w),
-        bitcast<vec3<f32>>(t[6].xyz),
-        bitcast<f32>(t[6].w),
-        bitcast<vec3<f32>>(t[7].xyz),
-        bitcast<f32>(t[7].w),
-        bitcast<vec3<f32>>(t[8].xyz),
-        bitcast<f32>(t[8].w),
-        bitcast<vec3<f32>>(t[9].xyz),
-        t[9].w,
-    );
+    let light = data_light(cases, first + 5u);
     return ContractCase(
         bitcast<vec3<f32>>(t[0].xyz),
         t[0].w,
