@@ -16,6 +16,9 @@ const { chromium } = require(require.resolve("playwright-core", { paths: [module
 // Loading the wasm and compiling every shader in software WebGL2 takes about a minute on
 // a 2-core machine; this leaves room for a slower one.
 const DRAWN_TIMEOUT_MS = 600_000;
+// The screenshot itself waits for the compositor's next frame, which software WebGL2 can
+// take seconds to give while the app keeps drawing.
+const SCREENSHOT_TIMEOUT_MS = 120_000;
 
 const FLAGS = [
   "--headless",
@@ -75,7 +78,12 @@ async function main() {
     }
     if (failure === null) {
       console.log(`drawn after ${((Date.now() - started) / 1000).toFixed(1)} s`);
-      await page.locator("#bevy").screenshot({ path: png });
+      // The page's pixels inside the canvas's box: an element screenshot would first wait
+      // for the canvas to be "stable" over two animation frames, each of which can take
+      // seconds here.
+      const clip = await page.locator("#bevy").boundingBox();
+      if (clip === null) throw new Error("the page has no visible #bevy canvas");
+      await page.screenshot({ path: png, clip, timeout: SCREENSHOT_TIMEOUT_MS });
       console.log(`wrote ${png}`);
     }
   } finally {
