@@ -19,6 +19,8 @@ use serde::{Deserialize, Serialize};
 
 /// Path of the material's fragment shader among the crate's embedded assets.
 pub(crate) const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wgsl";
+/// Path of the material's prepass fragment shader among the crate's embedded assets.
+pub(crate) const PHONG_PREPASS_SHADER: &str = "embedded://bevy_phong/shaders/phong_prepass.wgsl";
 
 /// How the highlight of a light is shaped (SPEC.md's `H`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
@@ -116,6 +118,10 @@ pub struct PhongMaterial {
     /// Negates the normal map's green channel, for maps made with the other convention
     /// (Direct3D's, green pointing down). Default `false`.
     pub flip_normal_map_y: bool,
+    /// Draws the back faces too, lit with the normal turned toward the viewer (negated on
+    /// back faces, before the normal map), as glTF's `doubleSided` and Bevy's
+    /// `StandardMaterial::double_sided`. Default `false`: back faces are culled.
+    pub double_sided: bool,
 }
 
 impl Default for PhongMaterial {
@@ -134,6 +140,7 @@ impl Default for PhongMaterial {
             emissive_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
+            double_sided: false,
         }
     }
 }
@@ -161,7 +168,8 @@ pub struct PhongMaterialUniform {
     pub emissive: Vec3,
     /// `k_a`.
     pub ambient_factor: f32,
-    /// The specular model in bits 0..1; [`FLIP_NORMAL_MAP_Y`](Self::FLIP_NORMAL_MAP_Y).
+    /// The specular model in bits 0..1; [`FLIP_NORMAL_MAP_Y`](Self::FLIP_NORMAL_MAP_Y),
+    /// [`DOUBLE_SIDED`](Self::DOUBLE_SIDED).
     pub flags: u32,
     /// Fragments whose alpha is below this are discarded (with `AlphaMode::Mask`).
     pub alpha_cutoff: f32,
@@ -170,6 +178,8 @@ pub struct PhongMaterialUniform {
 impl PhongMaterialUniform {
     /// Flag bit: negate the normal map's green channel.
     pub const FLIP_NORMAL_MAP_Y: u32 = 4;
+    /// Flag bit: negate the normal on back faces.
+    pub const DOUBLE_SIDED: u32 = 8;
 }
 
 // Bevy's `AsBindGroupShaderType` comes with this conversion. Every value is brought into its
@@ -189,6 +199,11 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
             flags: material.specular_model.shader_flag()
                 | if material.flip_normal_map_y {
                     Self::FLIP_NORMAL_MAP_Y
+                } else {
+                    0
+                }
+                | if material.double_sided {
+                    Self::DOUBLE_SIDED
                 } else {
                     0
                 },
@@ -227,6 +242,8 @@ pub struct PhongMaterialKey {
     pub normal_map: bool,
     /// Whether it discards fragments below an alpha cutoff.
     pub alpha_mask: bool,
+    /// Whether back faces are drawn (no culling).
+    pub double_sided: bool,
     /// Whether some light of the scene casts shadows: only then is the shadow code compiled
     /// in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last off,
     /// compiles the other variant once, as any new variant. The flag is process-wide: apps
@@ -249,6 +266,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             emissive_texture: material.emissive_texture.is_some(),
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
+            double_sided: material.double_sided,
             shadows: crate::shadows::SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
             soft_shadows: crate::shadows::SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
         }
@@ -319,12 +337,21 @@ impl Material for PhongMaterial {
         PHONG_MATERIAL_SHADER.into()
     }
 
+    /// Discards what the main pass discards and writes the normal it lights with (see
+    /// `phong_prepass.wgsl`).
+    fn prepass_fragment_shader() -> ShaderRef {
+        PHONG_PREPASS_SHADER.into()
+    }
+
     fn specialize(
         _pipeline: &MaterialPipeline,
         descriptor: &mut RenderPipelineDescriptor,
         layout: &MeshVertexBufferLayoutRef,
         key: MaterialPipelineKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
+        if key.bind_group_data.double_sided {
+            descriptor.primitive.cull_mode = None;
+        }
         if let Some(fragment) = descriptor.fragment.as_mut() {
             let defs = key.bind_group_data.shader_defs(layout);
             fragment

@@ -116,9 +116,12 @@ impl Plugin for PhongPlugin {
             load_shader_library!(app, "shaders/data_texture.wgsl");
             load_shader_library!(app, "shaders/scene.wgsl");
             load_shader_library!(app, "shaders/shading.wgsl");
+            load_shader_library!(app, "shaders/normals.wgsl");
             load_shader_library!(app, "shaders/texture_maps.wgsl");
             load_shader_library!(app, "shaders/shadows.wgsl");
+            load_shader_library!(app, "shaders/camera_effects.wgsl");
             embedded_asset!(app, "shaders/phong_material.wgsl");
+            embedded_asset!(app, "shaders/phong_prepass.wgsl");
             embedded_asset!(app, "shaders/shadow_caster.wgsl");
         }
         if app.get_sub_app(RenderApp).is_none() {

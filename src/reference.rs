@@ -34,7 +34,9 @@ use bevy::{
 };
 use glam::DVec3;
 
+mod camera_effects;
 mod texture_maps;
+pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use texture_maps::{Texels, mapped_normal};
 
 /// A point or spot light whose squared distance from the surface point is at or below this

@@ -2,6 +2,7 @@
 // crate's lights, plus every searchlight in the extension's data texture, each lit with the
 // crate's own `phong_light`.
 #import bevy_pbr::{forward_io::VertexOutput, mesh_view_bindings::view}
+#import bevy_phong::camera_effects::{ambient_occlusion, camera_effects}
 #import bevy_phong::{
     bindings::material,
     data_texture::data_texel,
@@ -121,10 +122,12 @@ fn searchlight(surface: PhongSurface, light: Searchlight) -> vec3<f32> {
 fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
     var surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
     surface.receives_shadows = receives_shadows(in.instance_index);
+    surface.ambient_occlusion = ambient_occlusion(in.position.xy, surface.diffuse);
     var color = phong_shade(surface);
     let count = searchlight_count();
     for (var index = 0u; index < count; index += 1u) {
         color += searchlight(surface, searchlight_at(index));
     }
-    return vec4<f32>(color, material.base_color.a);
+    // Fog, tonemapping and debanding as the camera asks, like `PhongMaterial`.
+    return camera_effects(vec4<f32>(color, material.base_color.a), in.world_position.xyz, in.position.xy);
 }

@@ -53,6 +53,8 @@ pub struct PhongMaterialDescription {
     pub normal_map_texture: Option<String>,
     /// Negate the normal map's green channel. Default `false`.
     pub flip_normal_map_y: bool,
+    /// Draw back faces too, their normal negated. Default `false`.
+    pub double_sided: bool,
 }
 
 /// The alpha modes a file can name.
@@ -84,6 +86,7 @@ impl Default for PhongMaterialDescription {
             emissive_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
+            double_sided: false,
         }
     }
 }
@@ -126,6 +129,7 @@ impl PhongMaterialDescription {
             emissive_texture: map(&self.emissive_texture, "emissive_texture", true)?,
             normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
+            double_sided: self.double_sided,
         })
     }
 }

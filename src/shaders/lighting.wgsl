@@ -99,6 +99,7 @@ fn phong_surface(
         shininess,
         specular_model,
         true,
+        vec3<f32>(1.0),
     );
 }
 

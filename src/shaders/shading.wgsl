@@ -29,9 +29,9 @@ fn receives_shadows(instance_index: u32) -> bool {
     return (mesh[instance_index].flags & MESH_FLAGS_SHADOW_RECEIVER_BIT) != 0u;
 }
 
-// ambient ⊙ k_a ⊙ k_d
+// ambient ⊙ k_a ⊙ k_d, times the surface's ambient occlusion
 fn ambient_light(surface: PhongSurface) -> vec3<f32> {
-    return ambient_color() * material.ambient_factor * surface.diffuse;
+    return ambient_color() * material.ambient_factor * surface.diffuse * surface.ambient_occlusion;
 }
 
 // Σ over every light that reaches the surface point: the directional lights, the point and

@@ -8,9 +8,11 @@
     base_color_texture, base_color_sampler,
     specular_texture, specular_sampler,
     emissive_texture, emissive_sampler,
-    normal_map_texture, normal_map_sampler,
 }
-#import bevy_phong::types::FLIP_NORMAL_MAP_Y
+#import bevy_phong::normals::facing_normal
+#ifdef PHONG_NORMAL_MAP
+#import bevy_phong::normals::with_normal_map
+#endif
 
 // What the lighting equation takes from the material at one fragment.
 struct MappedMaterial {
@@ -24,18 +26,10 @@ struct MappedMaterial {
     normal: vec3<f32>,
 }
 
-// `n.x·T + n.y·B + n.z·N` with `n = 2·texel − 1` (green negated when the material says so)
-// and `B = T.w · N × T`: MikkTSpace's tangent frame, from the interpolated, unnormalized
-// normal and tangent.
-fn mapped_normal(normal: vec3<f32>, tangent: vec4<f32>, texel: vec3<f32>, flip_y: bool) -> vec3<f32> {
-    var n = texel * 2.0 - 1.0;
-    n.y = select(n.y, -n.y, flip_y);
-    let bitangent = tangent.w * cross(normal, tangent.xyz);
-    return n.x * tangent.xyz + n.y * bitangent + n.z * normal;
-}
-
-fn mapped_material(in: VertexOutput) -> MappedMaterial {
-    var mapped = MappedMaterial(material.base_color, material.specular, material.emissive, in.world_normal);
+// `is_front`: the fragment's `@builtin(front_facing)`.
+fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
+    let normal = facing_normal(in.world_normal, is_front);
+    var mapped = MappedMaterial(material.base_color, material.specular, material.emissive, normal);
 #ifdef PHONG_BASE_COLOR_TEXTURE
     mapped.base_color *= textureSample(base_color_texture, base_color_sampler, in.uv);
 #endif
@@ -46,9 +40,7 @@ fn mapped_material(in: VertexOutput) -> MappedMaterial {
     mapped.emissive *= textureSample(emissive_texture, emissive_sampler, in.uv).rgb;
 #endif
 #ifdef PHONG_NORMAL_MAP
-    let texel = textureSample(normal_map_texture, normal_map_sampler, in.uv).rgb;
-    let flip_y = (material.flags & FLIP_NORMAL_MAP_Y) != 0u;
-    mapped.normal = mapped_normal(in.world_normal, in.world_tangent, texel, flip_y);
+    mapped.normal = with_normal_map(normal, in.world_tangent, in.uv);
 #endif
     return mapped;
 }

@@ -120,7 +120,7 @@ struct PhongMaterialUniform {
     emissive: vec3<f32>,
     // k_a.
     ambient_factor: f32,
-    // SPECULAR_MODEL_* in bits 0..1; FLIP_NORMAL_MAP_Y.
+    // SPECULAR_MODEL_* in bits 0..1; FLIP_NORMAL_MAP_Y; DOUBLE_SIDED.
     flags: u32,
     // With PHONG_ALPHA_MASK, fragments whose alpha is below this are discarded.
     alpha_cutoff: f32,
@@ -145,9 +145,14 @@ struct PhongSurface {
     specular_model: u32,
     // Whether shadows darken it (false for meshes with `NotShadowReceiver`).
     receives_shadows: bool,
+    // Scales the ambient term per channel: 1, or the view's screen-space ambient occlusion
+    // (`bevy_phong::camera_effects::ambient_occlusion`).
+    ambient_occlusion: vec3<f32>,
 }
 
 const SPECULAR_MODEL_PHONG: u32 = 0u;
 const SPECULAR_MODEL_BLINN_PHONG: u32 = 1u;
 // Flag bit of PhongMaterialUniform.flags: negate the normal map's green channel.
 const FLIP_NORMAL_MAP_Y: u32 = 4u;
+// Flag bit of PhongMaterialUniform.flags: negate the normal on back faces.
+const DOUBLE_SIDED: u32 = 8u;

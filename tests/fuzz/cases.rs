@@ -76,6 +76,7 @@ const FULL_MATERIAL: &str = r##"(
     emissive_texture: None,
     normal_map_texture: Some("../textures/normal.png"),
     flip_normal_map_y: false,
+    double_sided: true,
 )"##;
 
 fn sample(path: &str) -> String {

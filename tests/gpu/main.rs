@@ -6,6 +6,8 @@
 //! - `culling`: the light grid and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
+//! - `game_features`: double-sided materials, fog, HDR, bloom, tonemapping, MSAA, blending,
+//!   prepasses, SSAO and the deferred renderer, each against its own formula;
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
 //!   the reference model given each pixel's texels;
 //! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
@@ -25,6 +27,7 @@ mod contract;
 mod culling;
 mod frames;
 mod fuzzed_scenes;
+mod game_features;
 mod huge_vectors;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;

@@ -22,13 +22,13 @@ use glam::{DVec3, DVec4};
 use std::collections::HashMap;
 
 /// Texels per side of every test map.
-const TEXELS: u32 = 4;
+pub(crate) const TEXELS: u32 = 4;
 
 /// A `TEXELS`² map with nearest filtering whose texel `(x, y)` is `texel(x, y)` (each
 /// channel in `[0, 1]`), stored as `Rgba8Unorm`: the 8-bit format games ship, which every
 /// device filters (WebGL2 cannot filter 32-bit floats). The reference reads the stored
 /// bytes, so the rounding to 1/255 is in both.
-fn float_map(texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
+pub(crate) fn float_map(texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
     let data: Vec<u8> = (0..TEXELS * TEXELS)
         .flat_map(|index| texel(index % TEXELS, index / TEXELS))
         .map(|channel| (channel.clamp(0.0, 1.0) * 255.0).round() as u8)
@@ -59,7 +59,7 @@ fn color_map(low: f32, high: f32) -> Image {
 }
 
 /// Tangent-space normals tilted up to ~50° from the surface normal, encoded as `(n + 1) / 2`.
-fn normal_map() -> Image {
+pub(crate) fn normal_map() -> Image {
     float_map(|x, y| {
         let n = Vec3::new(
             scatter(x, y, 0, -0.6, 0.6),
@@ -94,6 +94,43 @@ fn texel_at(image: &Image, uv: [f32; 2]) -> Option<DVec4> {
     Some(DVec4::from_slice(&channels))
 }
 
+/// The normal a pixel of `material` is lit with, given its captured inputs: the normal
+/// map's where the material has one and the mesh has tangents, the interpolated normal
+/// otherwise; `None` on a texel edge.
+pub(crate) fn lit_normal(
+    material: &PhongMaterial,
+    surface: &reference::SurfacePoint,
+    pixel: usize,
+    inputs: &SurfaceInputs,
+    images: &HashMap<AssetId<Image>, Image>,
+) -> Option<DVec3> {
+    let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
+    let tangent = inputs.tangents.as_ref().unwrap().pixels[pixel];
+    let texel = match &material.normal_map_texture {
+        None => None,
+        Some(handle) => Some(texel_at(
+            &images[&handle.id()],
+            [uv_and_sign[0], uv_and_sign[1]],
+        )?),
+    };
+    let tangent = DVec4::new(
+        tangent[0].into(),
+        tangent[1].into(),
+        tangent[2].into(),
+        uv_and_sign[2].into(),
+    );
+    // A normal map is applied only where the mesh has tangents (`w` is ±1 there, 0 without).
+    Some(match texel {
+        Some(texel) if tangent.w != 0.0 => reference::mapped_normal(
+            surface.normal,
+            tangent,
+            texel.truncate(),
+            material.flip_normal_map_y,
+        ),
+        _ => surface.normal,
+    })
+}
+
 /// The reference color of a pixel of `material`, given its captured inputs; `None` on a
 /// texel edge.
 fn expected_color(
@@ -105,7 +142,6 @@ fn expected_color(
     lights: &reference::Lights,
 ) -> Option<DVec3> {
     let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
-    let tangent = inputs.tangents.as_ref().unwrap().pixels[pixel];
     let uv = [uv_and_sign[0], uv_and_sign[1]];
     let sample = |map: &Option<Handle<Image>>| -> Result<Option<DVec4>, ()> {
         match map {
@@ -135,19 +171,7 @@ fn expected_color(
             return Some(DVec3::ZERO);
         }
     }
-    let tangent = DVec4::new(
-        tangent[0].into(),
-        tangent[1].into(),
-        tangent[2].into(),
-        uv_and_sign[2].into(),
-    );
-    // A normal map is applied only where the mesh has tangents (`w` is ±1 there, 0 without).
-    let normal = match texels.normal {
-        Some(texel) if tangent.w != 0.0 => {
-            reference::mapped_normal(surface.normal, tangent, texel, material.flip_normal_map_y)
-        }
-        _ => surface.normal,
-    };
+    let normal = lit_normal(material, surface, pixel, inputs, images)?;
     let surface = reference::SurfacePoint { normal, ..*surface };
     let mapped = reference::Material::from(material).mapped(&texels);
     Some(reference::shade(&surface, &mapped, lights))

@@ -5,7 +5,7 @@
 
 use crate::{
     library::{
-        CONSTANT_COLOR, CONTRACT_KERNEL, PHONG_MATERIAL, SEARCHLIGHT, SHADOW_CASTER,
+        CONSTANT_COLOR, CONTRACT_KERNEL, PHONG_MATERIAL, PHONG_PREPASS, SEARCHLIGHT, SHADOW_CASTER,
         SURFACE_INPUTS, library,
     },
     variants::{self, Variant},
@@ -92,6 +92,11 @@ fn every_module_of_the_crate_validates_whole_with_every_combination_of_its_defs(
 #[test]
 fn every_phong_material_variant_validates() {
     assert_every_variant_validates(PHONG_MATERIAL, &variants::phong_material());
+}
+
+#[test]
+fn every_phong_prepass_variant_validates() {
+    assert_every_variant_validates(PHONG_PREPASS, &variants::phong_prepass());
 }
 
 #[test]

@@ -23,6 +23,8 @@ use std::{collections::HashMap, sync::OnceLock};
 
 /// `PhongMaterial`'s fragment stage.
 pub const PHONG_MATERIAL: &str = "embedded://bevy_phong/shaders/phong_material.wgsl";
+/// `PhongMaterial`'s prepass fragment stage.
+pub const PHONG_PREPASS: &str = "embedded://bevy_phong/shaders/phong_prepass.wgsl";
 /// The shadow maps' vertex stage.
 pub const SHADOW_CASTER: &str = "embedded://bevy_phong/shaders/shadow_caster.wgsl";
 /// `SurfaceInputsMaterial`'s fragment stage.
@@ -79,6 +81,7 @@ impl ShaderLibrary {
         let server = app.world().resource::<AssetServer>().clone();
         let handles: Vec<(&'static str, Handle<Shader>)> = [
             PHONG_MATERIAL,
+            PHONG_PREPASS,
             SHADOW_CASTER,
             SURFACE_INPUTS,
             SEARCHLIGHT,

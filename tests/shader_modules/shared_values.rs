@@ -43,7 +43,9 @@ fn material_flags_are_the_wgsl_constants() {
     let phong = constant(&types, "SPECULAR_MODEL_PHONG");
     let blinn_phong = constant(&types, "SPECULAR_MODEL_BLINN_PHONG");
     let flip_y = constant(&types, "FLIP_NORMAL_MAP_Y");
+    let double_sided = constant(&types, "DOUBLE_SIDED");
     assert_eq!(PhongMaterialUniform::FLIP_NORMAL_MAP_Y, flip_y);
+    assert_eq!(PhongMaterialUniform::DOUBLE_SIDED, double_sided);
     assert_eq!(flags(PhongMaterial::default()), phong);
     let blinn = PhongMaterial {
         specular_model: SpecularModel::BlinnPhong,
@@ -54,7 +56,12 @@ fn material_flags_are_the_wgsl_constants() {
         flip_normal_map_y: true,
         ..blinn
     };
-    assert_eq!(flags(flipped), blinn_phong | flip_y);
+    assert_eq!(flags(flipped.clone()), blinn_phong | flip_y);
+    let both_sides = PhongMaterial {
+        double_sided: true,
+        ..flipped
+    };
+    assert_eq!(flags(both_sides), blinn_phong | flip_y | double_sided);
 }
 
 #[test]

@@ -95,9 +95,10 @@ pub fn devices() -> [(&'static str, ShaderDefVal); 2] {
     ]
 }
 
-/// The defs Bevy's mesh pipeline derives from the camera, for two cameras: the render
-/// tests' (no MSAA, no tone mapping) and a default `Camera3d` (4× MSAA, tone mapping in the
-/// shader with Bevy's default method, deband dithering), each on both [`devices`]. All see
+/// The defs Bevy's mesh pipeline derives from the camera, for three cameras: the render
+/// tests' (no MSAA, no tone mapping), a default `Camera3d` (4× MSAA, tone mapping in the
+/// shader with Bevy's default method, deband dithering) and an HDR camera with distance fog,
+/// SSAO and the depth and normal prepasses, each on both [`devices`]. All see
 /// in perspective, with Bevy's default shadow filter, and add the material bind group's
 /// index.
 fn view_setups() -> Vec<(String, Vec<ShaderDefVal>)> {
@@ -141,15 +142,23 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
         "TONEMAP_METHOD_TONY_MC_MAPFACE".into(),
         "DEBAND_DITHER".into(),
     ]);
+    let mut game_camera = common();
+    game_camera.extend([
+        "DISTANCE_FOG".into(),
+        "SCREEN_SPACE_AMBIENT_OCCLUSION".into(),
+        "DEPTH_PREPASS".into(),
+        "NORMAL_PREPASS".into(),
+    ]);
     vec![
         ("render tests' camera", common()),
         ("default Camera3d", default_camera),
+        ("HDR camera with fog, SSAO and prepasses", game_camera),
     ]
 }
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
-    (0..1u32 << 8)
+    (0..1u32 << 9)
         .map(|bits| {
             let bit = |index: u32| bits & (1 << index) != 0;
             PhongMaterialKey {
@@ -161,6 +170,7 @@ fn material_keys() -> Vec<PhongMaterialKey> {
                 alpha_mask: bit(5),
                 shadows: bit(6),
                 soft_shadows: bit(7),
+                double_sided: bit(8),
             }
         })
         .collect()
@@ -257,4 +267,83 @@ pub fn without_defs() -> Vec<Variant> {
         name: "no defs".into(),
         defs: Vec::new(),
     }]
+}
+
+/// The prepass fragment variants of a material that specializes as `PhongMaterial` does:
+/// every distinct set of the crate's defs on every mesh, in the prepasses Bevy runs a
+/// fragment stage for (an alpha-masked depth prepass, the normal prepass, the normal and
+/// motion-vector prepasses, a shadow map of a directional light emulating unclipped depth),
+/// on both [`devices`] (Bevy's prepass pipeline, bevy_pbr 0.19 `prepass/mod.rs`).
+pub fn phong_prepass() -> Vec<Variant> {
+    let setups: [(&str, &[&str]); 4] = [
+        ("masked depth prepass", &["DEPTH_PREPASS", "MAY_DISCARD"]),
+        (
+            "normal prepass",
+            &[
+                "DEPTH_PREPASS",
+                "NORMAL_PREPASS",
+                "NORMAL_PREPASS_OR_DEFERRED_PREPASS",
+            ],
+        ),
+        (
+            "normal and motion-vector prepasses",
+            &[
+                "DEPTH_PREPASS",
+                "NORMAL_PREPASS",
+                "NORMAL_PREPASS_OR_DEFERRED_PREPASS",
+                "MOTION_VECTOR_PREPASS",
+                "MOTION_VECTOR_PREPASS_OR_DEFERRED_PREPASS",
+            ],
+        ),
+        (
+            "directional shadow map",
+            &["UNCLIPPED_DEPTH_ORTHO_EMULATION", "MAY_DISCARD"],
+        ),
+    ];
+    let mut variants = Vec::new();
+    for (mesh, layout) in mesh_layouts() {
+        let phong_defs = distinct_phong_defs(&layout);
+        for (setup, setup_defs) in setups {
+            let normals = setup_defs.contains(&"NORMAL_PREPASS");
+            let mut prepass: Vec<ShaderDefVal> = [
+                "PREPASS_PIPELINE",
+                "VERTEX_POSITIONS",
+                "VERTEX_OUTPUT_INSTANCE_INDEX",
+                "VIEW_PROJECTION_PERSPECTIVE",
+            ]
+            .into_iter()
+            .chain(setup_defs.iter().copied())
+            .map(Into::into)
+            .collect();
+            // Bevy declares the fragment's outputs only where it has some to write.
+            if setup_defs != ["DEPTH_PREPASS", "MAY_DISCARD"] {
+                prepass.push("PREPASS_FRAGMENT".into());
+            }
+            if layout.0.contains(Mesh::ATTRIBUTE_UV_0) {
+                prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_A".into()]);
+            }
+            if normals {
+                prepass.push("VERTEX_NORMALS".into());
+                if layout.0.contains(Mesh::ATTRIBUTE_TANGENT) {
+                    prepass.push("VERTEX_TANGENTS".into());
+                }
+            }
+            prepass.push(ShaderDefVal::UInt(
+                "MATERIAL_BIND_GROUP".into(),
+                MATERIAL_BIND_GROUP_INDEX as u32,
+            ));
+            for (device, device_def) in devices() {
+                for phong in &phong_defs {
+                    let mut defs = prepass.clone();
+                    defs.push(device_def.clone());
+                    defs.extend(phong.iter().map(|&def| def.into()));
+                    variants.push(Variant {
+                        name: format!("mesh of {mesh}, {setup}, {device}, {phong:?}"),
+                        defs,
+                    });
+                }
+            }
+        }
+    }
+    variants
 }

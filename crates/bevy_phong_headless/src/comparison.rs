@@ -3,7 +3,18 @@
 use bevy::math::DVec3;
 use std::path::PathBuf;
 
-use crate::float_image::{render_tests_directory, save_srgb_png};
+use crate::float_image::{FloatImage, render_tests_directory, save_srgb_png};
+
+/// What a pixel should show, for [`Comparison::of`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Expected {
+    /// This color, within the tolerance.
+    Lit(DVec3),
+    /// The clear color: nothing is drawn there.
+    Clear,
+    /// Not judged (a pixel on a discontinuity, say).
+    Unjudged,
+}
 
 /// The result of comparing a rendered image with the reference model.
 pub struct Comparison {
@@ -37,6 +48,19 @@ impl Comparison {
             actual: vec![[0.0; 3]; count],
             expected: vec![[0.0; 3]; count],
         }
+    }
+
+    /// Compares `rendered` with `expected(index)` pixel by pixel.
+    pub fn of(rendered: &FloatImage, expected: impl Fn(usize) -> Expected) -> Self {
+        let mut comparison = Self::new(rendered.width, rendered.height);
+        for (index, color) in rendered.pixels.iter().enumerate() {
+            match expected(index) {
+                Expected::Lit(expected) => comparison.record(index, *color, expected),
+                Expected::Clear => comparison.record_background(index, *color),
+                Expected::Unjudged => comparison.skipped_pixels += 1,
+            }
+        }
+        comparison
     }
 
     pub(crate) fn record_background(&mut self, index: usize, color: [f32; 4]) {

@@ -9,9 +9,10 @@ use bevy::{
     math::DVec3,
     prelude::*,
     render::{
+        RenderApp,
         error_handler::RenderErrorHandler,
         gpu_readback::{Readback, ReadbackComplete},
-        render_resource::{TextureFormat, TextureUsages},
+        render_resource::{PipelineCache, TextureFormat, TextureUsages},
         view::Msaa,
     },
 };
@@ -26,7 +27,9 @@ use std::{
     sync::{Arc, Mutex, MutexGuard},
 };
 
-use crate::{Comparison, FloatImage, app::headless_app_with_assets, run_until_settled};
+use crate::{
+    Comparison, FloatImage, app::headless_app_with_assets, failed_pipelines, run_until_settled,
+};
 
 /// The camera every scene is seen from.
 pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
@@ -52,6 +55,22 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub tangents: Option<FloatImage>,
     /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
+}
+
+impl<M: Material> SurfaceInputs<M> {
+    /// The material and surface point at pixel `index` (row-major), seen from `camera`;
+    /// `None` where no mesh of `M` covers the pixel.
+    pub fn surface_at(&self, index: usize, camera: DVec3) -> Option<(&Handle<M>, SurfacePoint)> {
+        let position = self.positions.pixels[index];
+        let normal = self.normals.pixels[index];
+        let material = self.materials.get(&(position[3] as u32))?;
+        let surface = SurfacePoint {
+            position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
+            normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
+            camera,
+        };
+        Some((material, surface))
+    }
 }
 
 #[derive(Resource, Clone, Default)]
@@ -140,6 +159,17 @@ impl Harness {
         }
     }
 
+    /// The harness camera, to give it a game's components (`Hdr`, `Bloom`, `Msaa`,
+    /// `Tonemapping`, `DistanceFog`, prepasses…).
+    pub fn camera_mut(&mut self) -> EntityWorldMut<'_> {
+        let world = self.app.world_mut();
+        let camera = world
+            .query_filtered::<Entity, With<Camera3d>>()
+            .single(world)
+            .expect("the harness has one camera");
+        world.entity_mut(camera)
+    }
+
     /// The app's main world, where scenes are spawned and edited.
     pub fn world_mut(&mut self) -> &mut World {
         self.app.world_mut()
@@ -205,11 +235,22 @@ impl Harness {
     }
 
     /// Runs frames until no pipeline has been compiling for three frames in a row
-    /// ([`run_until_settled`]).
+    /// ([`run_until_settled`]); panics if a pipeline failed to compile
+    /// ([`failed_pipelines`]), since Bevy would draw nothing with it.
     pub fn settle(&mut self) {
         if !run_until_settled(&mut self.app, MAX_SETTLE_FRAMES, App::update) {
             panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
         }
+        let cache = self
+            .app
+            .sub_app(RenderApp)
+            .world()
+            .resource::<PipelineCache>();
+        let failed = failed_pipelines(cache);
+        assert!(
+            failed.is_empty(),
+            "pipelines failed to compile: {failed:#?}"
+        );
     }
 
     /// Runs exactly one frame and returns what it rendered.
@@ -367,26 +408,12 @@ impl Harness {
         let camera = self.camera_position();
         let assets = self.app.world().resource::<Assets<M>>();
         let mut comparison = Comparison::new(rendered.width, rendered.height);
-        for (index, ((color, position), normal)) in rendered
-            .pixels
-            .iter()
-            .zip(&inputs.positions.pixels)
-            .zip(&inputs.normals.pixels)
-            .enumerate()
-        {
-            let Some(material) = inputs
-                .materials
-                .get(&(position[3] as u32))
-                .map(|handle| assets.get(handle).expect("material exists"))
-            else {
+        for (index, color) in rendered.pixels.iter().enumerate() {
+            let Some((material, surface)) = inputs.surface_at(index, camera) else {
                 comparison.record_background(index, *color);
                 continue;
             };
-            let surface = SurfacePoint {
-                position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
-                normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
-                camera,
-            };
+            let material = assets.get(material).expect("material exists");
             match expected(material, &surface, index) {
                 Some(expected) => comparison.record(index, *color, expected),
                 None => comparison.skipped_pixels += 1,

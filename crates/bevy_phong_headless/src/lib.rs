@@ -32,9 +32,9 @@ mod pipelines;
 #[cfg(not(target_arch = "wasm32"))]
 pub use app::{headless_app, headless_app_with_assets, headless_plugins};
 #[cfg(not(target_arch = "wasm32"))]
-pub use comparison::Comparison;
+pub use comparison::{Comparison, Expected};
 #[cfg(not(target_arch = "wasm32"))]
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
 pub use harness::{CAMERA_POSITION, Harness, SurfaceInputs};
-pub use pipelines::{pipelines_compiling, run_until_settled};
+pub use pipelines::{failed_pipelines, pipelines_compiling, run_until_settled};

@@ -5,9 +5,9 @@ use bevy::{
     asset::AssetId,
     render::{
         RenderApp,
-        render_resource::{PipelineCache, PipelineDescriptor},
+        render_resource::{CachedPipelineState, PipelineCache, PipelineDescriptor},
     },
-    shader::Shader,
+    shader::{Shader, ShaderCacheError},
 };
 
 /// Frames in a row without a pipeline compiling after which [`run_until_settled`] stops:
@@ -56,4 +56,34 @@ fn has_shader(descriptor: &PipelineDescriptor) -> bool {
         PipelineDescriptor::ComputePipelineDescriptor(compute) => compute.shader.id(),
     };
     shader != AssetId::<Shader>::default()
+}
+
+/// The pipelines that failed to compile, each with its label and error: a shader that does
+/// not compose or validate in some variant. Bevy logs these and draws nothing with them.
+/// Waiting for a shader or an import is not a failure.
+pub fn failed_pipelines(cache: &PipelineCache) -> Vec<String> {
+    cache
+        .pipelines()
+        .filter_map(|pipeline| match &pipeline.state {
+            CachedPipelineState::Err(
+                ShaderCacheError::ShaderNotLoaded(_)
+                | ShaderCacheError::ShaderImportNotYetAvailable,
+            ) => None,
+            CachedPipelineState::Err(error) => {
+                Some(format!("{:?}: {error}", label(&pipeline.descriptor)))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+fn label(descriptor: &PipelineDescriptor) -> Option<String> {
+    match descriptor {
+        PipelineDescriptor::RenderPipelineDescriptor(render) => {
+            render.label.as_ref().map(|label| label.to_string())
+        }
+        PipelineDescriptor::ComputePipelineDescriptor(compute) => {
+            compute.label.as_ref().map(|label| label.to_string())
+        }
+    }
 }

@@ -1,0 +1,73 @@
+// The prepass fragment stage of `PhongMaterial` (depth, normal and motion-vector prepasses,
+// and Bevy's shadow maps, which draw with the prepass pipeline). Bevy runs it only where it
+// has something to do: a target to write, or fragments to discard (`AlphaMode::Mask`).
+// - Alpha mask: the fragments the main pass discards are discarded here too, so the depth
+//   prepass leaves the holes open and Bevy's shadow maps let light through them.
+// - Normal prepass: the normal the main pass lights the fragment with (double-sided faces
+//   turned toward the viewer, the normal map applied), normalized (zero where degenerate), encoded as `n/2 + 1/2`
+//   like Bevy's.
+// - Motion vectors and unclipped depth: as Bevy's own prepass shader.
+#import bevy_pbr::prepass_io::VertexOutput
+#ifdef PREPASS_FRAGMENT
+#import bevy_pbr::prepass_io::FragmentOutput
+#endif
+#import bevy_phong::bindings::material
+#ifdef PHONG_ALPHA_MASK
+#ifdef PHONG_BASE_COLOR_TEXTURE
+#import bevy_phong::bindings::{base_color_texture, base_color_sampler}
+#endif
+#endif
+#ifdef NORMAL_PREPASS
+#import bevy_phong::lighting::normalize_or_zero
+#import bevy_phong::normals::facing_normal
+#ifdef PHONG_NORMAL_MAP
+#import bevy_phong::normals::with_normal_map
+#endif
+#endif
+#ifdef MOTION_VECTOR_PREPASS
+#import bevy_pbr::{prepass_bindings::previous_view_uniforms, mesh_view_bindings::view}
+#endif
+
+// Discards the fragment where the main pass does (`AlphaMode::Mask`).
+fn discard_masked(in: VertexOutput) {
+#ifdef PHONG_ALPHA_MASK
+    var alpha = material.base_color.a;
+#ifdef PHONG_BASE_COLOR_TEXTURE
+    alpha *= textureSample(base_color_texture, base_color_sampler, in.uv).a;
+#endif
+    if alpha < material.alpha_cutoff {
+        discard;
+    }
+#endif
+}
+
+#ifdef PREPASS_FRAGMENT
+@fragment
+fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> FragmentOutput {
+    var out: FragmentOutput;
+#ifdef NORMAL_PREPASS
+    var normal = facing_normal(in.world_normal, is_front);
+#ifdef PHONG_NORMAL_MAP
+    normal = with_normal_map(normal, in.world_tangent, in.uv);
+#endif
+    // Sampled before any discard: texture sampling needs uniform control flow.
+    out.normal = vec4<f32>(normalize_or_zero(normal) * 0.5 + vec3<f32>(0.5), 1.0);
+#endif
+    discard_masked(in);
+#ifdef UNCLIPPED_DEPTH_ORTHO_EMULATION
+    out.frag_depth = in.unclipped_depth;
+#endif
+#ifdef MOTION_VECTOR_PREPASS
+    let clip = view.unjittered_clip_from_world * in.world_position;
+    let previous_clip = previous_view_uniforms.clip_from_world * in.previous_world_position;
+    out.motion_vector = (clip.xy / clip.w - previous_clip.xy / previous_clip.w) * vec2<f32>(0.5, -0.5);
+#endif
+    return out;
+}
+#else
+// A depth-only prepass with nothing to write: Bevy runs this stage only to discard.
+@fragment
+fn fragment(in: VertexOutput) {
+    discard_masked(in);
+}
+#endif

@@ -1,0 +1,132 @@
+//! HDR cameras, tonemapping (in the shader and as Bevy's post-process) and bloom.
+
+use bevy::{
+    camera::Hdr, core_pipeline::tonemapping::Tonemapping, post_process::bloom::Bloom, prelude::*,
+};
+use bevy_phong::{prelude::*, reference};
+use bevy_phong_headless::Harness;
+
+use super::{HDR_TOLERANCE, bright_scene, brightest};
+use crate::frames::{SIZE, TOLERANCE};
+
+/// An HDR camera stores the Phong colors above 1 as they are: the frame matches the
+/// reference model within the half-float rounding.
+#[test]
+fn an_hdr_camera_keeps_phong_colors_above_one() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    bright_scene(&mut harness);
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    harness.camera_mut().insert(Hdr);
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let peak = brightest(&rendered);
+    assert!(peak > 1.5, "the brightest channel is {peak}, not above 1.5");
+    harness
+        .compare(&rendered, &inputs)
+        .assert_within("hdr", HDR_TOLERANCE);
+}
+
+/// `Tonemapping::Reinhard` maps every Phong color `c` to `c / (1 + c)`: in the material's
+/// shader on a camera without HDR (as `StandardMaterial` does it), and in Bevy's
+/// tonemapping pass on an HDR camera.
+#[test]
+fn tonemapping_applies_bevys_curve_to_the_phong_colors() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    bright_scene(&mut harness);
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let lights = harness.reference_lights();
+    for (case, hdr, tolerance) in [
+        ("tonemapping_in_shader", false, TOLERANCE),
+        ("tonemapping_hdr_pass", true, HDR_TOLERANCE),
+    ] {
+        let mut camera = harness.camera_mut();
+        camera.insert(Tonemapping::Reinhard);
+        if hdr {
+            camera.insert(Hdr);
+        }
+        harness.settle();
+        let rendered = harness.render_next_frame();
+        assert!(
+            brightest(&rendered) < 1.0,
+            "{case}: a color above 1 was not tonemapped"
+        );
+        harness
+            .compare_with(&rendered, &inputs, |material, surface| {
+                let lit = reference::shade(surface, &reference::Material::from(material), &lights);
+                Some(reference::reinhard(lit))
+            })
+            .assert_within(case, tolerance);
+    }
+}
+
+/// Bloom spreads a bright Phong surface's light past its silhouette, fading with distance,
+/// where without bloom the background stays clear.
+#[test]
+fn bloom_spreads_bright_phong_light_past_its_silhouette() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    let mesh = world
+        .resource_mut::<Assets<Mesh>>()
+        .add(Sphere::new(0.8).mesh().uv(48, 32));
+    let material = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(PhongMaterial {
+            base_color: Color::BLACK,
+            specular_strength: 0.0,
+            emissive: LinearRgba::rgb(8.0, 6.0, 3.0),
+            ..default()
+        });
+    world.spawn((Mesh3d(mesh), MeshMaterial3d(material)));
+    harness.camera_mut().insert(Hdr);
+    harness.settle();
+    let plain = harness.render_next_frame();
+    let covered: Vec<bool> = plain.pixels.iter().map(|pixel| pixel[3] > 0.0).collect();
+    let background_light = |image: &bevy_phong_headless::FloatImage, rings: (f32, f32)| {
+        ring_mean(image, &covered, rings)
+    };
+    assert_eq!(
+        background_light(&plain, (0.0, f32::MAX)),
+        0.0,
+        "light outside the sphere without bloom"
+    );
+
+    harness.camera_mut().insert(Bloom::NATURAL);
+    harness.settle();
+    let bloomed = harness.render_next_frame();
+    let near = background_light(&bloomed, (1.0, 4.0));
+    let far = background_light(&bloomed, (12.0, 16.0));
+    println!("bloom: mean background light 1–4 px from the sphere {near:.4}, 12–16 px {far:.4}");
+    assert!(near > 0.05, "no glow next to the sphere ({near})");
+    assert!(
+        far < near / 2.0,
+        "the glow does not fade ({near} near, {far} far)"
+    );
+}
+
+/// The mean color (averaged over channels) of the pixels not covered by the mesh whose
+/// distance from its silhouette (the nearest covered pixel) is within `rings`.
+fn ring_mean(image: &bevy_phong_headless::FloatImage, covered: &[bool], rings: (f32, f32)) -> f32 {
+    let width = image.width as i32;
+    let covered_at: Vec<(i32, i32)> = (0..covered.len() as i32)
+        .filter(|&index| covered[index as usize])
+        .map(|index| (index % width, index / width))
+        .collect();
+    let (mut sum, mut count) = (0.0, 0);
+    for (index, pixel) in image.pixels.iter().enumerate() {
+        if covered[index] {
+            continue;
+        }
+        let (x, y) = (index as i32 % width, index as i32 / width);
+        let distance = covered_at
+            .iter()
+            .map(|&(cx, cy)| (((cx - x).pow(2) + (cy - y).pow(2)) as f32).sqrt())
+            .fold(f32::MAX, f32::min);
+        if distance >= rings.0 && distance <= rings.1 {
+            sum += (pixel[0] + pixel[1] + pixel[2]) / 3.0;
+            count += 1;
+        }
+    }
+    if count == 0 { 0.0 } else { sum / count as f32 }
+}
