@@ -94,6 +94,16 @@ fn texel_at(image: &Image, uv: [f32; 2]) -> Option<DVec4> {
     Some(DVec4::from_slice(&channels))
 }
 
+/// Every image the harness's app holds, by id: the texels the reference reads.
+pub(crate) fn loaded_images(harness: &mut Harness) -> HashMap<AssetId<Image>, Image> {
+    harness
+        .world_mut()
+        .resource::<Assets<Image>>()
+        .iter()
+        .map(|(id, image)| (id, image.clone()))
+        .collect()
+}
+
 /// The normal a pixel of `material` is lit with, given its captured inputs: the normal
 /// map's where the material has one and the mesh has tangents, the interpolated normal
 /// otherwise; `None` on a texel edge.
@@ -266,12 +276,7 @@ fn texture_maps_follow_the_reference_model() {
     let rendered = harness.render_next_frame();
     let inputs = harness.capture_inputs_with_maps();
     let lights = harness.reference_lights();
-    let images: HashMap<AssetId<Image>, Image> = harness
-        .world_mut()
-        .resource::<Assets<Image>>()
-        .iter()
-        .map(|(id, image)| (id, image.clone()))
-        .collect();
+    let images = loaded_images(&mut harness);
     let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
         expected_color(material, surface, pixel, &inputs, &images, &lights)
     });

@@ -2,7 +2,7 @@
 //! camera drawing `PhongMaterial`.
 
 use bevy::{
-    asset::{AssetId, uuid_handle},
+    asset::uuid_handle,
     core_pipeline::prepass::{DeferredPrepass, DepthPrepass, MotionVectorPrepass, NormalPrepass},
     pbr::{Material, MaterialPlugin},
     prelude::*,
@@ -11,12 +11,11 @@ use bevy::{
 };
 use bevy_phong::{prelude::*, reference::normalize_or_zero};
 use bevy_phong_headless::{Comparison, Expected, Harness};
-use std::collections::HashMap;
 
 use super::{assert_same_frame, bright_scene};
 use crate::{
     frames::SIZE,
-    texture_maps::{float_map, lit_normal, normal_map},
+    texture_maps::{float_map, lit_normal, loaded_images, normal_map},
 };
 
 /// Two renders of one scene that differ only in the camera's prepasses: the main pass shades
@@ -138,12 +137,7 @@ fn the_normal_prepass_holds_the_normal_mapped_normal() {
     harness.settle();
     let inputs = harness.capture_inputs_with_maps();
     let camera = harness.camera_position();
-    let images: HashMap<AssetId<Image>, Image> = harness
-        .world_mut()
-        .resource::<Assets<Image>>()
-        .iter()
-        .map(|(id, image)| (id, image.clone()))
-        .collect();
+    let images = loaded_images(&mut harness);
 
     let forward = (Vec3::ZERO - camera.as_vec3()).normalize();
     let world = harness.world_mut();
