@@ -8,16 +8,11 @@ use bevy::{
 };
 use glam::DVec3;
 
-/// `color` at distance `distance` from the camera seen through `fog`, whose scattered light
-/// arrives along `direction` (from the camera toward the point): Bevy's fog formulas
-/// (`bevy_pbr::fog`), with the inscattering of [`directional_scattering`].
-pub fn fogged(
-    color: DVec3,
-    distance: f64,
-    direction: DVec3,
-    fog: &DistanceFog,
-    lights: &Lights,
-) -> DVec3 {
+/// `color` at the point `from_camera` away from the camera (the vector from the camera to
+/// it), seen through `fog`: Bevy's fog formulas (`bevy_pbr::fog`) on its length, with the
+/// inscattering of [`directional_scattering`] along its direction.
+pub fn fogged(color: DVec3, from_camera: DVec3, fog: &DistanceFog, lights: &Lights) -> DVec3 {
+    let distance = from_camera.length();
     let fog_color = LinearRgba::from(fog.color).to_vec4().as_dvec4();
     let sun = LinearRgba::from(fog.directional_light_color)
         .to_vec4()
@@ -25,7 +20,7 @@ pub fn fogged(
     let mut scattered = fog_color.truncate();
     if sun.w > 0.0 {
         let scattering =
-            directional_scattering(direction, lights, fog.directional_light_exponent.into());
+            directional_scattering(from_camera, lights, fog.directional_light_exponent.into());
         scattered += scattering * sun.truncate() * sun.w;
     }
     let blend = |amount: f64| color.lerp(scattered, amount * fog_color.w);

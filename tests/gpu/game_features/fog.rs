@@ -1,7 +1,7 @@
 //! Bevy's `DistanceFog` on a camera applies to `PhongMaterial` as to `StandardMaterial`:
 //! every falloff, with the Phong directional lights' inscattering.
 
-use bevy::{math::DVec3, prelude::*};
+use bevy::prelude::*;
 use bevy_phong::{prelude::*, reference};
 use bevy_phong_headless::Harness;
 
@@ -83,11 +83,9 @@ fn distance_fog_matches_the_fog_formula_on_each_pixels_view_distance() {
         let rendered = harness.render_next_frame();
         let comparison = harness.compare_with(&rendered, &inputs, |material, surface| {
             let lit = reference::shade(surface, &reference::Material::from(material), &lights);
-            let from_camera: DVec3 = surface.position - camera;
             Some(reference::fogged(
                 lit,
-                from_camera.length(),
-                from_camera,
+                surface.position - camera,
                 &fog,
                 &lights,
             ))

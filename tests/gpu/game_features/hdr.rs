@@ -83,8 +83,9 @@ fn bloom_spreads_bright_phong_light_past_its_silhouette() {
     harness.settle();
     let plain = harness.render_next_frame();
     let covered: Vec<bool> = plain.pixels.iter().map(|pixel| pixel[3] > 0.0).collect();
+    let distances = silhouette_distances(&covered, plain.width);
     let background_light = |image: &bevy_phong_headless::FloatImage, rings: (f32, f32)| {
-        ring_mean(image, &covered, rings)
+        ring_mean(image, &distances, rings)
     };
     assert_eq!(
         background_light(&plain, (0.0, f32::MAX)),
@@ -105,25 +106,38 @@ fn bloom_spreads_bright_phong_light_past_its_silhouette() {
     );
 }
 
-/// The mean color (averaged over channels) of the pixels not covered by the mesh whose
-/// distance from its silhouette (the nearest covered pixel) is within `rings`.
-fn ring_mean(image: &bevy_phong_headless::FloatImage, covered: &[bool], rings: (f32, f32)) -> f32 {
-    let width = image.width as i32;
-    let covered_at: Vec<(i32, i32)> = (0..covered.len() as i32)
-        .filter(|&index| covered[index as usize])
-        .map(|index| (index % width, index / width))
+/// For each pixel not covered by the mesh, its distance in pixels from the silhouette (the
+/// nearest covered pixel); `None` for covered pixels.
+fn silhouette_distances(covered: &[bool], width: u32) -> Vec<Option<f32>> {
+    let width = width as i32;
+    let position = |index: usize| (index as i32 % width, index as i32 / width);
+    let covered_at: Vec<(i32, i32)> = (0..covered.len())
+        .filter(|&index| covered[index])
+        .map(position)
         .collect();
+    (0..covered.len())
+        .map(|index| {
+            let (x, y) = position(index);
+            (!covered[index]).then(|| {
+                covered_at
+                    .iter()
+                    .map(|&(cx, cy)| (((cx - x).pow(2) + (cy - y).pow(2)) as f32).sqrt())
+                    .fold(f32::MAX, f32::min)
+            })
+        })
+        .collect()
+}
+
+/// The mean color (averaged over channels) of the pixels not covered by the mesh whose
+/// distance from its silhouette ([`silhouette_distances`]) is within `rings`.
+fn ring_mean(
+    image: &bevy_phong_headless::FloatImage,
+    distances: &[Option<f32>],
+    rings: (f32, f32),
+) -> f32 {
     let (mut sum, mut count) = (0.0, 0);
-    for (index, pixel) in image.pixels.iter().enumerate() {
-        if covered[index] {
-            continue;
-        }
-        let (x, y) = (index as i32 % width, index as i32 / width);
-        let distance = covered_at
-            .iter()
-            .map(|&(cx, cy)| (((cx - x).pow(2) + (cy - y).pow(2)) as f32).sqrt())
-            .fold(f32::MAX, f32::min);
-        if distance >= rings.0 && distance <= rings.1 {
+    for (pixel, distance) in image.pixels.iter().zip(distances) {
+        if distance.is_some_and(|distance| distance >= rings.0 && distance <= rings.1) {
             sum += (pixel[0] + pixel[1] + pixel[2]) / 3.0;
             count += 1;
         }
