@@ -36,11 +36,16 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// | `normal_map_texture` (+Y up, OpenGL's convention) | `normal_map_texture`, `flip_normal_map_y: false` |
 /// | `alpha_mode` OPAQUE / MASK(alphaCutoff) / BLEND | `alpha_mode` unchanged |
 /// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
-/// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `specular_strength = 1`, `shininess = clamp(2 / r⁴ − 2, 1, 10⁴)` |
+/// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
 /// | | `ambient_factor = 1` |
 ///
 /// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
-/// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`.
+/// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`. The
+/// strength is the lobe's energy normalization: the normalized Blinn-Phong BRDF is
+/// `(n + 8)/(8π) · cos^n(θ_h)`, and the crate's diffuse term `k_d · max(N·L, 0)` is the
+/// Lambert BRDF `k_d/π` times π, so the same π gives `(n + 8)/8`. A glTF highlight then
+/// reflects about `F₀` of the light whatever its roughness, as in PBR: a rough one spreads
+/// it wide and dim, a smooth one gathers it into a bright point.
 ///
 /// Invalid numbers are replaced, never propagated: a NaN `metallic` becomes 0 and a NaN
 /// roughness 0.5 ([`METALLIC`], [`ROUGHNESS`]; both are clamped to `[0, 1]`), and the
@@ -78,7 +83,7 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         }
     }
     let metallic = METALLIC.apply(material.metallic);
-    let roughness = ROUGHNESS.apply(material.perceptual_roughness);
+    let shininess = shininess_from_roughness(material.perceptual_roughness);
     let base = limits::linear_color(material.base_color.to_linear());
     let diffuse = 1.0 - metallic;
     // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly.
@@ -92,8 +97,8 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         )),
         ambient_factor: 1.0,
         specular_color: Color::linear_rgb(f0(base.red), f0(base.green), f0(base.blue)),
-        specular_strength: 1.0,
-        shininess: shininess_from_roughness(roughness),
+        specular_strength: normalization(shininess),
+        shininess,
         specular_model: SpecularModel::BlinnPhong,
         emissive: emissive_color(material.emissive),
         alpha_mode: material.alpha_mode,
@@ -104,6 +109,12 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         flip_normal_map_y: false,
         double_sided: material.double_sided,
     }
+}
+
+/// The energy normalization of a Blinn-Phong lobe of exponent `shininess` in the crate's
+/// units: `(n + 8) / 8` (see [`phong_material_from_gltf`]).
+pub fn normalization(shininess: f32) -> f32 {
+    (shininess + 8.0) / 8.0
 }
 
 /// `emissive` in [`limits::INTENSITY`]'s range, alpha 1 (the shader reads its RGB only).
@@ -201,10 +212,10 @@ mod tests {
         let phong = phong_material_from_gltf(&material, None);
         assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 1.0], "base color");
         assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
-        assert_eq!(phong.specular_strength, 1.0);
         assert_eq!(phong.specular_model, SpecularModel::BlinnPhong);
-        // r = 1: 2/1 − 2 = 0, clamped up to 1.
+        // r = 1: 2/1 − 2 = 0, clamped up to 1; its lobe's normalization (1 + 8)/8.
         assert_eq!(phong.shininess, 1.0);
+        assert_eq!(phong.specular_strength, 9.0 / 8.0);
         assert_eq!(phong.ambient_factor, 1.0);
     }
 
