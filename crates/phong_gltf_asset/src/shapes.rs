@@ -100,9 +100,11 @@ pub fn arm(shoulder: [f64; 3]) -> Shape {
     shape
 }
 
-/// The blob's segments around and from pole to pole.
-pub const BLOB_SIDES: usize = 16;
-pub const BLOB_RINGS: usize = 10;
+/// The blob's segments around and from pole to pole: 7 × 4 = 28 vertices. Bevy 0.19 keeps a
+/// mesh's morph targets in a 3D texture 9 texels tall per vertex, and WebGL2's limits allow
+/// 256: 28 vertices is the most a morphed mesh can have there.
+pub const BLOB_SIDES: usize = 6;
+pub const BLOB_RINGS: usize = 3;
 /// How far the morph target lifts the top pole (m); points above the equator rise in
 /// proportion to their height.
 pub const BLOB_LIFT: f64 = 0.6;
