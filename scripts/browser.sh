@@ -54,8 +54,9 @@ if [[ $mode == test ]]; then
     fi
 fi
 
-# The page: the wasm module, its JavaScript bindings and index.html.
-cargo build --target wasm32-unknown-unknown --example showcase
+# The page: the wasm module, its JavaScript bindings and index.html. The showcase needs no
+# glTF, so the crate's default `gltf` feature is left out of the browser build.
+cargo build --target wasm32-unknown-unknown --no-default-features --example showcase
 rm -rf "$site"
 wasm-bindgen --target web --no-typescript --out-dir "$site" --out-name showcase \
     target/wasm32-unknown-unknown/debug/examples/showcase.wasm

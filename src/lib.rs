@@ -76,12 +76,17 @@
 //!   plugin renders (cascades for directional lights, a cube for point lights, one map for
 //!   spot lights), filtered with percentage-closer soft shadows; `NotShadowCaster` and
 //!   `NotShadowReceiver` work as on Bevy's meshes.
+//! - **glTF files** ([`gltf`], feature `gltf`, on by default): [`PhongGltfPlugin`] gives
+//!   each material of a glTF file a `PhongMaterial` made from its metallic/roughness values,
+//!   and the file's lights become Phong lights.
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
 
 pub mod culling;
 mod direction;
 pub mod extension;
+#[cfg(feature = "gltf")]
+pub mod gltf;
 pub mod interop;
 mod lights;
 pub mod limits;
@@ -98,6 +103,8 @@ mod test_app;
 pub mod validation;
 
 pub use culling::PhongLightCulling;
+#[cfg(feature = "gltf")]
+pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
 pub use lights::{
     Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight, PhongShadows,
@@ -117,4 +124,7 @@ pub mod prelude {
         PhongSpotLight, SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
+
+    #[cfg(feature = "gltf")]
+    pub use crate::gltf::PhongGltfPlugin;
 }

@@ -10,6 +10,8 @@
 //!   prepasses, SSAO and the deferred renderer, each against its own formula;
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
 //!   the reference model given each pixel's texels;
+//! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
+//!   skin, morph weights, animation players and lights;
 //! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
 //! - `shadows`: every pixel's shadowing against rays cast in `f64` to each light, within a
 //!   band around the exact shadow's edge;
@@ -28,6 +30,8 @@ mod culling;
 mod frames;
 mod fuzzed_scenes;
 mod game_features;
+#[cfg(feature = "gltf")]
+mod gltf;
 mod huge_vectors;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;

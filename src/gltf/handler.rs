@@ -1,0 +1,84 @@
+//! The glTF extension handler that gives each material of a glTF file a [`PhongMaterial`]
+//! and each spawned primitive a `MeshMaterial3d<PhongMaterial>`.
+
+use super::material::phong_material_from_gltf;
+use crate::material::PhongMaterial;
+use bevy::{
+    asset::{Handle, LoadContext},
+    ecs::world::EntityWorldMut,
+    gltf::{
+        GltfAssetLabel, GltfLoaderSettings, GltfMaterial,
+        extensions::{ErasedGltfExtensionHandler, GltfExtensionHandler},
+        gltf,
+    },
+    pbr::MeshMaterial3d,
+};
+
+/// The suffix of the Phong sub-asset of a glTF material: `Material0/phong`,
+/// `DefaultMaterial/phong`.
+pub const PHONG_LABEL_SUFFIX: &str = "/phong";
+
+/// The label of the [`PhongMaterial`] made from the glTF material labeled `material_label`
+/// (`"Material0"` gives `"Material0/phong"`, `"DefaultMaterial"` gives
+/// `"DefaultMaterial/phong"`). Load one alone with
+/// `asset_server.load("scene.gltf#Material0/phong")`.
+pub fn phong_material_label(material_label: &str) -> String {
+    format!("{material_label}{PHONG_LABEL_SUFFIX}")
+}
+
+/// Registered by [`PhongGltfPlugin`](super::PhongGltfPlugin); cloned for each load.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PhongGltfExtensionHandler;
+
+impl GltfExtensionHandler for PhongGltfExtensionHandler {
+    fn dyn_clone(&self) -> Box<dyn ErasedGltfExtensionHandler> {
+        Box::new(*self)
+    }
+
+    /// Adds `DefaultMaterial/phong`, for primitives without a material.
+    fn on_root(
+        &mut self,
+        load_context: &mut LoadContext<'_>,
+        _gltf: &gltf::Gltf,
+        _settings: &GltfLoaderSettings,
+    ) {
+        let label = GltfAssetLabel::DefaultMaterial.to_string();
+        load_context.add_labeled_asset(
+            phong_material_label(&label),
+            phong_material_from_gltf(&GltfMaterial::default(), None),
+        );
+    }
+
+    /// Adds `Material{n}/phong` (also for the `Material{n} (inverted)` copies Bevy makes for
+    /// nodes of negative scale), warning once about what it leaves out.
+    fn on_material(
+        &mut self,
+        load_context: &mut LoadContext<'_>,
+        _gltf_material: &gltf::Material,
+        _material: Handle<GltfMaterial>,
+        material_asset: &GltfMaterial,
+        material_label: &str,
+    ) {
+        let path = load_context.path().clone();
+        let named = format!("{path}#{material_label}");
+        load_context.add_labeled_asset(
+            phong_material_label(material_label),
+            phong_material_from_gltf(material_asset, Some(&named)),
+        );
+    }
+
+    /// Inserts `MeshMaterial3d<PhongMaterial>` with the primitive's material.
+    fn on_spawn_mesh_and_material(
+        &mut self,
+        load_context: &mut LoadContext<'_>,
+        _primitive: &gltf::Primitive,
+        _mesh: &gltf::Mesh,
+        _material: &gltf::Material,
+        entity: &mut EntityWorldMut,
+        material_label: &str,
+    ) {
+        let handle =
+            load_context.get_label_handle::<PhongMaterial>(phong_material_label(material_label));
+        entity.insert(MeshMaterial3d(handle));
+    }
+}

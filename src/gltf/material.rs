@@ -1,0 +1,400 @@
+//! [`phong_material_from_gltf`]: a glTF material (metallic/roughness) as a [`PhongMaterial`].
+
+use crate::{
+    limits::{self, Limits},
+    material::{PhongMaterial, SpecularModel},
+};
+use bevy::{
+    color::{Color, LinearRgba},
+    gltf::GltfMaterial,
+    log::warn,
+    math::Affine2,
+    mesh::UvChannel,
+};
+
+/// `metallicFactor`: `[0, 1]`, NaN → 0 (a dielectric, `GltfMaterial`'s default).
+pub const METALLIC: Limits = Limits::new(0.0, 1.0, 0.0);
+
+/// `roughnessFactor`: `[0, 1]`, NaN → 0.5 (`GltfMaterial`'s default).
+pub const ROUGHNESS: Limits = Limits::new(0.0, 1.0, 0.5);
+
+/// The smallest and largest highlight exponent the conversion gives: `r = 1` (fully rough)
+/// would give 0, a flat highlight; below `r ≈ 0.119` the exponent exceeds `10⁴`, where the
+/// highlight is already a point at any screen resolution.
+pub const SHININESS_RANGE: (f32, f32) = (1.0, 1e4);
+
+/// The specular reflectance of a dielectric at normal incidence (glTF's and Bevy's `F₀`).
+pub const DIELECTRIC_F0: f32 = 0.04;
+
+/// The [`PhongMaterial`] that stands for a glTF material, as `PhongGltfPlugin` builds it for
+/// each material of a file (`Material{n}/phong`).
+///
+/// | glTF ([`GltfMaterial`]) | `PhongMaterial` |
+/// |---|---|
+/// | `base_color` (baseColorFactor), `base_color_texture` | `base_color` = `base_color · (1 − metallic)` in linear RGB (alpha kept), `base_color_texture` |
+/// | `emissive` (emissiveFactor · `KHR_materials_emissive_strength`, as Bevy's loader gives it), `emissive_texture` | `emissive`, `emissive_texture` |
+/// | `normal_map_texture` (+Y up, OpenGL's convention) | `normal_map_texture`, `flip_normal_map_y: false` |
+/// | `alpha_mode` OPAQUE / MASK(alphaCutoff) / BLEND | `alpha_mode` unchanged |
+/// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
+/// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
+/// | | `ambient_factor = 1` |
+///
+/// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
+/// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`. The
+/// strength is the lobe's energy normalization: the normalized Blinn-Phong BRDF is
+/// `(n + 8)/(8π) · cos^n(θ_h)`, and the crate's diffuse term `k_d · max(N·L, 0)` is the
+/// Lambert BRDF `k_d/π` times π, so the same π gives `(n + 8)/8`. A glTF highlight then
+/// reflects about `F₀` of the light whatever its roughness, as in PBR: a rough one spreads
+/// it wide and dim, a smooth one gathers it into a bright point.
+///
+/// Invalid numbers are replaced, never propagated: a NaN `metallic` becomes 0 and a NaN
+/// roughness 0.5 ([`METALLIC`], [`ROUGHNESS`]; both are clamped to `[0, 1]`), and the
+/// colors are brought into [`limits`] as the material's own validation does (NaN channels
+/// become 0, alpha 1). The result never holds a NaN.
+///
+/// What has no counterpart is left out (see [`unmapped_gltf_features`]): the
+/// metallic/roughness and occlusion maps, other UV sets than the first, texture
+/// transforms, unlit, transmission, volume, clearcoat and anisotropy. When `label` is
+/// `Some`, one warning naming it lists them.
+///
+/// ```
+/// use bevy::{color::Color, gltf::GltfMaterial};
+/// use bevy_phong::gltf::phong_material_from_gltf;
+///
+/// let gold = GltfMaterial {
+///     base_color: Color::linear_rgb(1.0, 0.8, 0.3),
+///     metallic: 1.0,
+///     perceptual_roughness: 0.5,
+///     ..Default::default()
+/// };
+/// let phong = phong_material_from_gltf(&gold, None);
+/// assert_eq!(phong.base_color, Color::linear_rgb(0.0, 0.0, 0.0)); // a metal has no diffuse
+/// assert_eq!(phong.specular_color, Color::linear_rgb(1.0, 0.8, 0.3));
+/// assert_eq!(phong.shininess, 30.0); // 2 / 0.5⁴ − 2
+/// ```
+pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) -> PhongMaterial {
+    if let Some(label) = label {
+        let unmapped = unmapped_gltf_features(material);
+        if !unmapped.is_empty() {
+            warn!(
+                "glTF material {label}: {} not used by PhongMaterial (drawn without them)",
+                unmapped.join(", ")
+            );
+        }
+    }
+    let metallic = METALLIC.apply(material.metallic);
+    let shininess = shininess_from_roughness(material.perceptual_roughness);
+    let base = limits::linear_color(material.base_color.to_linear());
+    let diffuse = 1.0 - metallic;
+    // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly.
+    let f0 = |channel: f32| DIELECTRIC_F0 * diffuse + channel * metallic;
+    PhongMaterial {
+        base_color: Color::LinearRgba(LinearRgba::new(
+            base.red * diffuse,
+            base.green * diffuse,
+            base.blue * diffuse,
+            base.alpha,
+        )),
+        ambient_factor: 1.0,
+        specular_color: Color::linear_rgb(f0(base.red), f0(base.green), f0(base.blue)),
+        specular_strength: normalization(shininess),
+        shininess,
+        specular_model: SpecularModel::BlinnPhong,
+        emissive: emissive_color(material.emissive),
+        alpha_mode: material.alpha_mode,
+        base_color_texture: material.base_color_texture.clone(),
+        specular_texture: None,
+        emissive_texture: material.emissive_texture.clone(),
+        normal_map_texture: material.normal_map_texture.clone(),
+        flip_normal_map_y: false,
+        double_sided: material.double_sided,
+    }
+}
+
+/// The energy normalization of a Blinn-Phong lobe of exponent `shininess` in the crate's
+/// units: `(n + 8) / 8` (see [`phong_material_from_gltf`]).
+pub fn normalization(shininess: f32) -> f32 {
+    (shininess + 8.0) / 8.0
+}
+
+/// `emissive` in [`limits::INTENSITY`]'s range, alpha 1 (the shader reads its RGB only).
+fn emissive_color(emissive: LinearRgba) -> LinearRgba {
+    let emissive = limits::linear_color(emissive);
+    LinearRgba::rgb(emissive.red, emissive.green, emissive.blue)
+}
+
+/// The Blinn-Phong exponent of roughness `r`: `clamp(2 / r⁴ − 2, 1, 10⁴)`; NaN is taken as
+/// 0.5, values outside `[0, 1]` are clamped first ([`ROUGHNESS`]).
+pub fn shininess_from_roughness(roughness: f32) -> f32 {
+    let r = ROUGHNESS.apply(roughness);
+    let (min, max) = SHININESS_RANGE;
+    let alpha_squared = r * r * r * r;
+    // 2/α² − 2 ≥ max exactly when α² ≤ 2 / (max + 2): this also covers r = 0 (and the
+    // subnormal α² whose quotient would overflow) without dividing by zero.
+    if alpha_squared <= 2.0 / (max + 2.0) {
+        max
+    } else {
+        (2.0 / alpha_squared - 2.0).clamp(min, max)
+    }
+}
+
+/// The parts of a glTF material that [`phong_material_from_gltf`] does not map, by their
+/// glTF names (empty when it maps everything the material has).
+pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
+    let mut unmapped = Vec::new();
+    let mut note = |present: bool, name: &'static str| {
+        if present {
+            unmapped.push(name);
+        }
+    };
+    note(
+        material.metallic_roughness_texture.is_some(),
+        "metallicRoughnessTexture",
+    );
+    note(material.occlusion_texture.is_some(), "occlusionTexture");
+    note(
+        [
+            &material.base_color_channel,
+            &material.emissive_channel,
+            &material.normal_map_channel,
+        ]
+        .into_iter()
+        .any(|channel| *channel != UvChannel::Uv0),
+        "texCoord 1 (PhongMaterial samples the first UV set)",
+    );
+    note(
+        material.uv_transform != Affine2::IDENTITY,
+        "KHR_texture_transform",
+    );
+    note(material.unlit, "KHR_materials_unlit");
+    note(
+        material.specular_transmission > 0.0,
+        "KHR_materials_transmission",
+    );
+    note(material.thickness > 0.0, "KHR_materials_volume");
+    note(material.clearcoat > 0.0, "KHR_materials_clearcoat");
+    note(
+        material.anisotropy_strength > 0.0,
+        "KHR_materials_anisotropy",
+    );
+    unmapped
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bevy::{asset::Handle, color::ColorToComponents, image::Image, prelude::AlphaMode};
+
+    fn linear(color: Color) -> [f32; 4] {
+        color.to_linear().to_f32_array()
+    }
+
+    /// Exact up to f32 rounding of a product or a `mix` (a few ulps of values ≤ 1).
+    const ROUNDING: f32 = 1e-6;
+
+    fn assert_close(actual: [f32; 4], expected: [f32; 4], what: &str) {
+        for (a, e) in actual.iter().zip(expected) {
+            assert!(
+                (a - e).abs() <= ROUNDING,
+                "{what}: {actual:?}, expected {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_dielectric_keeps_its_color_and_gets_four_percent_specular() {
+        let material = GltfMaterial {
+            base_color: Color::linear_rgba(0.8, 0.4, 0.2, 1.0),
+            metallic: 0.0,
+            perceptual_roughness: 1.0,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 1.0], "base color");
+        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
+        assert_eq!(phong.specular_model, SpecularModel::BlinnPhong);
+        // r = 1: 2/1 − 2 = 0, clamped up to 1; its lobe's normalization (1 + 8)/8.
+        assert_eq!(phong.shininess, 1.0);
+        assert_eq!(phong.specular_strength, 9.0 / 8.0);
+        assert_eq!(phong.ambient_factor, 1.0);
+    }
+
+    #[test]
+    fn a_metal_has_no_diffuse_and_its_color_as_specular() {
+        let material = GltfMaterial {
+            base_color: Color::linear_rgba(1.0, 0.8, 0.3, 0.5),
+            metallic: 1.0,
+            perceptual_roughness: 0.5,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert_close(linear(phong.base_color), [0.0, 0.0, 0.0, 0.5], "base color");
+        assert_close(linear(phong.specular_color), [1.0, 0.8, 0.3, 1.0], "F0");
+        assert_eq!(phong.shininess, 30.0, "2 / 0.5⁴ − 2");
+    }
+
+    #[test]
+    fn half_metallic_mixes_diffuse_and_specular() {
+        let material = GltfMaterial {
+            base_color: Color::linear_rgb(0.5, 1.0, 0.0),
+            metallic: 0.5,
+            perceptual_roughness: 0.25,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert_close(
+            linear(phong.base_color),
+            [0.25, 0.5, 0.0, 1.0],
+            "base color",
+        );
+        assert_close(
+            linear(phong.specular_color),
+            [0.27, 0.52, 0.02, 1.0],
+            "mix(0.04, c, 0.5)",
+        );
+        // 2 / 0.25⁴ − 2 = 510.
+        assert_eq!(phong.shininess, 510.0);
+    }
+
+    #[test]
+    fn roughness_zero_gives_the_largest_exponent_and_never_nan() {
+        assert_eq!(shininess_from_roughness(0.0), 1e4);
+        assert_eq!(shininess_from_roughness(-0.0), 1e4);
+        assert_eq!(shininess_from_roughness(f32::MIN_POSITIVE), 1e4);
+        assert_eq!(shininess_from_roughness(-1.0), 1e4, "clamped to 0");
+        assert_eq!(shininess_from_roughness(f32::NEG_INFINITY), 1e4);
+        assert_eq!(shininess_from_roughness(1.0), 1.0);
+        assert_eq!(shininess_from_roughness(f32::INFINITY), 1.0, "clamped to 1");
+        assert_eq!(shininess_from_roughness(f32::NAN), 30.0, "NaN taken as 0.5");
+        // Just above the cap's threshold r⁴ = 2 / 10002 the formula takes over.
+        let r = 0.2_f32;
+        assert!((shininess_from_roughness(r) - (2.0 / r.powi(4) - 2.0)).abs() < 1e-2);
+        // Monotonic: smoother is sharper, over the whole range.
+        let mut previous = f32::INFINITY;
+        for i in 0..=1000 {
+            let n = shininess_from_roughness(i as f32 / 1000.0);
+            assert!(
+                n.is_finite() && (1.0..=1e4).contains(&n),
+                "r = {i}/1000: {n}"
+            );
+            assert!(n <= previous, "r = {i}/1000: {n} > {previous}");
+            previous = n;
+        }
+    }
+
+    #[test]
+    fn nan_inputs_give_a_material_without_nan() {
+        let material = GltfMaterial {
+            base_color: Color::linear_rgba(f32::NAN, 0.5, f32::INFINITY, f32::NAN),
+            emissive: LinearRgba::new(f32::NAN, 2.0, -1.0, 1.0),
+            metallic: f32::NAN,
+            perceptual_roughness: f32::NAN,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        let values = [
+            linear(phong.base_color),
+            linear(phong.specular_color),
+            phong.emissive.to_f32_array(),
+        ];
+        assert!(values.iter().flatten().all(|v| v.is_finite()), "{values:?}");
+        // NaN metallic → 0: the (sanitized) base color stays diffuse, F0 is 0.04.
+        assert_close(
+            linear(phong.base_color),
+            [0.0, 0.5, limits::MAX_INTENSITY, 1.0],
+            "base color",
+        );
+        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
+        assert_eq!(phong.emissive, LinearRgba::new(0.0, 2.0, 0.0, 1.0));
+        assert_eq!(phong.shininess, 30.0, "NaN roughness taken as 0.5");
+    }
+
+    #[test]
+    fn out_of_range_metallic_is_clamped() {
+        let base_color = Color::linear_rgb(0.2, 0.4, 0.6);
+        let over = phong_material_from_gltf(
+            &GltfMaterial {
+                base_color,
+                metallic: 3.0,
+                ..Default::default()
+            },
+            None,
+        );
+        assert_close(linear(over.base_color), [0.0, 0.0, 0.0, 1.0], "m = 1");
+        assert_close(linear(over.specular_color), [0.2, 0.4, 0.6, 1.0], "m = 1");
+        let under = phong_material_from_gltf(
+            &GltfMaterial {
+                base_color,
+                metallic: -2.0,
+                ..Default::default()
+            },
+            None,
+        );
+        assert_close(linear(under.base_color), [0.2, 0.4, 0.6, 1.0], "m = 0");
+    }
+
+    #[test]
+    fn textures_emissive_and_alpha_modes_carry_over() {
+        let texture = |index: u32| -> Option<Handle<Image>> {
+            Some(Handle::Uuid(
+                bevy::asset::uuid::Uuid::from_u128(index as u128),
+                Default::default(),
+            ))
+        };
+        for alpha_mode in [AlphaMode::Opaque, AlphaMode::Mask(0.5), AlphaMode::Blend] {
+            let material = GltfMaterial {
+                base_color_texture: texture(1),
+                emissive: LinearRgba::rgb(2.0, 1.0, 0.5),
+                emissive_texture: texture(2),
+                normal_map_texture: texture(3),
+                alpha_mode,
+                ..Default::default()
+            };
+            let phong = phong_material_from_gltf(&material, Some("Material0"));
+            assert_eq!(phong.base_color_texture, texture(1));
+            assert_eq!(phong.emissive_texture, texture(2));
+            assert_eq!(phong.normal_map_texture, texture(3));
+            assert_eq!(phong.specular_texture, None);
+            assert!(!phong.flip_normal_map_y, "glTF normal maps are +Y up");
+            assert!(!phong.double_sided);
+            assert_eq!(phong.emissive, LinearRgba::rgb(2.0, 1.0, 0.5));
+            assert_eq!(phong.alpha_mode, alpha_mode);
+            assert!(unmapped_gltf_features(&material).is_empty());
+        }
+    }
+
+    #[test]
+    fn double_sidedness_carries_over() {
+        for double_sided in [false, true] {
+            let material = GltfMaterial {
+                double_sided,
+                ..Default::default()
+            };
+            assert_eq!(
+                phong_material_from_gltf(&material, None).double_sided,
+                double_sided
+            );
+        }
+    }
+
+    #[test]
+    fn maps_without_a_counterpart_are_listed() {
+        let material = GltfMaterial {
+            metallic_roughness_texture: Some(Handle::default()),
+            occlusion_texture: Some(Handle::default()),
+            normal_map_channel: UvChannel::Uv1,
+            unlit: true,
+            ..Default::default()
+        };
+        assert_eq!(
+            unmapped_gltf_features(&material),
+            [
+                "metallicRoughnessTexture",
+                "occlusionTexture",
+                "texCoord 1 (PhongMaterial samples the first UV set)",
+                "KHR_materials_unlit",
+            ]
+        );
+        assert!(unmapped_gltf_features(&GltfMaterial::default()).is_empty());
+    }
+}

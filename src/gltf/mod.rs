@@ -1,0 +1,29 @@
+//! glTF files drawn with [`PhongMaterial`](crate::PhongMaterial): [`PhongGltfPlugin`] (an
+//! extension of Bevy's glTF loader) and the conversion it uses,
+//! [`phong_material_from_gltf`], which is usable on its own. Needs the `gltf` feature (on
+//! by default).
+//!
+//! How a glTF material maps to a Phong one, and where the look differs from Bevy's PBR:
+//!
+//! - the base color is the diffuse color times `1 − metallic`; the specular color is the
+//!   Fresnel reflectance at normal incidence `F₀ = mix(0.04, base color, metallic)`, on a
+//!   Blinn-Phong highlight of exponent `n = 2 / r⁴ − 2` for roughness `r` (clamped to
+//!   `[1, 10⁴]`), the width of a GGX lobe of the same roughness, with strength
+//!   `(n + 8) / 8`, the lobe's energy normalization;
+//! - there is no Fresnel rise toward grazing angles and no geometry term: highlights at
+//!   grazing angles are dimmer than in PBR;
+//! - there is no image-based lighting: metals lit only by punctual lights look darker than
+//!   PBR metals under an environment map;
+//! - the metallic/roughness and occlusion maps and the other material extensions are not
+//!   used: one warning per material that has them, naming the material.
+
+mod handler;
+mod material;
+mod plugin;
+
+pub use handler::{PHONG_LABEL_SUFFIX, phong_material_label};
+pub use material::{
+    DIELECTRIC_F0, METALLIC, ROUGHNESS, SHININESS_RANGE, normalization, phong_material_from_gltf,
+    shininess_from_roughness, unmapped_gltf_features,
+};
+pub use plugin::PhongGltfPlugin;
