@@ -11,7 +11,9 @@
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
 //!   the reference model given each pixel's texels;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
-//!   skin, morph weights, animation players and lights;
+//!   skin, morph weights, animation players and lights; posed at a fixed animation time,
+//!   each primitive covers the pixels `StandardMaterial` covers, and the scene is lit as the
+//!   reference model says on the skinned and morphed inputs;
 //! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
 //! - `shadows`: every pixel's shadowing against rays cast in `f64` to each light, within a
 //!   band around the exact shadow's edge;

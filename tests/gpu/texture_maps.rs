@@ -21,7 +21,7 @@ use bevy_phong_headless::{Harness, SurfaceInputs};
 use glam::{DVec3, DVec4};
 use std::collections::HashMap;
 
-/// Texels per side of every test map.
+/// Texels per side of every map this file makes.
 pub(crate) const TEXELS: u32 = 4;
 
 /// A `TEXELS`² map with nearest filtering whose texel `(x, y)` is `texel(x, y)` (each
@@ -72,26 +72,69 @@ pub(crate) fn normal_map() -> Image {
     })
 }
 
+/// How the reference decodes an 8-bit sRGB texel. A sampler may return any linear value
+/// whose exact sRGB encoding is within half an 8-bit step of the texel (Direct3D 10's rule;
+/// lavapipe's cubic approximation stays within 0.35 of a step), so a pixel lit with an
+/// sRGB map is judged against the colors its lowest and highest decodings give.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SrgbDecoding {
+    /// The exact transfer function.
+    Exact,
+    /// Half a step below the texel, then exact.
+    Lowest,
+    /// Half a step above the texel, then exact.
+    Highest,
+}
+
 /// The texel of `image` that nearest filtering gives at `uv` (clamped to the edge), or
-/// `None` within 1/100 texel of a texel's edge.
-fn texel_at(image: &Image, uv: [f32; 2]) -> Option<DVec4> {
+/// `None` within 1/100 texel of a texel's edge. Channels in `[0, 1]`; the color channels
+/// of an sRGB image decoded to linear as `decoding` says.
+fn texel_at(image: &Image, uv: [f32; 2], decoding: SrgbDecoding) -> Option<DVec4> {
+    let size = [image.width() as usize, image.height() as usize];
     let mut texel = [0usize; 2];
     for axis in 0..2 {
-        let scaled = f64::from(uv[axis]) * f64::from(TEXELS);
+        let scaled = f64::from(uv[axis]) * size[axis] as f64;
         let fraction = scaled - scaled.floor();
-        if (0.01..=0.99).contains(&fraction) || scaled <= 0.0 || scaled >= f64::from(TEXELS) {
-            texel[axis] = (scaled.floor().max(0.0) as usize).min(TEXELS as usize - 1);
+        if (0.01..=0.99).contains(&fraction) || scaled <= 0.0 || scaled >= size[axis] as f64 {
+            texel[axis] = (scaled.floor().max(0.0) as usize).min(size[axis] - 1);
         } else {
             return None;
         }
     }
     let data = image.data.as_ref().expect("test maps keep their data");
-    let start = (texel[1] * TEXELS as usize + texel[0]) * 4;
+    assert_eq!(
+        data.len(),
+        size[0] * size[1] * 4,
+        "an image of 4 bytes per texel"
+    );
+    let start = (texel[1] * size[0] + texel[0]) * 4;
+    let srgb = image.texture_descriptor.format.is_srgb();
+    let offset = match decoding {
+        SrgbDecoding::Exact => 0.0,
+        SrgbDecoding::Lowest => -0.5,
+        SrgbDecoding::Highest => 0.5,
+    };
     let channels: Vec<f64> = data[start..start + 4]
         .iter()
-        .map(|&byte| f64::from(byte) / 255.0)
+        .enumerate()
+        .map(|(channel, &byte)| {
+            if srgb && channel < 3 {
+                srgb_to_linear(((f64::from(byte) + offset) / 255.0).clamp(0.0, 1.0))
+            } else {
+                f64::from(byte) / 255.0
+            }
+        })
         .collect();
     Some(DVec4::from_slice(&channels))
+}
+
+/// The sRGB transfer function's inverse (IEC 61966-2-1).
+fn srgb_to_linear(value: f64) -> f64 {
+    if value <= 0.04045 {
+        value / 12.92
+    } else {
+        ((value + 0.055) / 1.055).powf(2.4)
+    }
 }
 
 /// Every image the harness's app holds, by id: the texels the reference reads.
@@ -118,9 +161,11 @@ pub(crate) fn lit_normal(
     let tangent = inputs.tangents.as_ref().unwrap().pixels[pixel];
     let texel = match &material.normal_map_texture {
         None => None,
+        // Normal maps are linear: nothing to decode.
         Some(handle) => Some(texel_at(
             &images[&handle.id()],
             [uv_and_sign[0], uv_and_sign[1]],
+            SrgbDecoding::Exact,
         )?),
     };
     let tangent = DVec4::new(
@@ -141,25 +186,23 @@ pub(crate) fn lit_normal(
     })
 }
 
-/// The reference color of a pixel of `material`, given its captured inputs; `None` on a
-/// texel edge.
-fn expected_color(
+/// The texels each of `material`'s maps gives at `uv`, sRGB maps decoded as `decoding`
+/// says; `None` on a texel edge.
+pub(crate) fn texels_at(
     material: &PhongMaterial,
-    surface: &reference::SurfacePoint,
-    pixel: usize,
-    inputs: &SurfaceInputs,
+    uv: [f32; 2],
     images: &HashMap<AssetId<Image>, Image>,
-    lights: &reference::Lights,
-) -> Option<DVec3> {
-    let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
-    let uv = [uv_and_sign[0], uv_and_sign[1]];
+    decoding: SrgbDecoding,
+) -> Option<reference::Texels> {
     let sample = |map: &Option<Handle<Image>>| -> Result<Option<DVec4>, ()> {
         match map {
             None => Ok(None),
-            Some(handle) => texel_at(&images[&handle.id()], uv).map(Some).ok_or(()),
+            Some(handle) => texel_at(&images[&handle.id()], uv, decoding)
+                .map(Some)
+                .ok_or(()),
         }
     };
-    let texels = reference::Texels {
+    Some(reference::Texels {
         base_color: sample(&material.base_color_texture).ok()?,
         specular: sample(&material.specular_texture)
             .ok()?
@@ -170,21 +213,61 @@ fn expected_color(
         normal: sample(&material.normal_map_texture)
             .ok()?
             .map(DVec4::truncate),
+    })
+}
+
+/// Whether `material`'s alpha mask discards a fragment whose maps gave `texels`; `None`
+/// within 10⁻⁶ of the cutoff, too close to say.
+pub(crate) fn masked_out(material: &PhongMaterial, texels: &reference::Texels) -> Option<bool> {
+    let AlphaMode::Mask(cutoff) = material.alpha_mode else {
+        return Some(false);
     };
-    if let AlphaMode::Mask(cutoff) = material.alpha_mode {
-        let alpha = texels.base_color.map_or(1.0, |t| t.w) * f64::from(material.base_color.alpha());
-        // Discarded: the clear color. Too close to the cutoff to say: not judged.
-        if (alpha - f64::from(cutoff)).abs() < 1e-6 {
-            return None;
-        }
-        if alpha < f64::from(cutoff) {
-            return Some(DVec3::ZERO);
-        }
+    let alpha = texels.base_color.map_or(1.0, |t| t.w) * f64::from(material.base_color.alpha());
+    if (alpha - f64::from(cutoff)).abs() < 1e-6 {
+        return None;
     }
+    Some(alpha < f64::from(cutoff))
+}
+
+/// The reference color of a pixel of `material` that is drawn (not masked out), given its
+/// captured inputs and its maps' `texels`; `None` on a texel edge of the normal map.
+pub(crate) fn lit_color(
+    material: &PhongMaterial,
+    surface: &reference::SurfacePoint,
+    pixel: usize,
+    inputs: &SurfaceInputs,
+    texels: &reference::Texels,
+    images: &HashMap<AssetId<Image>, Image>,
+    lights: &reference::Lights,
+) -> Option<DVec3> {
     let normal = lit_normal(material, surface, pixel, inputs, images)?;
     let surface = reference::SurfacePoint { normal, ..*surface };
-    let mapped = reference::Material::from(material).mapped(&texels);
+    let mapped = reference::Material::from(material).mapped(texels);
     Some(reference::shade(&surface, &mapped, lights))
+}
+
+/// The reference color of a pixel of `material`, given its captured inputs; `None` on a
+/// texel edge. Where the mask discards, the clear color (nothing is behind these meshes).
+fn expected_color(
+    material: &PhongMaterial,
+    surface: &reference::SurfacePoint,
+    pixel: usize,
+    inputs: &SurfaceInputs,
+    images: &HashMap<AssetId<Image>, Image>,
+    lights: &reference::Lights,
+) -> Option<DVec3> {
+    let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
+    // The maps here are linear (`Rgba8Unorm`): nothing to decode.
+    let texels = texels_at(
+        material,
+        [uv_and_sign[0], uv_and_sign[1]],
+        images,
+        SrgbDecoding::Exact,
+    )?;
+    if masked_out(material, &texels)? {
+        return Some(DVec3::ZERO);
+    }
+    lit_color(material, surface, pixel, inputs, &texels, images, lights)
 }
 
 #[test]

@@ -10,6 +10,10 @@ use crate::float_image::{FloatImage, render_tests_directory, save_srgb_png};
 pub enum Expected {
     /// This color, within the tolerance.
     Lit(DVec3),
+    /// Any color from the first to the second, channel by channel, within the tolerance:
+    /// where the device may choose within a documented precision (an sRGB texel's decoding,
+    /// say).
+    Between(DVec3, DVec3),
     /// The clear color: nothing is drawn there.
     Clear,
     /// Not judged (a pixel on a discontinuity, say).
@@ -56,6 +60,9 @@ impl Comparison {
         for (index, color) in rendered.pixels.iter().enumerate() {
             match expected(index) {
                 Expected::Lit(expected) => comparison.record(index, *color, expected),
+                Expected::Between(low, high) => {
+                    comparison.record_between(index, *color, low.min(high), low.max(high));
+                }
                 Expected::Clear => comparison.record_background(index, *color),
                 Expected::Unjudged => comparison.skipped_pixels += 1,
             }
@@ -71,17 +78,25 @@ impl Comparison {
     }
 
     pub(crate) fn record(&mut self, index: usize, color: [f32; 4], expected: DVec3) {
+        self.record_between(index, color, expected, expected);
+    }
+
+    /// Records a pixel whose color may be anywhere from `low` to `high`: its error is how far
+    /// outside that range it is, relative to `max(1, |high|)`.
+    fn record_between(&mut self, index: usize, color: [f32; 4], low: DVec3, high: DVec3) {
         let actual = [color[0], color[1], color[2]];
+        let expected = (low + high) / 2.0;
         self.actual[index] = actual;
         self.expected[index] = expected.as_vec3().to_array();
         self.lit_pixels += 1;
         let error = (0..3)
             .map(|c| {
-                let difference = f64::from(actual[c]) - expected[c];
-                if difference.is_nan() {
+                let value = f64::from(actual[c]);
+                let outside = (low[c] - value).max(value - high[c]).max(0.0);
+                if value.is_nan() {
                     f64::INFINITY
                 } else {
-                    difference.abs() / expected[c].abs().max(1.0)
+                    outside / high[c].abs().max(1.0)
                 }
             })
             .fold(0.0, f64::max);

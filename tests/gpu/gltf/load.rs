@@ -4,85 +4,21 @@
 //! and nothing else; the skinned arm has its `SkinnedMesh`, the blob its morph weights,
 //! the animations their players, and the file's two lights became Phong lights.
 
+use super::{PHONG_TEST_GLTF, phong_only_gltf_harness, spawn_gltf_scene};
 use bevy::{
     animation::AnimationPlayer,
-    gltf::{
-        Gltf, GltfAssetLabel, GltfMaterial, GltfMaterialName, extensions::GltfExtensionHandlers,
-    },
+    gltf::{Gltf, GltfMaterial, GltfMaterialName},
     mesh::{
         morph::{MeshMorphWeights, MorphWeights},
         skinning::SkinnedMesh,
     },
     prelude::*,
-    world_serialization::{WorldAsset, WorldAssetRoot, WorldInstanceReady},
 };
 use bevy_phong::{
     BevyLightExposure,
     gltf::{phong_material_from_gltf, phong_material_label},
     prelude::*,
 };
-use bevy_phong_headless::Harness;
-use std::sync::{
-    Arc,
-    atomic::{AtomicBool, Ordering},
-};
-
-/// The asset, in the crate's asset folder.
-pub const PHONG_TEST_GLTF: &str = "gltf/phong_test.gltf";
-
-/// Frames to wait for the file to load and its scene to spawn (loading takes a handful).
-const MAX_LOAD_FRAMES: u32 = 500;
-
-/// A harness whose glTF loads give primitives only a `PhongMaterial`.
-///
-/// The harness builds Bevy's default plugins, whose `PbrPlugin` registers its glTF
-/// `StandardMaterial` handler; the handlers registered so far (that one only) are taken out
-/// before `PhongGltfPlugin` adds its own, which is what
-/// `PbrPlugin { gltf_enable_standard_materials: false, .. }` does in an app.
-pub fn phong_only_gltf_harness(width: u32, height: u32) -> Harness {
-    Harness::with_plugins(width, height, |app| {
-        app.world()
-            .resource::<GltfExtensionHandlers>()
-            .0
-            .write_blocking()
-            .clear();
-        app.add_plugins(PhongGltfPlugin);
-    })
-}
-
-/// Spawns scene 0 of `path` and updates until it and every asset it names have loaded and
-/// the scene's instance is ready. Returns the file's `Gltf`.
-pub fn spawn_gltf_scene(harness: &mut Harness, path: &str) -> Handle<Gltf> {
-    let world = harness.world_mut();
-    let server = world.resource::<AssetServer>().clone();
-    let gltf: Handle<Gltf> = server.load(path.to_owned());
-    let scene: Handle<WorldAsset> =
-        server.load(GltfAssetLabel::Scene(0).from_asset(path.to_owned()));
-    let ready = Arc::new(AtomicBool::new(false));
-    let flag = ready.clone();
-    world
-        .spawn(WorldAssetRoot(scene))
-        .observe(move |_: On<WorldInstanceReady>| flag.store(true, Ordering::Relaxed));
-    for _ in 0..MAX_LOAD_FRAMES {
-        harness.app.update();
-        if let Some(error) = server
-            .get_recursive_dependency_load_state(&gltf)
-            .and_then(|s| match s {
-                bevy::asset::RecursiveDependencyLoadState::Failed(error) => Some(error),
-                _ => None,
-            })
-        {
-            panic!("{path} failed to load: {error}");
-        }
-        if ready.load(Ordering::Relaxed) && server.is_loaded_with_dependencies(&gltf) {
-            // One more frame: the Bevy lights' Phong mirrors are made in `PostUpdate`.
-            harness.app.update();
-            return gltf;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
-    panic!("{path} did not load and spawn within {MAX_LOAD_FRAMES} frames");
-}
 
 /// Exact: the loaded material and the one computed here come from the same `GltfMaterial`
 /// through the same function, handles included (compared through their `Debug` text, as
