@@ -23,14 +23,14 @@ use bevy::{
     ecs::{
         entity::{Entity, EntityHashMap},
         message::MessageWriter,
-        query::{With, Without},
+        query::{Has, With, Without},
         resource::Resource,
         system::{Query, ResMut},
     },
     light::NotShadowCaster,
     log::warn,
     math::{Mat4, Vec3, Vec3A, Vec4},
-    mesh::{Mesh, Mesh3d},
+    mesh::{Mesh, Mesh3d, morph::MeshMorphWeights, skinning::SkinnedMesh},
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
@@ -108,6 +108,7 @@ pub struct PhongShadowViews {
     records: Vec<GpuShadowView>,
     casters: Vec<Caster>,
     warned_over_capacity: bool,
+    warned_deformed: bool,
 }
 
 impl PhongShadowViews {
@@ -125,6 +126,7 @@ impl Default for PhongShadowViews {
             records: Vec::new(),
             casters: Vec::new(),
             warned_over_capacity: false,
+            warned_deformed: false,
         }
     }
 }
@@ -137,7 +139,15 @@ pub(crate) fn gather_shadows(
     mut requests: ResMut<ShadowRequests>,
     cameras: Query<(&Camera, &GlobalTransform, &Projection, &Frustum), With<Camera3d>>,
     casters: Query<
-        (&Mesh3d, &GlobalTransform, &Aabb, &InheritedVisibility),
+        (
+            Entity,
+            &Mesh3d,
+            &GlobalTransform,
+            &Aabb,
+            &InheritedVisibility,
+            Has<SkinnedMesh>,
+            Has<MeshMorphWeights>,
+        ),
         Without<NotShadowCaster>,
     >,
     mut state: ResMut<PhongShadowViews>,
@@ -162,16 +172,29 @@ pub(crate) fn gather_shadows(
     state.records.clear();
     state.casters.clear();
     if !requests.is_empty() {
-        state.casters.extend(
-            casters
-                .iter()
-                .filter(|(.., visibility)| visibility.get())
-                .map(|(mesh, transform, aabb, _)| Caster {
-                    mesh: mesh.id(),
-                    world_from_local: transform.to_matrix(),
-                    bounds: bounds(transform, aabb),
-                }),
-        );
+        for (entity, mesh, transform, aabb, visibility, skinned, morphed) in &casters {
+            if !visibility.get() {
+                continue;
+            }
+            // The caster pipeline draws stored positions: a skinned or morphed mesh would
+            // cast its rest pose, so it casts no Phong shadow instead.
+            if skinned || morphed {
+                if !state.warned_deformed {
+                    warn!(
+                        "mesh {entity} is skinned or morphed: it casts no Phong shadow (Phong \
+                         shadow maps draw meshes as stored, not deformed); other such meshes \
+                         are not reported"
+                    );
+                    state.warned_deformed = true;
+                }
+                continue;
+            }
+            state.casters.push(Caster {
+                mesh: mesh.id(),
+                world_from_local: transform.to_matrix(),
+                bounds: bounds(transform, aabb),
+            });
+        }
     }
     let caster_bounds: Vec<Bounds> = state.casters.iter().map(|caster| caster.bounds).collect();
     let cascade_camera =
@@ -426,6 +449,46 @@ fn cascade_camera(transform: &GlobalTransform, projection: &Projection) -> Casca
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{lights::PhongPointLight, test_app::test_app};
+    use bevy::{
+        asset::AssetApp,
+        mesh::{MeshBuilder, Meshable},
+        prelude::{Cuboid, Transform, Visibility},
+    };
+
+    #[test]
+    fn skinned_and_morphed_meshes_cast_no_phong_shadow() {
+        let mut app = test_app(|app| {
+            let mesh = app
+                .init_asset::<Mesh>()
+                .world_mut()
+                .resource_mut::<Assets<Mesh>>()
+                .add(Cuboid::default().mesh().build());
+            let aabb = Aabb::from_min_max(Vec3::splat(-0.5), Vec3::splat(0.5));
+            let caster = (
+                Mesh3d(mesh),
+                aabb,
+                Transform::default(),
+                Visibility::default(),
+            );
+            let world = app.world_mut();
+            world.spawn(caster.clone());
+            world.spawn((caster.clone(), SkinnedMesh::default()));
+            world.spawn((caster, MeshMorphWeights::Value { weights: vec![0.5] }));
+            world.spawn((
+                PhongPointLight {
+                    shadows: PhongShadows::ON,
+                    ..Default::default()
+                },
+                Transform::from_xyz(0.0, 3.0, 0.0),
+            ));
+        });
+        app.update();
+        let views = app.world().resource::<PhongShadowViews>();
+        assert!(!views.views().is_empty(), "the light has shadow maps");
+        assert_eq!(views.casters.len(), 1, "only the plain mesh casts");
+        assert!(views.warned_deformed, "one warning names the first");
+    }
 
     #[test]
     fn the_array_grows_by_powers_of_two_and_holds_while_a_quarter_is_used() {

@@ -29,8 +29,9 @@
 //! first; past it the rest cast nothing, with one warning.
 //!
 //! Casters are the visible meshes without `NotShadowCaster`, culled per map by their
-//! bounding spheres. They are drawn from their vertex positions as stored: skinned and
-//! morphed meshes cast the shadow of their rest pose.
+//! bounding spheres. They are drawn from their vertex positions as stored, so skinned and
+//! morphed meshes (`SkinnedMesh`, `MeshMorphWeights`), which would cast the shadow of their
+//! rest pose, cast none: one warning names the first.
 
 mod gather;
 mod gpu_types;
