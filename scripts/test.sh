@@ -15,7 +15,7 @@ cargo test --doc "$@"
 cargo test -p phong_gltf_asset "$@"
 
 # Every example must still render: each writes its PNG headless and exits.
-for example in showcase searchlight orbiting_light many_lights textured_cubes; do
+for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
 # The showcase's sphere shows its three highlights where the lighting model puts them.
@@ -33,7 +33,7 @@ cargo run --quiet --example bench -- --quick
 # the render tests with the same tolerances, and every example.
 export WGPU_SETTINGS_PRIO=webgl2
 cargo test --test gpu "$@"
-for example in showcase searchlight orbiting_light many_lights textured_cubes; do
+for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene; do
     cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
 done
 cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png

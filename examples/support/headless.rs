@@ -2,11 +2,11 @@
 //! the pipelines are ready, then exit.
 
 use super::{
-    PICTURE_SIZE, RunMode,
+    PICTURE_SIZE, RunMode, StillLoading,
     ready::{PipelinesReady, PipelinesReadyPlugin, ReadyFrames},
 };
 use bevy::{
-    app::{AppExit, ScheduleRunnerPlugin},
+    app::{AppExit, PluginGroupBuilder, ScheduleRunnerPlugin},
     camera::RenderTarget,
     prelude::*,
     render::{
@@ -20,9 +20,12 @@ use std::time::Duration;
 
 /// Bevy's plugins without a window, a loop that renders until the PNG is written, and the
 /// capture.
-pub fn add_plugins(app: &mut App) {
+pub fn add_plugins(
+    app: &mut App,
+    configure: impl FnOnce(PluginGroupBuilder) -> PluginGroupBuilder,
+) {
     app.add_plugins((
-        headless_plugins(),
+        configure(headless_plugins()),
         ScheduleRunnerPlugin::run_loop(Duration::ZERO),
         HeadlessCapturePlugin,
     ))
@@ -78,9 +81,10 @@ fn request_capture(
     mut commands: Commands,
     ready: Res<PipelinesReady>,
     target: Option<ResMut<CaptureTarget>>,
+    loading: Option<Res<StillLoading>>,
 ) {
     let Some(mut target) = target else { return };
-    if target.requested {
+    if target.requested || loading.is_some() {
         return;
     }
     if target.frames_ready.settled(&ready) {

@@ -7,7 +7,7 @@ mod ready;
 #[cfg(target_arch = "wasm32")]
 mod web;
 
-use bevy::{core_pipeline::tonemapping::Tonemapping, prelude::*};
+use bevy::{app::PluginGroupBuilder, core_pipeline::tonemapping::Tonemapping, prelude::*};
 #[cfg(not(target_arch = "wasm32"))]
 use std::path::PathBuf;
 
@@ -70,31 +70,53 @@ fn default_png(name: &str) -> PathBuf {
 
 /// An app with Bevy's default plugins set up for `mode`: a titled window, no window and
 /// a loop that renders until the PNG is written, or the page's canvas.
+#[allow(
+    dead_code,
+    reason = "the examples that set plugin options use example_app_with"
+)]
 pub fn example_app(name: &str) -> App {
+    example_app_with(name, |plugins| plugins)
+}
+
+/// [`example_app`] with Bevy's default plugins changed by `configure` (to set a plugin's
+/// options, say).
+pub fn example_app_with(
+    name: &str,
+    configure: impl FnOnce(PluginGroupBuilder) -> PluginGroupBuilder,
+) -> App {
     let mode = RunMode::from_args(name);
     let mut app = App::new();
     match &mode {
         #[cfg(not(target_arch = "wasm32"))]
         RunMode::Windowed => {
-            app.add_plugins(DefaultPlugins.set(WindowPlugin {
+            app.add_plugins(configure(DefaultPlugins.set(WindowPlugin {
                 primary_window: Some(Window {
                     title: format!("bevy_phong: {name}"),
                     ..default()
                 }),
                 ..default()
-            }));
+            })));
         }
         #[cfg(not(target_arch = "wasm32"))]
-        RunMode::Headless(_) => headless::add_plugins(&mut app),
+        RunMode::Headless(_) => headless::add_plugins(&mut app, configure),
         #[cfg(target_arch = "wasm32")]
-        RunMode::Canvas => web::add_plugins(&mut app, name),
+        RunMode::Canvas => web::add_plugins(&mut app, name, configure),
     }
     app.insert_resource(mode);
     app
 }
 
+/// While this resource exists, a headless run does not save its picture and a browser run
+/// does not report its scene drawn: an example inserts it while its scene is still loading.
+#[derive(Resource)]
+pub struct StillLoading;
+
 /// The camera settings every example uses, so the window and the PNG look the same: the
 /// lighting model's colors as they are (no tone mapping).
+#[allow(
+    dead_code,
+    reason = "the glTF scene's camera is a game's (HDR, tonemapped)"
+)]
 pub fn example_camera(transform: Transform) -> impl Bundle {
     (Camera3d::default(), Tonemapping::None, transform)
 }

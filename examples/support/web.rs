@@ -3,18 +3,22 @@
 //! it takes its screenshot.
 
 use super::{
-    PICTURE_SIZE,
+    PICTURE_SIZE, StillLoading,
     ready::{PipelinesReady, PipelinesReadyPlugin, ReadyFrames},
 };
-use bevy::{prelude::*, window::WindowResolution};
+use bevy::{app::PluginGroupBuilder, prelude::*, window::WindowResolution};
 
 /// The attribute set on `<body>` once the app has drawn its scene.
 const DRAWN_ATTRIBUTE: &str = "data-drawn";
 
 /// Bevy's plugins with the primary window on the page's canvas, sized like the headless
 /// PNG (one canvas pixel per picture pixel), and the signal that the scene is drawn.
-pub fn add_plugins(app: &mut App, name: &str) {
-    app.add_plugins(
+pub fn add_plugins(
+    app: &mut App,
+    name: &str,
+    configure: impl FnOnce(PluginGroupBuilder) -> PluginGroupBuilder,
+) {
+    app.add_plugins(configure(
         DefaultPlugins.set(WindowPlugin {
             primary_window: Some(Window {
                 title: format!("bevy_phong: {name}"),
@@ -25,14 +29,19 @@ pub fn add_plugins(app: &mut App, name: &str) {
             }),
             ..default()
         }),
-    )
+    ))
     .add_plugins(PipelinesReadyPlugin)
     .add_systems(Last, mark_drawn);
 }
 
 /// Sets [`DRAWN_ATTRIBUTE`] once frames have been drawn with every pipeline ready.
-fn mark_drawn(ready: Res<PipelinesReady>, mut frames: Local<ReadyFrames>, mut done: Local<bool>) {
-    if *done || !frames.settled(&ready) {
+fn mark_drawn(
+    ready: Res<PipelinesReady>,
+    loading: Option<Res<StillLoading>>,
+    mut frames: Local<ReadyFrames>,
+    mut done: Local<bool>,
+) {
+    if *done || loading.is_some() || !frames.settled(&ready) {
         return;
     }
     *done = true;

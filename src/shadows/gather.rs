@@ -131,6 +131,17 @@ impl Default for PhongShadowViews {
     }
 }
 
+/// What the gather reads of each mesh that may cast: whether it is skinned or morphed too.
+type CasterData = (
+    Entity,
+    &'static Mesh3d,
+    &'static GlobalTransform,
+    &'static Aabb,
+    &'static InheritedVisibility,
+    Has<SkinnedMesh>,
+    Has<MeshMorphWeights>,
+);
+
 /// Lays out every requested shadow map of this frame: the maps' views (written into the
 /// shadow view buffer), their casters (for the render world), and each light's first view
 /// (for its light record).
@@ -138,18 +149,7 @@ impl Default for PhongShadowViews {
 pub(crate) fn gather_shadows(
     mut requests: ResMut<ShadowRequests>,
     cameras: Query<(&Camera, &GlobalTransform, &Projection, &Frustum), With<Camera3d>>,
-    casters: Query<
-        (
-            Entity,
-            &Mesh3d,
-            &GlobalTransform,
-            &Aabb,
-            &InheritedVisibility,
-            Has<SkinnedMesh>,
-            Has<MeshMorphWeights>,
-        ),
-        Without<NotShadowCaster>,
-    >,
+    casters: Query<CasterData, Without<NotShadowCaster>>,
     mut state: ResMut<PhongShadowViews>,
     mut frame: ResMut<ShadowFrame>,
     mut slots: ResMut<ShadowSlots>,
