@@ -4,8 +4,8 @@
 //! sun and lamp light it as Phong lights (`PhongGltfPlugin` mirrors them), with shadows on,
 //! seen through an HDR camera with distance fog and bloom.
 //!
-//! The skinned arm and the morphed blob receive shadows but cast none: Phong shadow maps
-//! draw meshes as stored, so deformed meshes are left out of them (one warning says so).
+//! The bent arm and the lifted blob cast the shadow of their pose; the fence casts the
+//! shadow of its whole quad (alpha-mask holes are not cut in Phong shadow maps).
 //!
 //! ```sh
 //! cargo run --example gltf_scene                       # a window, where a display exists

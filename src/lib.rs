@@ -113,7 +113,7 @@ pub use lights::{
 pub use material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel};
 pub use plugin::{PhongMaterialAppExt, PhongPlugin, PhongSystems};
 pub use surface_inputs::{
-    SurfaceInput, SurfaceInputUniform, SurfaceInputsMaterial, SurfaceInputsPlugin,
+    SurfaceInput, SurfaceInputUniform, SurfaceInputsKey, SurfaceInputsMaterial, SurfaceInputsPlugin,
 };
 
 /// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.

@@ -3,9 +3,12 @@
 use bevy::{
     app::{App, Plugin},
     asset::{Asset, embedded_asset},
-    pbr::{Material, MaterialPlugin},
+    mesh::MeshVertexBufferLayoutRef,
+    pbr::{Material, MaterialPipeline, MaterialPipelineKey, MaterialPlugin},
     reflect::Reflect,
-    render::render_resource::{AsBindGroup, ShaderType},
+    render::render_resource::{
+        AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+    },
     shader::ShaderRef,
 };
 
@@ -30,7 +33,8 @@ pub enum SurfaceInput {
     /// The world-space surface point `P` (xyz).
     #[default]
     WorldPosition,
-    /// The interpolated world-space mesh normal, before normalization (xyz).
+    /// The interpolated world-space mesh normal, before normalization (xyz); negated on the
+    /// back faces of a double-sided material, as the lighting negates it.
     WorldNormal,
     /// The mesh's first UV set (xy) and the handedness `w` of its tangent (z); zeros where
     /// the mesh has none.
@@ -48,15 +52,21 @@ pub enum SurfaceInput {
 /// and render target give bit-identical inputs. Add [`SurfaceInputsPlugin`] to use it. Render a scene once lit and once with this
 /// material on every mesh (into an `Rgba32Float` target) to evaluate the reference model
 /// ([`crate::reference`]) on exactly the inputs the shader saw.
+///
+/// Like the material it stands in for, it draws back faces only when `double_sided`: there
+/// the normal it writes is negated, as `PhongMaterial` negates it to light a back face.
 #[derive(Asset, AsBindGroup, Clone, Debug, Default, Reflect)]
+#[bind_group_data(SurfaceInputsKey)]
 pub struct SurfaceInputsMaterial {
     /// What to write.
     #[uniform(0)]
     pub output: SurfaceInputUniform,
+    /// Whether back faces are drawn too (no culling). Default `false`.
+    pub double_sided: bool,
 }
 
 impl SurfaceInputsMaterial {
-    /// A material writing `input` in RGB and `tag` (as a float) in alpha.
+    /// A material writing `input` in RGB and `tag` (as a float) in alpha, on front faces.
     pub fn new(input: SurfaceInput, tag: u32) -> Self {
         let output = match input {
             SurfaceInput::WorldPosition => 0,
@@ -66,6 +76,30 @@ impl SurfaceInputsMaterial {
         };
         Self {
             output: SurfaceInputUniform { output, tag },
+            double_sided: false,
+        }
+    }
+
+    /// This material drawing back faces too (`double_sided`), or not.
+    pub fn with_double_sided(self, double_sided: bool) -> Self {
+        Self {
+            double_sided,
+            ..self
+        }
+    }
+}
+
+/// The pipeline key of a [`SurfaceInputsMaterial`]: whether it culls back faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SurfaceInputsKey {
+    /// Whether back faces are drawn.
+    pub double_sided: bool,
+}
+
+impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
+    fn from(material: &SurfaceInputsMaterial) -> Self {
+        Self {
+            double_sided: material.double_sided,
         }
     }
 }
@@ -82,5 +116,17 @@ pub struct SurfaceInputUniform {
 impl Material for SurfaceInputsMaterial {
     fn fragment_shader() -> ShaderRef {
         SURFACE_INPUTS_SHADER.into()
+    }
+
+    fn specialize(
+        _pipeline: &MaterialPipeline,
+        descriptor: &mut RenderPipelineDescriptor,
+        _layout: &MeshVertexBufferLayoutRef,
+        key: MaterialPipelineKey<Self>,
+    ) -> Result<(), SpecializedMeshPipelineError> {
+        if key.bind_group_data.double_sided {
+            descriptor.primitive.cull_mode = None;
+        }
+        Ok(())
     }
 }

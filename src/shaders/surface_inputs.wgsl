@@ -13,7 +13,7 @@ struct SurfaceInputsUniform {
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> inputs: SurfaceInputsUniform;
 
 @fragment
-fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
+fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> @location(0) vec4<f32> {
     let tag = f32(inputs.tag);
     var uv_and_sign = vec3<f32>(0.0);
     var tangent = vec3<f32>(0.0);
@@ -25,7 +25,8 @@ fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
     tangent = in.world_tangent.xyz;
 #endif
     switch inputs.output {
-        case 1u: { return vec4<f32>(in.world_normal, tag); }
+        // Only a double-sided material draws back faces: lit with the normal negated.
+        case 1u: { return vec4<f32>(select(-in.world_normal, in.world_normal, is_front), tag); }
         case 2u: { return vec4<f32>(uv_and_sign, tag); }
         case 3u: { return vec4<f32>(tangent, tag); }
         default: { return vec4<f32>(in.world_position.xyz, tag); }

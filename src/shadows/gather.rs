@@ -3,6 +3,7 @@
 
 use super::{
     MAX_SHADOW_VIEWS, SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS,
+    deformed::Poses,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
@@ -21,7 +22,7 @@ use bevy::{
         visibility::InheritedVisibility,
     },
     ecs::{
-        entity::{Entity, EntityHashMap},
+        entity::{Entity, EntityHashMap, EntityHashSet},
         message::MessageWriter,
         query::{Has, With, Without},
         resource::Resource,
@@ -73,12 +74,23 @@ pub(crate) struct ShadowPass {
     pub instances: Range<usize>,
 }
 
+/// Where a caster's triangles come from.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum CasterSource {
+    /// A mesh as stored (in its local space).
+    Mesh(AssetId<Mesh>),
+    /// A skinned or morphed mesh posed for this frame: these vertices of
+    /// [`ShadowFrame::deformed_vertices`], three per triangle, in world space.
+    Deformed(Range<u32>),
+}
+
 /// A caster drawn into one map.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct ShadowInstance {
-    /// Its mesh.
-    pub mesh: AssetId<Mesh>,
-    /// The mesh's local space to the map's clip space.
+    /// Its triangles.
+    pub source: CasterSource,
+    /// The triangles' space (the mesh's local space, or world space for posed ones) to the
+    /// map's clip space.
     pub clip_from_local: Mat4,
 }
 
@@ -91,11 +103,13 @@ pub(crate) struct ShadowFrame {
     pub passes: Vec<ShadowPass>,
     /// The casters of every map.
     pub instances: Vec<ShadowInstance>,
+    /// The triangles of this frame's skinned and morphed casters, world space.
+    pub deformed_vertices: Vec<Vec3>,
 }
 
 /// A visible mesh that casts shadows.
 struct Caster {
-    mesh: AssetId<Mesh>,
+    source: CasterSource,
     world_from_local: Mat4,
     bounds: Bounds,
 }
@@ -108,7 +122,8 @@ pub struct PhongShadowViews {
     records: Vec<GpuShadowView>,
     casters: Vec<Caster>,
     warned_over_capacity: bool,
-    warned_deformed: bool,
+    /// The skinned or morphed casters that could not be posed, each reported once.
+    unposed: EntityHashSet,
 }
 
 impl PhongShadowViews {
@@ -126,12 +141,12 @@ impl Default for PhongShadowViews {
             records: Vec::new(),
             casters: Vec::new(),
             warned_over_capacity: false,
-            warned_deformed: false,
+            unposed: EntityHashSet::default(),
         }
     }
 }
 
-/// What the gather reads of each mesh that may cast: whether it is skinned or morphed too.
+/// What the gather reads of each mesh that may cast, and whether it is skinned or morphed.
 type CasterData = (
     Entity,
     &'static Mesh3d,
@@ -155,6 +170,7 @@ pub(crate) fn gather_shadows(
     mut slots: ResMut<ShadowSlots>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
     mut resized: MessageWriter<LightBufferResized>,
+    poses: Poses,
 ) {
     let camera = cameras
         .iter()
@@ -171,29 +187,43 @@ pub(crate) fn gather_shadows(
     let state = &mut *state;
     state.records.clear();
     state.casters.clear();
+    let mut deformed_vertices = Vec::new();
     if !requests.is_empty() {
         for (entity, mesh, transform, aabb, visibility, skinned, morphed) in &casters {
             if !visibility.get() {
                 continue;
             }
-            // The caster pipeline draws stored positions: a skinned or morphed mesh would
-            // cast its rest pose, so it casts no Phong shadow instead.
-            if skinned || morphed {
-                if !state.warned_deformed {
-                    warn!(
-                        "mesh {entity} is skinned or morphed: it casts no Phong shadow (Phong \
-                         shadow maps draw meshes as stored, not deformed); other such meshes \
-                         are not reported"
-                    );
-                    state.warned_deformed = true;
-                }
+            if !(skinned || morphed) {
+                state.casters.push(Caster {
+                    source: CasterSource::Mesh(mesh.id()),
+                    world_from_local: transform.to_matrix(),
+                    bounds: bounds(transform, aabb),
+                });
                 continue;
             }
-            state.casters.push(Caster {
-                mesh: mesh.id(),
-                world_from_local: transform.to_matrix(),
-                bounds: bounds(transform, aabb),
-            });
+            let start = deformed_vertices.len();
+            match poses.append_triangles(
+                entity,
+                mesh.id(),
+                transform.to_matrix(),
+                &mut deformed_vertices,
+            ) {
+                Ok(()) if deformed_vertices.len() > start => {
+                    state.casters.push(Caster {
+                        source: CasterSource::Deformed(
+                            start as u32..deformed_vertices.len() as u32,
+                        ),
+                        world_from_local: Mat4::IDENTITY,
+                        bounds: bounds_of(&deformed_vertices[start..]),
+                    });
+                }
+                Ok(()) => {}
+                Err(error) => {
+                    if state.unposed.insert(entity) {
+                        warn!("skinned or morphed mesh {entity} casts no Phong shadow: {error}");
+                    }
+                }
+            }
         }
     }
     let caster_bounds: Vec<Bounds> = state.casters.iter().map(|caster| caster.bounds).collect();
@@ -233,7 +263,7 @@ pub(crate) fn gather_shadows(
                     .iter()
                     .filter(|caster| in_view(&view.clip_from_world, &caster.bounds))
                     .map(|caster| ShadowInstance {
-                        mesh: caster.mesh,
+                        source: caster.source.clone(),
                         clip_from_local: view.clip_from_world * caster.world_from_local,
                     }),
             );
@@ -259,6 +289,7 @@ pub(crate) fn gather_shadows(
         record.uv_scale /= size as f32;
     }
     next.layout = atlas_layout(frame.layout, size, state.records.len() as u32);
+    next.deformed_vertices = deformed_vertices;
     let header = GpuShadowViewsHeader {
         count: state.records.len() as u32,
         padding: [0; 3],
@@ -416,6 +447,20 @@ fn bounds(transform: &GlobalTransform, aabb: &Aabb) -> Bounds {
     }
 }
 
+/// The bounding sphere of world-space `vertices` (around the centre of their box).
+fn bounds_of(vertices: &[Vec3]) -> Bounds {
+    let (min, max) = vertices.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(min, max), vertex| (min.min(*vertex), max.max(*vertex)),
+    );
+    let center = (min + max) / 2.0;
+    let radius = vertices
+        .iter()
+        .map(|vertex| vertex.distance(center))
+        .fold(0.0, f32::max);
+    Bounds { center, radius }
+}
+
 /// Whether a sphere meets the view volume of `clip_from_world` (reversed depth: the near
 /// plane at depth 1, the far plane at 0).
 fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
@@ -452,15 +497,16 @@ mod tests {
     use crate::{lights::PhongPointLight, test_app::test_app};
     use bevy::{
         asset::AssetApp,
-        mesh::{MeshBuilder, Meshable},
+        mesh::{MeshBuilder, Meshable, skinning::SkinnedMeshInverseBindposes},
         prelude::{Cuboid, Transform, Visibility},
     };
 
     #[test]
-    fn skinned_and_morphed_meshes_cast_no_phong_shadow() {
+    fn a_morphed_mesh_casts_its_posed_triangles_and_an_unready_skin_casts_none() {
         let mut app = test_app(|app| {
             let mesh = app
                 .init_asset::<Mesh>()
+                .init_asset::<SkinnedMeshInverseBindposes>()
                 .world_mut()
                 .resource_mut::<Assets<Mesh>>()
                 .add(Cuboid::default().mesh().build());
@@ -473,7 +519,9 @@ mod tests {
             );
             let world = app.world_mut();
             world.spawn(caster.clone());
+            // Its inverse bind matrices are not loaded: it cannot be posed.
             world.spawn((caster.clone(), SkinnedMesh::default()));
+            // No morph targets: posed as stored, its 12 triangles in world space.
             world.spawn((caster, MeshMorphWeights::Value { weights: vec![0.5] }));
             world.spawn((
                 PhongPointLight {
@@ -486,8 +534,13 @@ mod tests {
         app.update();
         let views = app.world().resource::<PhongShadowViews>();
         assert!(!views.views().is_empty(), "the light has shadow maps");
-        assert_eq!(views.casters.len(), 1, "only the plain mesh casts");
-        assert!(views.warned_deformed, "one warning names the first");
+        let sources: Vec<_> = views.casters.iter().map(|c| c.source.clone()).collect();
+        assert_eq!(sources.len(), 2, "the plain and the morphed mesh cast");
+        assert!(matches!(sources[0], CasterSource::Mesh(_)));
+        assert_eq!(sources[1], CasterSource::Deformed(0..36));
+        assert_eq!(views.unposed.len(), 1, "one warning, for the skin");
+        let frame = app.world().resource::<ShadowFrame>();
+        assert_eq!(frame.deformed_vertices.len(), 36);
     }
 
     #[test]

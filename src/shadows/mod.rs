@@ -29,10 +29,13 @@
 //! first; past it the rest cast nothing, with one warning.
 //!
 //! Casters are the visible meshes without `NotShadowCaster`, culled per map by their
-//! bounding spheres. They are drawn from their vertex positions as stored, so skinned and
-//! morphed meshes (`SkinnedMesh`, `MeshMorphWeights`), which would cast the shadow of their
-//! rest pose, cast none: one warning names the first.
+//! bounding spheres. They are drawn from their vertex positions as stored, except skinned
+//! and morphed meshes (`SkinnedMesh`, `MeshMorphWeights`): the gather poses their triangles
+//! on the CPU as Bevy's vertex stage does (`deformed`), and the maps draw those. A deformed
+//! mesh whose vertex data is not in the main world (or whose skin is not ready) casts
+//! nothing, with one warning naming it.
 
+mod deformed;
 mod gather;
 mod gpu_types;
 mod render;

@@ -2,7 +2,7 @@
 //! that draws casters into it, and the pass that draws every map of the frame before the
 //! cameras render.
 
-use super::gather::{AtlasLayout, ShadowFrame};
+use super::gather::{AtlasLayout, CasterSource, ShadowFrame};
 use bevy::{
     asset::{AssetServer, Handle},
     ecs::{
@@ -11,7 +11,10 @@ use bevy::{
         world::{FromWorld, World},
     },
     log::error,
-    mesh::{Mesh, MeshVertexBufferLayoutRef, PrimitiveTopology, VertexBufferLayout},
+    mesh::{
+        Mesh, MeshVertexBufferLayout, MeshVertexBufferLayoutRef, MeshVertexBufferLayouts,
+        PrimitiveTopology, VertexBufferLayout,
+    },
     prelude::default,
     render::{
         Extract,
@@ -208,12 +211,16 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
 }
 
 /// The pipeline of each caster of the frame's maps, in [`ShadowFrame::instances`] order
-/// (`None` for a mesh that is not loaded or not made of triangles), and the instance buffer
-/// of their `clip_from_local` matrices.
+/// (`None` for a mesh that is not loaded or not made of triangles), the instance buffer
+/// of their `clip_from_local` matrices, and the vertex buffer of the posed (skinned and
+/// morphed) casters' triangles.
 #[derive(Resource)]
 pub(crate) struct ShadowDraws {
     pipelines: Vec<Option<CachedRenderPipelineId>>,
     instances: RawBufferVec<[f32; 16]>,
+    deformed_vertices: RawBufferVec<[f32; 3]>,
+    /// The vertex layout of `deformed_vertices`: positions only.
+    deformed_layout: Option<MeshVertexBufferLayoutRef>,
 }
 
 impl Default for ShadowDraws {
@@ -221,18 +228,37 @@ impl Default for ShadowDraws {
         Self {
             pipelines: Vec::new(),
             instances: RawBufferVec::new(BufferUsages::VERTEX),
+            deformed_vertices: RawBufferVec::new(BufferUsages::VERTEX),
+            deformed_layout: None,
         }
     }
 }
 
+/// The vertex layout of posed casters' triangles: world positions, `Float32x3`.
+fn positions_only_layout(layouts: &mut MeshVertexBufferLayouts) -> MeshVertexBufferLayoutRef {
+    layouts.insert(MeshVertexBufferLayout::new(
+        vec![Mesh::ATTRIBUTE_POSITION.id],
+        VertexBufferLayout {
+            array_stride: 12,
+            step_mode: VertexStepMode::Vertex,
+            attributes: vec![VertexAttribute {
+                format: VertexFormat::Float32x3,
+                offset: 0,
+                shader_location: 0,
+            }],
+        },
+    ))
+}
+
 /// Finds each caster's pipeline (compiling it the first time its vertex layout is seen) and
-/// uploads the frame's instance matrices.
+/// uploads the frame's instance matrices and posed triangles.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn prepare_shadow_draws(
     frame: Option<Res<ShadowFrame>>,
     meshes: Res<RenderAssets<RenderMesh>>,
     pipeline: Res<ShadowCasterPipeline>,
     mut pipelines: ResMut<SpecializedMeshPipelines<ShadowCasterPipeline>>,
+    mut layouts: ResMut<MeshVertexBufferLayouts>,
     cache: Res<PipelineCache>,
     mut draws: ResMut<ShadowDraws>,
     device: Res<RenderDevice>,
@@ -241,32 +267,53 @@ pub(crate) fn prepare_shadow_draws(
     let draws = &mut *draws;
     draws.pipelines.clear();
     draws.instances.clear();
+    draws.deformed_vertices.clear();
     let Some(frame) = frame else { return };
+    let deformed_layout = draws
+        .deformed_layout
+        .get_or_insert_with(|| positions_only_layout(&mut layouts))
+        .clone();
+    let mut specialize = |topology, layout: &MeshVertexBufferLayoutRef| match pipelines
+        .specialize(&cache, &pipeline, topology, layout)
+    {
+        Ok(id) => Some(id),
+        Err(err) => {
+            error!("cannot draw a shadow caster: {err}");
+            None
+        }
+    };
     for instance in &frame.instances {
         draws
             .instances
             .push(instance.clip_from_local.to_cols_array());
-        let pipeline_id = meshes.get(instance.mesh).and_then(|mesh| {
-            let topology = mesh.primitive_topology();
-            let is_triangles = matches!(
-                topology,
-                PrimitiveTopology::TriangleList | PrimitiveTopology::TriangleStrip
-            );
-            if !is_triangles {
-                return None;
+        let pipeline_id = match &instance.source {
+            CasterSource::Deformed(_) => {
+                specialize(PrimitiveTopology::TriangleList, &deformed_layout)
             }
-            match pipelines.specialize(&cache, &pipeline, topology, &mesh.layout) {
-                Ok(id) => Some(id),
-                Err(err) => {
-                    error!("cannot draw a shadow caster: {err}");
-                    None
-                }
-            }
-        });
+            CasterSource::Mesh(mesh) => meshes.get(*mesh).and_then(|mesh| {
+                let topology = mesh.primitive_topology();
+                let is_triangles = matches!(
+                    topology,
+                    PrimitiveTopology::TriangleList | PrimitiveTopology::TriangleStrip
+                );
+                is_triangles
+                    .then(|| specialize(topology, &mesh.layout))
+                    .flatten()
+            }),
+        };
         draws.pipelines.push(pipeline_id);
     }
     if !draws.instances.is_empty() {
         draws.instances.write_buffer(&device, &queue);
+    }
+    if !frame.deformed_vertices.is_empty() {
+        draws.deformed_vertices.extend(
+            frame
+                .deformed_vertices
+                .iter()
+                .map(|vertex| vertex.to_array()),
+        );
+        draws.deformed_vertices.write_buffer(&device, &queue);
     }
 }
 
@@ -294,17 +341,32 @@ pub(crate) fn render_shadow_maps(
             continue;
         };
         for index in pass.instances.clone() {
-            let mesh_id = frame.instances[index].mesh;
-            let (Some(pipeline), Some(mesh), Some(vertices)) = (
-                draws.pipelines[index].and_then(|id| cache.get_render_pipeline(id)),
-                meshes.get(mesh_id),
-                allocator.mesh_vertex_slice(&mesh_id),
-            ) else {
+            let Some(pipeline) =
+                draws.pipelines[index].and_then(|id| cache.get_render_pipeline(id))
+            else {
+                continue;
+            };
+            let offset = index as u64 * 64;
+            let mesh_id = match &frame.instances[index].source {
+                CasterSource::Deformed(vertices) => {
+                    let Some(buffer) = draws.deformed_vertices.buffer() else {
+                        continue;
+                    };
+                    render_pass.set_render_pipeline(pipeline);
+                    render_pass.set_vertex_buffer(0, buffer.slice(..));
+                    render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + 64));
+                    render_pass.draw(vertices.clone(), 0..1);
+                    continue;
+                }
+                CasterSource::Mesh(mesh_id) => *mesh_id,
+            };
+            let (Some(mesh), Some(vertices)) =
+                (meshes.get(mesh_id), allocator.mesh_vertex_slice(&mesh_id))
+            else {
                 continue;
             };
             render_pass.set_render_pipeline(pipeline);
             render_pass.set_vertex_buffer(0, vertices.buffer.slice(..));
-            let offset = index as u64 * 64;
             render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + 64));
             match &mesh.buffer_info {
                 RenderMeshBufferInfo::Indexed {

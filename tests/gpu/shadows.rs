@@ -47,8 +47,8 @@ const RAY_START: f64 = 1e-4;
 const BAND_PROBES: usize = 24;
 
 /// An analytic shape of the scene, matching a mesh that is spawned for it.
-#[derive(Clone, Copy, Debug)]
-enum Shape {
+#[derive(Clone, Debug)]
+pub(crate) enum Shape {
     /// A sphere.
     Sphere { center: DVec3, radius: f64 },
     /// A box: centre, half-extents, rotation about +Y (radians).
@@ -59,6 +59,8 @@ enum Shape {
     },
     /// The square `|x|, |z| ≤ half` in the plane `y = 0`.
     Floor { half: f64 },
+    /// Triangles, world space (a posed skinned or morphed mesh).
+    Triangles(Vec<[DVec3; 3]>),
 }
 
 impl Shape {
@@ -66,6 +68,10 @@ impl Shape {
     /// `direction`.
     fn hit(&self, origin: DVec3, direction: DVec3) -> Option<f64> {
         match *self {
+            Shape::Triangles(ref triangles) => triangles
+                .iter()
+                .filter_map(|triangle| triangle_hit(triangle, origin, direction))
+                .reduce(f64::min),
             Shape::Sphere { center, radius } => {
                 let offset = origin - center;
                 let b = offset.dot(direction);
@@ -111,9 +117,27 @@ impl Shape {
     }
 }
 
+/// The `t > RAY_START` at which `origin + t·direction` crosses `triangle`, either side
+/// (Möller and Trumbore's test, in `f64`).
+fn triangle_hit(triangle: &[DVec3; 3], origin: DVec3, direction: DVec3) -> Option<f64> {
+    let [a, b, c] = *triangle;
+    let (ab, ac) = (b - a, c - a);
+    let p = direction.cross(ac);
+    let determinant = ab.dot(p);
+    if determinant.abs() < 1e-300 {
+        return None;
+    }
+    let to_origin = origin - a;
+    let u = to_origin.dot(p) / determinant;
+    let q = to_origin.cross(ab);
+    let v = direction.dot(q) / determinant;
+    let t = ac.dot(q) / determinant;
+    ((0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && t > RAY_START).then_some(t)
+}
+
 /// Where a light is, for the rays toward it.
 #[derive(Clone, Copy, Debug)]
-enum Toward {
+pub(crate) enum Toward {
     /// Along `-direction`, unbounded.
     Direction(DVec3),
     /// To a point.
@@ -125,7 +149,7 @@ enum Toward {
 /// toward a light it faces never meets that surface again (the mesh's flat facets lie a
 /// little inside the analytic sphere, and would otherwise block their own light), and where
 /// the surface faces away from the light the light gives nothing whatever `V` is.
-fn exact_visibility(position: DVec3, toward: Toward, casters: &[Shape]) -> f64 {
+pub(crate) fn exact_visibility(position: DVec3, toward: Toward, casters: &[Shape]) -> f64 {
     let (direction, distance) = match toward {
         Toward::Direction(direction) => (-direction.normalize(), f64::INFINITY),
         Toward::Point(light) => ((light - position).normalize(), light.distance(position)),
@@ -199,13 +223,13 @@ fn texel_at(position: DVec3, views: &[GpuShadowView]) -> f64 {
 }
 
 /// A light of a case, with what the reference needs of it.
-struct CaseLight {
-    toward: Toward,
-    settings: PhongShadows,
+pub(crate) struct CaseLight {
+    pub toward: Toward,
+    pub settings: PhongShadows,
 }
 
 /// The result of one case.
-struct Verdict {
+pub(crate) struct Verdict {
     /// Pixels on a mesh.
     covered: usize,
     /// Pixels whose color differs from the exact-visibility reference beyond the budget.
@@ -220,7 +244,7 @@ struct Verdict {
 }
 
 impl Verdict {
-    fn assert_holds(&self, case: &str) {
+    pub fn assert_holds(&self, case: &str) {
         println!(
             "{case}: {} covered pixels, {} disagree with the exact visibility, all within the \
              band (widest {:.4} world units) but {}; largest error outside the band {:.3e} \
@@ -242,8 +266,8 @@ impl Verdict {
 }
 
 /// The scene's shapes, with the entity and material of each one's mesh.
-struct Scene {
-    shapes: Vec<(Entity, Shape, Handle<PhongMaterial>)>,
+pub(crate) struct Scene {
+    pub shapes: Vec<(Entity, Shape, Handle<PhongMaterial>)>,
 }
 
 impl Scene {
@@ -302,6 +326,7 @@ impl Scene {
                         Transform::from_translation(center.as_vec3())
                             .with_rotation(Quat::from_rotation_y(yaw as f32)),
                     ),
+                    Shape::Triangles(_) => unreachable!("the scene has no posed mesh"),
                 };
                 let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
                 let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
@@ -335,7 +360,7 @@ impl Scene {
             .expect("a shape of the scene");
         match shape {
             Shape::Sphere { center, .. } | Shape::Box { center, .. } => *center += offset,
-            Shape::Floor { .. } => panic!("the floor stays"),
+            Shape::Floor { .. } | Shape::Triangles(_) => panic!("the floor and posed meshes stay"),
         }
         harness
             .world_mut()
@@ -423,18 +448,18 @@ fn point(harness: &mut Harness, position: Vec3, shadows: PhongShadows) -> CaseLi
 }
 
 /// Who casts and who receives.
-struct Roles<'a> {
-    casting: &'a dyn Fn(Entity) -> bool,
-    receiving: &'a dyn Fn(Entity) -> bool,
+pub(crate) struct Roles<'a> {
+    pub casting: &'a dyn Fn(Entity) -> bool,
+    pub receiving: &'a dyn Fn(Entity) -> bool,
 }
 
-const EVERYONE: Roles = Roles {
+pub(crate) const EVERYONE: Roles = Roles {
     casting: &|_| true,
     receiving: &|_| true,
 };
 
 /// Renders the settled frame and judges every pixel.
-fn judge(
+pub(crate) fn judge(
     harness: &mut Harness,
     scene: &Scene,
     lights: &[CaseLight],
@@ -460,7 +485,7 @@ fn judge_frame(
             .shapes
             .iter()
             .filter(|(entity, ..)| (roles.casting)(*entity) && *entity != receiver)
-            .map(|(_, shape, _)| *shape)
+            .map(|(_, shape, _)| shape.clone())
             .collect()
     };
     let views = harness

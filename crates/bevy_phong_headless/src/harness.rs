@@ -7,6 +7,7 @@ use bevy::{
     core_pipeline::tonemapping::{DebandDither, Tonemapping},
     image::Image,
     math::DVec3,
+    pbr::{ExtendedMaterial, MaterialExtension},
     prelude::*,
     render::{
         RenderApp,
@@ -40,6 +41,25 @@ const MAX_SETTLE_FRAMES: u32 = 600;
 const MAX_LOAD_FRAMES: u32 = 2_000;
 /// Frames to wait for a readback to arrive before giving up.
 const MAX_READBACK_FRAMES: u32 = 60;
+
+/// A material whose per-pixel inputs [`Harness`] captures: it says which faces it draws,
+/// so that the capture draws the same ones.
+pub trait CapturedMaterial: Material {
+    /// Whether back faces are drawn too.
+    fn double_sided(&self) -> bool;
+}
+
+impl CapturedMaterial for PhongMaterial {
+    fn double_sided(&self) -> bool {
+        self.double_sided
+    }
+}
+
+impl<E: MaterialExtension> CapturedMaterial for ExtendedMaterial<PhongMaterial, E> {
+    fn double_sided(&self) -> bool {
+        self.base.double_sided
+    }
+}
 
 /// Per-pixel inputs of the lighting equation: world position and normal (with texture maps
 /// also UV and tangent), and in alpha the tag of the material that covers the pixel (0 for
@@ -278,7 +298,7 @@ impl Harness {
     }
 
     /// Renders the world position and normal of every mesh made of `M` instead of its color.
-    pub fn capture_inputs_of<M: Material>(&mut self) -> SurfaceInputs<M> {
+    pub fn capture_inputs_of<M: CapturedMaterial>(&mut self) -> SurfaceInputs<M> {
         self.capture::<M>(false)
     }
 
@@ -287,7 +307,7 @@ impl Harness {
         self.capture::<PhongMaterial>(true)
     }
 
-    fn capture<M: Material>(&mut self, with_maps: bool) -> SurfaceInputs<M> {
+    fn capture<M: CapturedMaterial>(&mut self, with_maps: bool) -> SurfaceInputs<M> {
         let world = self.app.world_mut();
         let meshes: Vec<(Entity, Handle<M>)> = world
             .query::<(Entity, &MeshMaterial3d<M>)>()
@@ -304,13 +324,22 @@ impl Harness {
         if with_maps {
             passes.extend([SurfaceInput::UvAndTangentSign, SurfaceInput::WorldTangent]);
         }
+        let assets = world.resource::<Assets<M>>();
+        let double_sided: HashMap<Handle<M>, bool> = tags
+            .keys()
+            .map(|handle| {
+                let drawn = assets.get(handle).is_some_and(M::double_sided);
+                (handle.clone(), drawn)
+            })
+            .collect();
         let mut images = Vec::new();
         for input in passes {
             let world = self.app.world_mut();
             for (entity, handle) in &meshes {
-                let material = world
-                    .resource_mut::<Assets<SurfaceInputsMaterial>>()
-                    .add(SurfaceInputsMaterial::new(input, tags[handle]));
+                let material = world.resource_mut::<Assets<SurfaceInputsMaterial>>().add(
+                    SurfaceInputsMaterial::new(input, tags[handle])
+                        .with_double_sided(double_sided[handle]),
+                );
                 world
                     .entity_mut(*entity)
                     .remove::<MeshMaterial3d<M>>()

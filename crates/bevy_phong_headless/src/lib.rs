@@ -36,5 +36,5 @@ pub use comparison::{Comparison, Expected};
 #[cfg(not(target_arch = "wasm32"))]
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
-pub use harness::{CAMERA_POSITION, Harness, SurfaceInputs};
+pub use harness::{CAMERA_POSITION, CapturedMaterial, Harness, SurfaceInputs};
 pub use pipelines::{failed_pipelines, pipelines_compiling, run_until_settled};

@@ -5,10 +5,12 @@
 //!   lights, as the file says;
 //! - `posed`: the scene posed at a fixed animation time: each primitive, skinned and
 //!   morphed ones included, covers the pixels `StandardMaterial` covers, and every pixel is
-//!   lit as the reference model says on the deformed inputs.
+//!   lit as the reference model says on the deformed inputs;
+//! - `shadows`: the skinned and morphed meshes cast the shadow of their pose.
 
 mod load;
 mod posed;
+mod shadows;
 
 use bevy::{
     animation::{AnimationPlayer, graph::AnimationGraphHandle},
