@@ -34,10 +34,22 @@ pub(crate) enum DeformError {
     NotTriangles,
     #[error("its mesh lacks {0}")]
     Missing(&'static str),
+    #[error("its mesh asset is not loaded yet")]
+    MeshNotLoaded,
+    #[error("its joint indices or weights are not one per vertex")]
+    JointDataLength,
     #[error("its skin names joint {0}, which has no transform")]
     MissingJoint(usize),
     #[error("its skin's inverse bind matrices are not loaded, or fewer than its joints")]
     BindPosesNotReady,
+}
+
+impl DeformError {
+    /// Whether the error is a state that loading ends (an asset not loaded yet), as opposed
+    /// to one that lasts until the mesh or skin changes.
+    pub(crate) fn is_loading(&self) -> bool {
+        matches!(self, Self::MeshNotLoaded | Self::BindPosesNotReady)
+    }
 }
 
 impl From<MeshAccessError> for DeformError {
@@ -75,7 +87,7 @@ impl Poses<'_, '_> {
             .meshes
             .as_ref()
             .and_then(|meshes| meshes.get(mesh))
-            .ok_or(DeformError::Missing("a loaded mesh asset"))?;
+            .ok_or(DeformError::MeshNotLoaded)?;
         let mut positions = local_positions(mesh)?;
         if let Ok(morph) = self.morphs.get(entity) {
             let weights = match morph {
@@ -88,12 +100,16 @@ impl Poses<'_, '_> {
             };
             apply_morph_targets(mesh, weights, &mut positions)?;
         }
-        match self.skins.get(entity) {
-            Ok(skin) => {
+        // Bevy skins a mesh only where its vertices have joints; otherwise it draws the mesh
+        // with the entity's transform, skin or not.
+        let has_joints = mesh.try_contains_attribute(Mesh::ATTRIBUTE_JOINT_INDEX)?
+            && mesh.try_contains_attribute(Mesh::ATTRIBUTE_JOINT_WEIGHT)?;
+        match self.skins.get(entity).ok().filter(|_| has_joints) {
+            Some(skin) => {
                 let joint_matrices = self.joint_matrices(skin)?;
                 skin_positions(mesh, &joint_matrices, &mut positions)?;
             }
-            Err(_) => {
+            None => {
                 for position in &mut positions {
                     *position = world_from_local.transform_point3(*position);
                 }
@@ -178,9 +194,13 @@ fn skin_positions(
     else {
         return Err(DeformError::Missing("Float32x4 joint weights"));
     };
+    if indices.len() != positions.len() || weights.len() != positions.len() {
+        return Err(DeformError::JointDataLength);
+    }
     for ((position, joints), weights) in positions.iter_mut().zip(&indices).zip(weights) {
         let mut skinned = Vec3::ZERO;
-        for (joint, weight) in joints.iter().zip(weights) {
+        // A joint of weight 0 is padding: its index need not name a joint.
+        for (joint, weight) in joints.iter().zip(weights).filter(|(_, w)| **w != 0.0) {
             let matrix = joint_matrices
                 .get(usize::from(*joint))
                 .ok_or(DeformError::MissingJoint(usize::from(*joint)))?;
@@ -279,6 +299,35 @@ mod tests {
         skin_positions(&mesh, &joints, &mut positions).unwrap();
         // 0.25 · (p + 4z) + 0.75 · (p + 8z) = p + 7z.
         assert_eq!(positions[1], Vec3::new(1.0, 0.0, 7.0));
+    }
+
+    #[test]
+    fn padding_joints_of_weight_zero_need_not_exist_and_joint_data_must_cover_every_vertex() {
+        let skinned = |weights: Vec<[f32; 4]>| {
+            triangle()
+                .with_inserted_attribute(
+                    Mesh::ATTRIBUTE_JOINT_INDEX,
+                    VertexAttributeValues::Uint16x4(vec![[0, 9, 9, 9]; 3]),
+                )
+                .with_inserted_attribute(Mesh::ATTRIBUTE_JOINT_WEIGHT, weights)
+        };
+        let joints = [Mat4::from_translation(Vec3::Z)];
+        let mesh = skinned(vec![[1.0, 0.0, 0.0, 0.0]; 3]);
+        let mut positions = local_positions(&mesh).unwrap();
+        skin_positions(&mesh, &joints, &mut positions).unwrap();
+        assert_eq!(positions[1], Vec3::new(1.0, 0.0, 1.0));
+
+        let short = skinned(vec![[1.0, 0.0, 0.0, 0.0]; 2]);
+        let mut positions = local_positions(&short).unwrap();
+        assert_eq!(
+            skin_positions(&short, &joints, &mut positions),
+            Err(DeformError::JointDataLength)
+        );
+        let named = skinned(vec![[0.5, 0.5, 0.0, 0.0]; 3]);
+        assert_eq!(
+            skin_positions(&named, &joints, &mut positions),
+            Err(DeformError::MissingJoint(9))
+        );
     }
 
     #[test]

@@ -151,7 +151,7 @@ type CasterData = (
     Entity,
     &'static Mesh3d,
     &'static GlobalTransform,
-    &'static Aabb,
+    Option<&'static Aabb>,
     &'static InheritedVisibility,
     Has<SkinnedMesh>,
     Has<MeshMorphWeights>,
@@ -194,6 +194,10 @@ pub(crate) fn gather_shadows(
                 continue;
             }
             if !(skinned || morphed) {
+                // A mesh without bounds (`NoFrustumCulling`) is not placed in any map.
+                let Some(aabb) = aabb else {
+                    continue;
+                };
                 state.casters.push(Caster {
                     source: CasterSource::Mesh(mesh.id()),
                     world_from_local: transform.to_matrix(),
@@ -209,6 +213,7 @@ pub(crate) fn gather_shadows(
                 &mut deformed_vertices,
             ) {
                 Ok(()) if deformed_vertices.len() > start => {
+                    state.unposed.remove(&entity);
                     state.casters.push(Caster {
                         source: CasterSource::Deformed(
                             start as u32..deformed_vertices.len() as u32,
@@ -218,6 +223,8 @@ pub(crate) fn gather_shadows(
                     });
                 }
                 Ok(()) => {}
+                // Still loading: it casts once its assets are loaded.
+                Err(error) if error.is_loading() => {}
                 Err(error) => {
                     if state.unposed.insert(entity) {
                         warn!("skinned or morphed mesh {entity} casts no Phong shadow: {error}");
@@ -497,32 +504,67 @@ mod tests {
     use crate::{lights::PhongPointLight, test_app::test_app};
     use bevy::{
         asset::AssetApp,
+        asset::Handle,
         mesh::{MeshBuilder, Meshable, skinning::SkinnedMeshInverseBindposes},
         prelude::{Cuboid, Transform, Visibility},
     };
 
     #[test]
-    fn a_morphed_mesh_casts_its_posed_triangles_and_an_unready_skin_casts_none() {
+    fn posed_meshes_cast_a_loading_skin_waits_and_a_broken_one_is_reported() {
+        // A cuboid (24 vertices) whose vertices all follow joint 0 with weight 1, with one
+        // weight fewer than vertices if `broken`.
+        let jointed = |broken: bool| {
+            let vertices = if broken { 23 } else { 24 };
+            Cuboid::default()
+                .mesh()
+                .build()
+                .with_inserted_attribute(
+                    Mesh::ATTRIBUTE_JOINT_INDEX,
+                    bevy::mesh::VertexAttributeValues::Uint16x4(vec![[0; 4]; 24]),
+                )
+                .with_inserted_attribute(
+                    Mesh::ATTRIBUTE_JOINT_WEIGHT,
+                    vec![[1.0f32, 0.0, 0.0, 0.0]; vertices],
+                )
+        };
         let mut app = test_app(|app| {
-            let mesh = app
-                .init_asset::<Mesh>()
-                .init_asset::<SkinnedMeshInverseBindposes>()
-                .world_mut()
-                .resource_mut::<Assets<Mesh>>()
-                .add(Cuboid::default().mesh().build());
-            let aabb = Aabb::from_min_max(Vec3::splat(-0.5), Vec3::splat(0.5));
-            let caster = (
-                Mesh3d(mesh),
-                aabb,
-                Transform::default(),
-                Visibility::default(),
-            );
+            app.init_asset::<Mesh>()
+                .init_asset::<SkinnedMeshInverseBindposes>();
             let world = app.world_mut();
-            world.spawn(caster.clone());
-            // Its inverse bind matrices are not loaded: it cannot be posed.
-            world.spawn((caster.clone(), SkinnedMesh::default()));
+            let mut meshes = world.resource_mut::<Assets<Mesh>>();
+            let [plain, loading, broken] = [
+                meshes.add(Cuboid::default().mesh().build()),
+                meshes.add(jointed(false)),
+                meshes.add(jointed(true)),
+            ];
+            let bind_poses = world
+                .resource_mut::<Assets<SkinnedMeshInverseBindposes>>()
+                .add(SkinnedMeshInverseBindposes::from(vec![Mat4::IDENTITY]));
+            let joint = world.spawn(Transform::default()).id();
+            let caster = |mesh: Handle<Mesh>| {
+                (
+                    Mesh3d(mesh),
+                    Aabb::from_min_max(Vec3::splat(-0.5), Vec3::splat(0.5)),
+                    Transform::default(),
+                    Visibility::default(),
+                )
+            };
+            world.spawn(caster(plain.clone()));
+            // Its inverse bind matrices are not loaded: it waits, without a warning.
+            world.spawn((caster(loading), SkinnedMesh::default()));
+            // Its joint weights are not one per vertex: reported once.
+            world.spawn((
+                caster(broken),
+                SkinnedMesh {
+                    inverse_bindposes: bind_poses,
+                    joints: vec![joint],
+                },
+            ));
             // No morph targets: posed as stored, its 12 triangles in world space.
-            world.spawn((caster, MeshMorphWeights::Value { weights: vec![0.5] }));
+            world.spawn((
+                caster(plain),
+                MeshMorphWeights::Value { weights: vec![0.5] },
+            ));
             world.spawn((
                 PhongPointLight {
                     shadows: PhongShadows::ON,
@@ -532,13 +574,18 @@ mod tests {
             ));
         });
         app.update();
+        app.update();
         let views = app.world().resource::<PhongShadowViews>();
         assert!(!views.views().is_empty(), "the light has shadow maps");
         let sources: Vec<_> = views.casters.iter().map(|c| c.source.clone()).collect();
         assert_eq!(sources.len(), 2, "the plain and the morphed mesh cast");
         assert!(matches!(sources[0], CasterSource::Mesh(_)));
         assert_eq!(sources[1], CasterSource::Deformed(0..36));
-        assert_eq!(views.unposed.len(), 1, "one warning, for the skin");
+        assert_eq!(
+            views.unposed.len(),
+            1,
+            "one entity reported, the broken skin"
+        );
         let frame = app.world().resource::<ShadowFrame>();
         assert_eq!(frame.deformed_vertices.len(), 36);
     }

@@ -32,8 +32,10 @@
 //! bounding spheres. They are drawn from their vertex positions as stored, except skinned
 //! and morphed meshes (`SkinnedMesh`, `MeshMorphWeights`): the gather poses their triangles
 //! on the CPU as Bevy's vertex stage does (`deformed`), and the maps draw those. A deformed
-//! mesh whose vertex data is not in the main world (or whose skin is not ready) casts
-//! nothing, with one warning naming it.
+//! mesh whose vertex data is not in the main world, or whose joint data does not cover its
+//! vertices, casts nothing, with one warning naming it; one whose mesh or inverse bind
+//! matrices are still loading casts once they are. A mesh without bounds (`Aabb`, absent
+//! under `NoFrustumCulling`) casts only if it is skinned or morphed.
 
 mod deformed;
 mod gather;
