@@ -32,7 +32,7 @@ cargo run --quiet --example bench -- --quick
 # Again under WebGL2's limits (no storage buffers: the scene data travels in a texture):
 # the render tests with the same tolerances, and every example.
 export WGPU_SETTINGS_PRIO=webgl2
-cargo test --test gpu "$@"
+cargo test --test gpu --test soak "$@"
 for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene; do
     cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
 done

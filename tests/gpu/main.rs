@@ -21,9 +21,10 @@
 //! - `huge_vectors`: light directions of any scale and colors past the bound, against the
 //!   reference model;
 //! - `fuzzed_scenes`: a sample of the fuzzer's files (`tests/fuzz`), rendered: no NaN or
-//!   infinite pixel;
-//! - `soak`: hundreds (or thousands) of frames of random light and mesh churn with invalid
-//!   values: no panic, no NaN or infinite pixel, flat memory, a steady frame time.
+//!   infinite pixel.
+//!
+//! The soak test is the other binary on the render device (`tests/soak`): it measures the
+//! CPU time of its process, which it must have to itself.
 
 #[path = "../fuzz/cases.rs"]
 mod cases;
@@ -48,6 +49,5 @@ mod searchlight_reference;
 mod shadows;
 #[path = "../fuzz/shapes.rs"]
 mod shapes;
-mod soak;
 mod stress;
 mod texture_maps;
