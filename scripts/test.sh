@@ -9,12 +9,17 @@ cd "$(dirname "$0")/.."
 scripts/ensure-vulkan.sh
 source scripts/runtime-dir.sh
 export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
+# Each part says when it starts, in seconds since the script began.
+part() { echo "== test.sh [${SECONDS} s] $*"; }
+
+part "every target's tests, on the device's own limits"
 cargo test --all-targets "$@"
 cargo test --doc "$@"
 # The glTF test asset is what its writer writes (a workspace crate without Bevy).
 cargo test -p phong_gltf_asset "$@"
 
 # Every example must still render: each writes its PNG headless and exits.
+part "the examples"
 for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
@@ -32,6 +37,7 @@ cargo run --quiet --example bench -- --quick
 # Again under WebGL2's limits (no storage buffers: the scene data travels in a texture):
 # the render tests with the same tolerances, and every example.
 export WGPU_SETTINGS_PRIO=webgl2
+part "the render tests and the examples under WebGL2's limits"
 cargo test --test gpu --test soak "$@"
 for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene; do
     cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
@@ -39,3 +45,4 @@ done
 cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png
 cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \
     --out target/examples/webgl2/render_scene_shadows --size 480x270
+part "done"
