@@ -71,8 +71,9 @@ const RSS_GROWTH_BOUND: u64 = 48 << 20;
 /// moved to a finite but far-flung place (1e38) or given a range of 1e38 stretches the
 /// light grid over its sphere, which coarsens every cell (see `light_grid.rs`); the rising
 /// half's frame time jumps fourfold (58 to 228 ms from 520 to 680 lights) about when the
-/// first such light is likely to appear. With a dozen frames per band in the short run, the bands of fewer than 1,000
-/// lights differ by up to 4.5 for that reason (see also [`MIN_BAND_FRAMES`]). A cost
+/// first such light is likely to appear. With a dozen frames per band in the short run, the
+/// bands of fewer than 1,000 lights differ by up to 4.5 for that reason (see also
+/// [`MIN_BAND_FRAMES`]). A cost
 /// that grows with the frame number (records left in the light buffer, a grid never
 /// cleared, change detection running over dead entities) grows without bound and passes
 /// any such ratio within the long run.
