@@ -503,8 +503,7 @@ mod tests {
     use super::*;
     use crate::{lights::PhongPointLight, test_app::test_app};
     use bevy::{
-        asset::AssetApp,
-        asset::Handle,
+        asset::{AssetApp, Handle},
         mesh::{MeshBuilder, Meshable, skinning::SkinnedMeshInverseBindposes},
         prelude::{Cuboid, Transform, Visibility},
     };

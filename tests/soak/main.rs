@@ -73,10 +73,9 @@ const RSS_GROWTH_BOUND: u64 = 48 << 20;
 /// half's frame time jumps fourfold (58 to 228 ms from 520 to 680 lights) about when the
 /// first such light is likely to appear. With a dozen frames per band in the short run, the
 /// bands of fewer than 1,000 lights differ by up to 4.5 for that reason (see also
-/// [`MIN_BAND_FRAMES`]). A cost
-/// that grows with the frame number (records left in the light buffer, a grid never
-/// cleared, change detection running over dead entities) grows without bound and passes
-/// any such ratio within the long run.
+/// [`MIN_BAND_FRAMES`]). A cost that grows with the frame number (records left in the light
+/// buffer, a grid never cleared, change detection running over dead entities) grows without
+/// bound and passes any such ratio within the long run.
 const BAND_RATIO_BOUND: f64 = 2.5;
 /// Bands with fewer frames than this in either half are printed but not held to
 /// [`BAND_RATIO_BOUND`]: the short run has a dozen frames per band, in which the light count
@@ -455,6 +454,16 @@ impl Soak {
         }
     }
 
+    /// Spawns `mesh` with `material` at `position`, among [`Self::meshes`].
+    fn spawn_mesh(&mut self, mesh: Handle<Mesh>, material: Handle<PhongMaterial>, position: Vec3) {
+        let transform = Transform::from_translation(position);
+        let entity = self
+            .world()
+            .spawn((Mesh3d(mesh), MeshMaterial3d(material), transform))
+            .id();
+        self.meshes.push(entity);
+    }
+
     /// Spawns or despawns a mesh (between 2 and 12 of them), or gives one a degenerate
     /// scale (zero, 1e-30, mirrored) or the last material invalid values. (No huge scale:
     /// a mesh covering the whole frame would make the frame time depend on chance more than
@@ -466,15 +475,7 @@ impl Soak {
                 let material = self.random.pick(&self.materials).clone();
                 let mut position = self.random_position();
                 position.y = uniform(&mut self.random, -0.5, 1.5);
-                let entity = self
-                    .world()
-                    .spawn((
-                        Mesh3d(mesh),
-                        MeshMaterial3d(material),
-                        Transform::from_translation(position),
-                    ))
-                    .id();
-                self.meshes.push(entity);
+                self.spawn_mesh(mesh, material, position);
             }
             3..6 if self.meshes.len() > 2 => {
                 let entity = self
@@ -552,15 +553,7 @@ impl Soak {
         for (index, material) in self.materials.clone().into_iter().enumerate() {
             let mesh = self.mesh_assets[index % self.mesh_assets.len()].clone();
             let position = Vec3::new(index as f32 * 1.5 - 2.0, 0.0, 0.0);
-            let entity = self
-                .world()
-                .spawn((
-                    Mesh3d(mesh),
-                    MeshMaterial3d(material),
-                    Transform::from_translation(position),
-                ))
-                .id();
-            self.meshes.push(entity);
+            self.spawn_mesh(mesh, material, position);
         }
         self.harness.settle();
         let world = self.harness.world_mut();
@@ -572,39 +565,15 @@ impl Soak {
                 ..PhongShadows::ON
             };
             let aimed = Transform::from_xyz(0.0, 4.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y);
-            casters.push(
-                world
-                    .spawn((
-                        PhongSpotLight {
-                            shadows,
-                            ..default()
-                        },
-                        aimed,
-                    ))
-                    .id(),
-            );
-            casters.push(
-                world
-                    .spawn((
-                        PhongPointLight {
-                            shadows,
-                            ..default()
-                        },
-                        aimed,
-                    ))
-                    .id(),
-            );
-            casters.push(
-                world
-                    .spawn((
-                        PhongDirectionalLight {
-                            shadows,
-                            ..default()
-                        },
-                        aimed,
-                    ))
-                    .id(),
-            );
+            let lights = [
+                world.spawn((PhongSpotLight::default(), aimed)).id(),
+                world.spawn((PhongPointLight::default(), aimed)).id(),
+                world.spawn((PhongDirectionalLight::default(), aimed)).id(),
+            ];
+            for light in lights {
+                set_shadows(&mut world.entity_mut(light), shadows);
+            }
+            casters.extend(lights);
         }
         self.harness.settle();
         self.read_back();
