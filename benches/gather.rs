@@ -1,5 +1,6 @@
 //! The CPU cost of the gather system: writing 10, 1,000 and 10,000 lights into the light
-//! buffer when all of them changed, and checking them when none did.
+//! buffer when all of them moved, when all of them changed color, and when all of them were
+//! marked changed with nothing different; and checking them when none changed.
 //!
 //! ```sh
 //! cargo bench --bench gather
@@ -52,15 +53,57 @@ fn world_with_lights(count: usize) -> (App, Schedule) {
     (app, schedule)
 }
 
-/// Marks every light changed, as moving them all would.
-fn touch_all(world: &mut World) {
-    let mut points = world.query::<&mut PhongPointLight>();
-    for mut light in points.iter_mut(world) {
-        light.set_changed();
+/// How every light is changed before each timed gather.
+#[derive(Clone, Copy)]
+enum Change {
+    /// Moved along x, back and forth: every record's position and the light grid change.
+    Moved,
+    /// Given another color, back and forth: every record's constants change, and its
+    /// ε-limited reach with them.
+    Recolored,
+    /// Marked changed with the same value: everything is looked at, nothing is different.
+    Touched,
+}
+
+impl Change {
+    const ALL: [Self; 3] = [Self::Moved, Self::Recolored, Self::Touched];
+
+    fn name(self) -> &'static str {
+        match self {
+            Self::Moved => "all_moved",
+            Self::Recolored => "all_recolored",
+            Self::Touched => "all_touched",
+        }
     }
-    let mut spots = world.query::<&mut PhongSpotLight>();
-    for mut light in spots.iter_mut(world) {
-        light.set_changed();
+
+    /// Changes every light; `odd` alternates between the two values.
+    fn apply(self, world: &mut World, odd: bool) {
+        match self {
+            Self::Moved => {
+                let step = Vec3::X * if odd { 0.01 } else { -0.01 };
+                let mut lights = world.query_filtered::<&mut GlobalTransform, Or<(
+                    With<PhongPointLight>,
+                    With<PhongSpotLight>,
+                )>>();
+                for mut transform in lights.iter_mut(world) {
+                    *transform = GlobalTransform::from_translation(transform.translation() + step);
+                }
+            }
+            Self::Recolored | Self::Touched => {
+                let color = match (self, odd) {
+                    (Self::Recolored, true) => Color::srgb(1.0, 0.9, 0.8),
+                    _ => Color::WHITE,
+                };
+                let mut points = world.query::<&mut PhongPointLight>();
+                for mut light in points.iter_mut(world) {
+                    light.color = color;
+                }
+                let mut spots = world.query::<&mut PhongSpotLight>();
+                for mut light in spots.iter_mut(world) {
+                    light.color = color;
+                }
+            }
+        }
     }
 }
 
@@ -68,19 +111,21 @@ fn gather(c: &mut Criterion) {
     let mut group = c.benchmark_group("gather");
     for count in [10, 1_000, 10_000] {
         let (mut app, mut schedule) = world_with_lights(count);
-        group.bench_function(BenchmarkId::new("all_changed", count), |b| {
-            // Only the gather is timed, not the marking.
-            b.iter_custom(|iterations| {
-                let mut total = Duration::ZERO;
-                for _ in 0..iterations {
-                    touch_all(app.world_mut());
-                    let start = Instant::now();
-                    schedule.run(app.world_mut());
-                    total += start.elapsed();
-                }
-                total
+        for change in Change::ALL {
+            group.bench_function(BenchmarkId::new(change.name(), count), |b| {
+                // Only the gather is timed, not the change.
+                b.iter_custom(|iterations| {
+                    let mut total = Duration::ZERO;
+                    for iteration in 0..iterations {
+                        change.apply(app.world_mut(), iteration % 2 == 1);
+                        let start = Instant::now();
+                        schedule.run(app.world_mut());
+                        total += start.elapsed();
+                    }
+                    total
+                });
             });
-        });
+        }
         group.bench_function(BenchmarkId::new("none_changed", count), |b| {
             b.iter(|| schedule.run(app.world_mut()));
         });

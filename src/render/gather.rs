@@ -6,7 +6,8 @@ use super::{
     gpu_types::{GpuLight, GpuLightsHeader},
     light_buffer::{LightBuffer, LightBufferResized},
     light_grid::{LightGrid, has_finite_reach},
-    light_records::{limit_reach, linear_rgb},
+    light_records::{BuiltInLight, linear_rgb},
+    record_cache::RecordCache,
 };
 use crate::culling::PhongLightCulling;
 use crate::lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
@@ -40,6 +41,8 @@ pub struct PhongLightBuffer {
     grid: LightGrid,
     points: Vec<GpuLight>,
     spots: Vec<GpuLight>,
+    point_cache: RecordCache<PhongPointLight>,
+    spot_cache: RecordCache<PhongSpotLight>,
 }
 
 impl Default for PhongLightBuffer {
@@ -52,6 +55,8 @@ impl Default for PhongLightBuffer {
             grid: LightGrid::default(),
             points: Vec::new(),
             spots: Vec::new(),
+            point_cache: RecordCache::default(),
+            spot_cache: RecordCache::default(),
         }
     }
 }
@@ -144,6 +149,26 @@ fn with_shadow<L>(
     }
 }
 
+/// Appends the record of every visible light in `lights` with a finite transform to
+/// `records`, its constants from `cache` (the ranges not yet limited: see
+/// [`RecordCache::limit_reach`]).
+fn push_cached<L: BuiltInLight>(
+    lights: &LightQuery<L>,
+    slots: &ShadowSlots,
+    cache: &mut RecordCache<L>,
+    records: &mut Vec<GpuLight>,
+) {
+    let visible = lights
+        .iter()
+        .filter(|(_, _, transform, visibility)| visibility.get() && is_finite_transform(transform));
+    for (index, (entity, light, transform, _)) in visible.enumerate() {
+        let mut record = cache.constants(index, entity, light);
+        L::place(&mut record, transform);
+        record.shadow = slots.get(entity);
+        records.push(record);
+    }
+}
+
 /// Writes every visible built-in light into [`PhongLightBuffer`], and those of finite reach
 /// into its light grid, when any of them, the ambient light or [`PhongLightCulling`] changed
 /// (and on the first run); otherwise it touches nothing, so no GPU buffer is uploaded again.
@@ -186,24 +211,17 @@ pub fn gather_lights(
         &mut state.records,
         with_shadow(PhongDirectionalLight::to_gpu),
     );
-    push_visible(
-        &point,
-        &slots,
-        &mut state.points,
-        with_shadow(PhongPointLight::to_gpu),
-    );
-    push_visible(
-        &spot,
-        &slots,
-        &mut state.spots,
-        with_shadow(PhongSpotLight::to_gpu),
-    );
+    push_cached(&point, &slots, &mut state.point_cache, &mut state.points);
+    push_cached(&spot, &slots, &mut state.spot_cache, &mut state.spots);
     // ε bounds the sum of what every skipped light leaves out: each gets ε / count.
     let count = state.points.len() + state.spots.len();
     let per_light_epsilon = culling.epsilon / count.max(1) as f32;
-    for lights in [&mut state.points, &mut state.spots] {
-        lights.retain_mut(|light| limit_reach(light, per_light_epsilon));
-    }
+    state
+        .point_cache
+        .limit_reach(&mut state.points, per_light_epsilon);
+    state
+        .spot_cache
+        .limit_reach(&mut state.spots, per_light_epsilon);
 
     // Unlimited reach first (every fragment loops over them), then the grid's lights (the
     // grid's loop applies no shadows, so shadow-casting lights stay out of it).
@@ -258,8 +276,9 @@ pub fn gather_lights(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::light_records::limit_reach;
     use crate::test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame};
-    use bevy::prelude::{Transform, Vec3, Visibility};
+    use bevy::prelude::{App, Transform, Vec3, Visibility, World};
 
     #[test]
     fn lights_are_uploaded_only_in_frames_where_they_change() {
@@ -344,6 +363,134 @@ mod tests {
             [0.0; 3]
         );
         assert!(!built_in_buffer_bytes(&app).is_empty());
+    }
+
+    /// The records a gather must write for the lights in `app`, made afresh (no cache):
+    /// sorted by their bits, as the gather's own are by [`sorted_records`].
+    fn fresh_records(app: &mut App) -> Vec<[u32; 20]> {
+        let world = app.world_mut();
+        let epsilon = world.resource::<PhongLightCulling>().epsilon;
+        let mut records: Vec<GpuLight> = Vec::new();
+        let mut points =
+            world.query::<(&PhongPointLight, &GlobalTransform, &InheritedVisibility)>();
+        for (light, transform, visibility) in points.iter(world) {
+            visibility
+                .get()
+                .then(|| records.push(light.to_gpu(transform)));
+        }
+        let mut spots = world.query::<(&PhongSpotLight, &GlobalTransform, &InheritedVisibility)>();
+        for (light, transform, visibility) in spots.iter(world) {
+            visibility
+                .get()
+                .then(|| records.push(light.to_gpu(transform)));
+        }
+        let per_light_epsilon = epsilon / records.len().max(1) as f32;
+        records.retain_mut(|record| limit_reach(record, per_light_epsilon));
+        let mut bits: Vec<[u32; 20]> = records.iter().map(|r| bytemuck::cast(*r)).collect();
+        bits.sort();
+        bits
+    }
+
+    /// The records the gather wrote, sorted by their bits.
+    fn sorted_records(app: &App) -> Vec<[u32; 20]> {
+        let state = app.world().resource::<PhongLightBuffer>();
+        let mut bits: Vec<[u32; 20]> = state.records().iter().map(|r| bytemuck::cast(*r)).collect();
+        bits.sort();
+        bits
+    }
+
+    #[test]
+    fn kept_constants_never_outlive_a_change() {
+        let mut app = test_app(|app| {
+            app.insert_resource(PhongLightCulling {
+                epsilon: 1e-2,
+                grid: true,
+            });
+        });
+        let decay = crate::Decay::DISTANCE_50;
+        let mut lights: Vec<Entity> = (0..6)
+            .map(|i| {
+                let position = Transform::from_xyz(i as f32, 1.0, 0.0);
+                let world = app.world_mut();
+                if i % 3 == 0 {
+                    world.spawn((
+                        PhongSpotLight {
+                            decay,
+                            ..Default::default()
+                        },
+                        position,
+                    ))
+                } else {
+                    world.spawn((
+                        PhongPointLight {
+                            decay,
+                            ..Default::default()
+                        },
+                        position,
+                    ))
+                }
+                .id()
+            })
+            .collect();
+        app.update();
+        assert_eq!(
+            sorted_records(&app),
+            fresh_records(&mut app),
+            "first gather"
+        );
+
+        type Step = fn(&mut World, &mut Vec<Entity>);
+        let steps: [(&str, Step); 9] = [
+            ("a point light recolored", |world, lights| {
+                world.get_mut::<PhongPointLight>(lights[1]).unwrap().color =
+                    bevy::color::Color::srgb(0.2, 0.4, 0.9);
+            }),
+            ("a spot light's cone narrowed", |world, lights| {
+                world
+                    .get_mut::<PhongSpotLight>(lights[0])
+                    .unwrap()
+                    .outer_angle = 0.2;
+            }),
+            ("a light moved", |world, lights| {
+                world.get_mut::<Transform>(lights[2]).unwrap().translation.y = 4.0;
+            }),
+            ("a spot light turned", |world, lights| {
+                world.get_mut::<Transform>(lights[3]).unwrap().rotate_x(0.5);
+            }),
+            ("a light despawned from the middle", |world, lights| {
+                world.despawn(lights.remove(1));
+            }),
+            ("a light hidden", |world, lights| {
+                *world.get_mut::<Visibility>(lights[1]).unwrap() = Visibility::Hidden;
+            }),
+            ("a light spawned: ε per light shrinks", |world, lights| {
+                let light = PhongPointLight {
+                    decay: crate::Decay::DISTANCE_50,
+                    color: bevy::color::Color::srgb(3.0, 3.0, 3.0),
+                    ..Default::default()
+                };
+                lights.push(
+                    world
+                        .spawn((light, Transform::from_xyz(0.0, 0.0, 2.0)))
+                        .id(),
+                );
+            }),
+            ("the hidden light shown", |world, lights| {
+                *world.get_mut::<Visibility>(lights[1]).unwrap() = Visibility::Inherited;
+            }),
+            ("ε changed", |world, _| {
+                world.resource_mut::<PhongLightCulling>().epsilon = 1e-3;
+            }),
+        ];
+        for (name, step) in steps {
+            step(app.world_mut(), &mut lights);
+            app.update();
+            assert_eq!(
+                sorted_records(&app),
+                fresh_records(&mut app),
+                "after {name}"
+            );
+        }
     }
 
     #[test]

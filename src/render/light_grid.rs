@@ -27,6 +27,47 @@ pub struct LightGrid {
     data: Vec<u32>,
     reaches: Vec<f32>,
     pairs: Vec<(u32, u32)>,
+    /// What the grid was last built from: the spheres, in light buffer order, and where
+    /// the point lights and the spot lights sat in the light buffer.
+    built_from: BuiltFrom,
+}
+
+/// The input of a build, compared bit for bit with the next one: the same input gives the
+/// same grid, which is then kept as it is.
+#[derive(Debug, Default, PartialEq)]
+struct BuiltFrom {
+    /// Each light's position and range, as bits.
+    spheres: Vec<[u32; 4]>,
+    points: Range<usize>,
+    spots: Range<usize>,
+}
+
+impl BuiltFrom {
+    /// Whether this is the input `lights[points]`, `lights[spots]`.
+    fn is(&self, lights: &[GpuLight], points: &Range<usize>, spots: &Range<usize>) -> bool {
+        self.points == *points
+            && self.spots == *spots
+            && self.spheres.len() == spots.end - points.start
+            && self
+                .spheres
+                .iter()
+                .zip(&lights[points.start..spots.end])
+                .all(|(sphere, light)| *sphere == sphere_bits(light))
+    }
+
+    /// Notes the input `lights[points]`, `lights[spots]`.
+    fn set(&mut self, lights: &[GpuLight], points: Range<usize>, spots: Range<usize>) {
+        self.spheres.clear();
+        self.spheres
+            .extend(lights[points.start..spots.end].iter().map(sphere_bits));
+        (self.points, self.spots) = (points, spots);
+    }
+}
+
+/// A light's position and range, as bits.
+fn sphere_bits(light: &GpuLight) -> [u32; 4] {
+    let [x, y, z] = light.position;
+    [x, y, z, light.range].map(f32::to_bits)
 }
 
 /// Whether `light` (a point or spot light) has a finite sphere of reach that the grid can
@@ -50,9 +91,15 @@ impl LightGrid {
     }
 
     /// Sorts the point lights `lights[points]` and the spot lights `lights[spots]` (every
-    /// one with [`has_finite_reach`]; `spots` follows `points`) into cells.
+    /// one with [`has_finite_reach`]; `spots` follows `points`) into cells. When they are
+    /// the lights of the last build, at the same places and with the same ranges, the grid
+    /// is kept as it is.
     pub fn build(&mut self, lights: &[GpuLight], points: Range<usize>, spots: Range<usize>) {
         debug_assert_eq!(points.end, spots.start);
+        if self.built_from.is(lights, &points, &spots) {
+            return;
+        }
+        self.built_from.set(lights, points.clone(), spots.clone());
         self.data.clear();
         let bounded = &lights[points.start..spots.end];
         if bounded.is_empty() {
@@ -301,6 +348,37 @@ mod tests {
         );
         assert!(lights_at(&grid, Vec3::ZERO).contains(&0));
         assert!(lights_at(&grid, Vec3::X * f32::MAX).contains(&100));
+    }
+
+    #[test]
+    fn a_build_from_the_same_lights_keeps_the_grid_and_any_change_rebuilds_it() {
+        let mut lights = vec![point(Vec3::ZERO, 1.0), point(Vec3::splat(4.0), 1.0)];
+        let mut grid = LightGrid::default();
+        grid.build(&lights, 0..2, 2..2);
+        let first = (*grid.header(), grid.data().to_vec());
+        grid.build(&lights, 0..2, 2..2);
+        assert_eq!((*grid.header(), grid.data().to_vec()), first);
+
+        lights[1].position = [0.0, 0.0, 4.0];
+        grid.build(&lights, 0..2, 2..2);
+        assert_eq!(lights_at(&grid, Vec3::new(0.0, 0.0, 4.0)), vec![1]);
+        assert!(lights_at(&grid, Vec3::splat(4.0)).is_empty());
+
+        // Cells of edge 1 from z = -1: the light's sphere touches the cell of z 2.6 while its
+        // reach is 1, not once it is 0.5.
+        assert_eq!(lights_at(&grid, Vec3::new(0.0, 0.0, 2.6)), vec![1]);
+        lights[1].range = 0.5;
+        grid.build(&lights, 0..2, 2..2);
+        assert!(lights_at(&grid, Vec3::new(0.0, 0.0, 2.6)).is_empty());
+
+        // The same spheres, the second one now a spot light: its cells count it as one.
+        grid.build(&lights, 0..1, 1..2);
+        let dimensions = UVec3::from(grid.header().dimensions);
+        let spot_words: u32 = grid.data()[..dimensions.element_product() as usize * CELL_WORDS]
+            .chunks_exact(CELL_WORDS)
+            .map(|record| record[2])
+            .sum();
+        assert!(spot_words > 0);
     }
 
     #[test]

@@ -2,8 +2,10 @@
 
 use super::gpu_types::GpuLight;
 use crate::culling::influence_radius;
-use crate::lights::{Decay, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
-use bevy::{color::Color, math::Vec3, transform::components::GlobalTransform};
+use crate::lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use bevy::{
+    color::Color, ecs::component::Component, math::Vec3, transform::components::GlobalTransform,
+};
 
 /// A color's linear RGB components (alpha dropped).
 pub fn linear_rgb(color: Color) -> [f32; 3] {
@@ -69,50 +71,83 @@ pub fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
     (outer_versine as f32, cone_scale)
 }
 
-impl PhongDirectionalLight {
-    /// This light's GPU record.
-    pub fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
+/// A built-in light kind, its record in two parts: the constants, which depend on the
+/// component alone (colors, decay, range, cone), and the placement, which its transform sets
+/// (position, direction). A gather reuses the constants of a light whose component is equal
+/// to the one they were made from (see `record_cache`).
+pub(crate) trait BuiltInLight: Component + Clone + PartialEq {
+    /// The record without its placement (position and direction zero) or shadow slot.
+    fn constants(&self) -> GpuLight;
+
+    /// Sets the position and direction of `record` from `transform`.
+    fn place(record: &mut GpuLight, transform: &GlobalTransform);
+}
+
+impl BuiltInLight for PhongDirectionalLight {
+    fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
         GpuLight {
-            direction: light_direction(transform).to_array(),
             color,
             specular,
             ..GpuLight::default()
         }
     }
+
+    fn place(record: &mut GpuLight, transform: &GlobalTransform) {
+        record.direction = light_direction(transform).to_array();
+    }
 }
 
-impl PhongPointLight {
-    /// This light's GPU record.
-    pub fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
+impl BuiltInLight for PhongPointLight {
+    fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
         GpuLight {
-            position: transform.translation().to_array(),
             range: stored_range(self.range),
             color,
             specular,
-            decay: Decay::to_array(self.decay),
+            decay: self.decay.to_array(),
             ..GpuLight::default()
         }
     }
+
+    fn place(record: &mut GpuLight, transform: &GlobalTransform) {
+        record.position = transform.translation().to_array();
+    }
 }
 
-impl PhongSpotLight {
-    /// This light's GPU record.
-    pub fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
+impl BuiltInLight for PhongSpotLight {
+    fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
         let (outer_versine, cone_scale) = spot_cone_terms(self.inner_angle, self.outer_angle);
         GpuLight {
-            position: transform.translation().to_array(),
             range: stored_range(self.range),
-            direction: light_direction(transform).to_array(),
             outer_versine,
             color,
             cone_scale,
             specular,
             spot_exponent: self.exponent,
             decay: self.decay.to_array(),
-            shadow: 0,
+            ..GpuLight::default()
         }
     }
+
+    fn place(record: &mut GpuLight, transform: &GlobalTransform) {
+        record.position = transform.translation().to_array();
+        record.direction = light_direction(transform).to_array();
+    }
 }
+
+/// `to_gpu`, the whole record of a built-in light, for each kind.
+macro_rules! whole_record {
+    ($($light:ty),*) => {$(
+        impl $light {
+            /// This light's GPU record (shadow slot `0`).
+            pub fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
+                let mut record = self.constants();
+                Self::place(&mut record, transform);
+                record
+            }
+        }
+    )*};
+}
+whole_record!(PhongDirectionalLight, PhongPointLight, PhongSpotLight);

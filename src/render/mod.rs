@@ -39,6 +39,7 @@ mod light_grid;
 mod light_records;
 mod material_bindings;
 mod material_upkeep;
+mod record_cache;
 mod scene_texture;
 
 pub use data_texture::{DATA_TEXTURE_MAX_ROWS, DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
