@@ -10,6 +10,7 @@
 //! cargo run --example bench -- --scene showcase --size 1024 --no-variants  # one row
 //! cargo run --example bench -- --shadows  # only the cost of shadows
 //! cargo run --example bench -- --webgl2   # only the storage path beside the WebGL2 one
+//! cargo run --example bench -- --ablation # only the shader ablation (--size N: at N²)
 //! ```
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -24,7 +25,10 @@
 //! its rounds). A fourth table sets the scene data's two paths side by side: storage
 //! buffers, and the data texture that devices without them (WebGL2) read, on a device
 //! created with WebGL2's limits; the showcase and the 256-light field at 1024², taking turns
-//! in the same way (`--webgl2` runs it alone).
+//! in the same way (`--webgl2` runs it alone). A fifth table is the shader ablation: the
+//! showcase with the Phong fragment shader cut after each stage of its work, from the
+//! constant-color floor to the full shader, at 1024² or the first `--size`, taking turns in
+//! the same way (`--ablation` runs it alone; see `ablation.rs`).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -32,6 +36,7 @@
 //! `bevy_phong::reference` over a 128² render (relative to `max(1, |expected|)`), measured
 //! with the render tests' harness. It writes `target/bench/*.csv` and `target/bench/*.png`.
 
+mod ablation;
 mod accuracy;
 mod plot;
 mod scene;
@@ -49,12 +54,17 @@ struct Options {
     shadows_only: bool,
     /// Whether to run only the table of the storage path beside the WebGL2 one.
     fallback_only: bool,
+    /// Whether to run only the shader ablation.
+    ablation_only: bool,
     /// Whether to print one measurement and exit (see `one_row_in_own_process`).
     one_row: bool,
-    /// The shadow table's image size.
+    /// The image size of the shadow table and the WebGL2 one, pixels.
     shadow_size: u32,
-    /// How many times each row of the shadow table is measured, taking turns.
-    shadow_rounds: usize,
+    /// The image size of the shader ablation, pixels.
+    ablation_size: u32,
+    /// How many times each row of the tables whose rows take turns (shadows, WebGL2,
+    /// ablation) is measured.
+    rounds: usize,
     culling: PhongLightCulling,
     sizes: Vec<u32>,
     scenes: Vec<Scene>,
@@ -71,6 +81,7 @@ impl Options {
         options.variants = !args.iter().any(|arg| arg == "--no-variants");
         options.shadows_only = args.iter().any(|arg| arg == "--shadows");
         options.fallback_only = args.iter().any(|arg| arg == "--webgl2");
+        options.ablation_only = args.iter().any(|arg| arg == "--ablation");
         options.one_row = args.iter().any(|arg| arg == "--one-row");
         let values = |flag: &str| -> Vec<String> {
             args.windows(2)
@@ -93,7 +104,8 @@ impl Options {
             .iter()
             .filter_map(|v| v.parse().ok())
             .collect();
-        if !sizes.is_empty() {
+        if let Some(&size) = sizes.first() {
+            options.ablation_size = size;
             options.sizes = sizes;
         }
         let scenes: Vec<Scene> = values("--scene")
@@ -121,9 +133,11 @@ impl Options {
                 variants: true,
                 shadows_only: false,
                 fallback_only: false,
+                ablation_only: false,
                 one_row: false,
                 shadow_size: 128,
-                shadow_rounds: 1,
+                ablation_size: 128,
+                rounds: 1,
                 culling: PhongLightCulling::default(),
                 sizes: vec![128],
                 scenes: vec![Scene::Showcase, Scene::Field { lights: 16 }],
@@ -140,9 +154,11 @@ impl Options {
             variants: true,
             shadows_only: false,
             fallback_only: false,
+            ablation_only: false,
             one_row: false,
             shadow_size: 1024,
-            shadow_rounds: 5,
+            ablation_size: 1024,
+            rounds: 5,
             culling: PhongLightCulling::default(),
             sizes: vec![512, 1024],
             scenes: vec![
@@ -225,12 +241,21 @@ fn main() {
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
     }
-    let everything = !options.shadows_only && !options.fallback_only;
+    let everything = !options.shadows_only && !options.fallback_only && !options.ablation_only;
     if everything {
         frame_times(&options, directory);
         if options.variants {
             time_against_error(&options, directory);
         }
+    }
+    if everything || options.ablation_only {
+        ablation::table(
+            options.ablation_size,
+            options.rounds,
+            options.frames,
+            options.culling,
+            directory,
+        );
     }
     if everything || options.shadows_only {
         shadow_costs(&options, directory);
@@ -275,7 +300,7 @@ fn fallback_costs(options: &Options, directory: &Path) {
         ("data texture (WebGL2 limits)", Some("webgl2")),
     ];
     let mut csv = String::from("scene,size,path,round,median_ms\n");
-    let times: [f64; 4] = alternating_medians(options.shadow_rounds, |row, round| {
+    let times: [f64; 4] = alternating_medians(options.rounds, |row, round| {
         let ((argument, scene), (path, priority)) = (scenes[row / 2], paths[row % 2]);
         let median = one_row_in_own_process(argument, size, options.frames.measured, priority);
         let _ = writeln!(csv, "{},{size},{path},{round},{median:.3}", scene.name());
@@ -300,7 +325,7 @@ fn fallback_costs(options: &Options, directory: &Path) {
     }
     println!(
         "\nThe scene data's two paths, Phong, median ms (the median of {} rounds):\n\n{table}",
-        options.shadow_rounds
+        options.rounds
     );
     write(&directory.join("webgl2.csv"), &csv);
 }
@@ -350,7 +375,7 @@ fn shadow_costs(options: &Options, directory: &Path) {
         ("Standard", Shading::Standard, false),
         ("Standard", Shading::Standard, true),
     ];
-    let times: [f64; 4] = alternating_medians(options.shadow_rounds, |row, round| {
+    let times: [f64; 4] = alternating_medians(options.rounds, |row, round| {
         let (name, shading, shadows) = rows[row];
         let scene = Scene::ShowcaseOnFloor { shadows };
         let median = ms(median_frame_time(
@@ -378,7 +403,7 @@ fn shadow_costs(options: &Options, directory: &Path) {
     println!(
         "\nShadows, median ms (the median of {} rounds): the showcase on a floor, a cascaded directional light and two \
          point lights casting shadows or not (1024² maps):\n\n{table}",
-        options.shadow_rounds
+        options.rounds
     );
     write(&directory.join("shadows.csv"), &csv);
 }

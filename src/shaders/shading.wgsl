@@ -8,6 +8,9 @@
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
 #import bevy_phong::types::{GRID_CELL_WORDS, PhongSurface}
+#ifdef PHONG_ABLATION_NO_TERMS
+#import bevy_phong::types::PhongLight
+#endif
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -45,6 +48,9 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     var color = vec3<f32>(0.0);
     for (var index = 0u; index < end; index += 1u) {
         let light = light_at(index);
+#ifdef PHONG_ABLATION_NO_TERMS
+        color += record_sum(light);
+#else
         let kind = select(select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= point_start), LIGHT_SPOT, index >= spot_start);
         let arriving = incidence(surface, light, kind);
 #ifdef PHONG_SHADOWS
@@ -53,6 +59,7 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
         let factors = vec2<f32>(1.0);
 #endif
         color += light_of_kind(surface, light, kind, arriving, factors);
+#endif
     }
     return color + grid_lights(surface);
 }
@@ -73,15 +80,40 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     var color = vec3<f32>(0.0);
     for (var slot = start; slot < end; slot += 1u) {
         let light = light_at(grid_word(slot));
+#ifdef PHONG_ABLATION_NO_TERMS
+        color += record_sum(light);
+#else
         let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_start);
         color += unshadowed_light(surface, light, kind);
+#endif
     }
     return color;
 }
 
+#ifdef PHONG_ABLATION_NO_TERMS
+// The benchmark's shader ablation only (examples/bench/ablation.rs): the sum of the fields
+// of a light record that the diffuse term reads (position, direction, color) or, with
+// PHONG_ABLATION_ALL_FIELDS, of every field the shader reads without shadows, so that the
+// loops read them and compute nothing else.
+fn record_sum(light: PhongLight) -> vec3<f32> {
+    let diffuse_fields = light.position + light.direction + light.color;
+#ifdef PHONG_ABLATION_ALL_FIELDS
+    let scalars = light.range + light.outer_versine + light.cone_scale + light.spot_exponent;
+    return diffuse_fields + light.specular + light.decay + vec3<f32>(scalars);
+#else
+    return diffuse_fields;
+#endif
+}
+#endif
+
 // SPEC.md's whole equation: emissive + ambient + Σ lights, with the given emissive color.
 fn lit_color(surface: PhongSurface, emissive: vec3<f32>) -> vec3<f32> {
+#ifdef PHONG_ABLATION_NO_AMBIENT
+    // The benchmark's shader ablation only (examples/bench/ablation.rs): Σ lights alone.
+    return direct_lights(surface);
+#else
     return emissive + ambient_light(surface) + direct_lights(surface);
+#endif
 }
 
 // SPEC.md's whole equation for the bound material without its texture maps.

@@ -1,0 +1,176 @@
+//! The shader ablation: the showcase drawn with `PhongMaterial`'s fragment shader cut after
+//! each stage of its work, beside the constant-color floor, so that each stage's cost is the
+//! difference between two rows measured in the same run. Each stage reads only the fields
+//! of the light records that its work uses; a last row reads every field the full shader
+//! reads and computes nothing, which splits the lights' cost into reading and arithmetic.
+//!
+//! A stage is a set of the shader's cut-point defs (`PHONG_ABLATION_*`, set by nothing but
+//! this benchmark), added to the material's fragment shader asset
+//! ([`median_frame_time_and_picture`]):
+//!
+//! - `PHONG_ABLATION_NO_LIGHTS` (`phong_material.wgsl`): the fragment returns a color made
+//!   of the surface set-up alone (normal, view vector, the material's colors and maps).
+//! - `PHONG_ABLATION_NO_TERMS` (`shading.wgsl`): the light loops read the fields of every
+//!   record they reach that the diffuse term uses (position, direction, color) and sum
+//!   them, computing nothing else; with `PHONG_ABLATION_ALL_FIELDS`, every field the shader
+//!   reads without shadows.
+//! - `PHONG_ABLATION_NO_ATTENUATION` (`lighting.wgsl`): every light arrives at full
+//!   strength along L (no distance attenuation, range or cone).
+//! - `PHONG_ABLATION_NO_HIGHLIGHT` (`lighting.wgsl`): each light's term is its diffuse part.
+//! - `PHONG_ABLATION_NO_AMBIENT` (`shading.wgsl`): the color is the lights' sum alone (no
+//!   ambient, no emissive).
+
+use crate::{
+    alternating_medians, ms,
+    scene::{Scene, Shading},
+    timing::{Frames, median_frame_time_and_picture},
+    write,
+};
+use bevy_phong::{PhongLightCulling, SpecularModel};
+use std::{fmt::Write as _, path::Path};
+
+/// One row of the table: what the meshes are drawn with.
+struct Stage {
+    /// The row's name in the table and the CSV file (quoted there: it holds no quotes).
+    name: &'static str,
+    shading: Shading,
+    /// The cut-point defs added to `PhongMaterial`'s fragment shader.
+    defs: &'static [&'static str],
+    /// The row (index into [`STAGES`]) whose work this one adds to; `None` for the floor.
+    builds_on: Option<usize>,
+}
+
+const PHONG: Shading = Shading::Phong(Some(SpecularModel::Phong));
+
+/// The rows: from the floor to the shader without cuts, each stage adding one part of the
+/// work to the row above; then the loops reading every field the full shader reads, which
+/// adds to the surface set-up.
+const STAGES: [Stage; 8] = [
+    Stage {
+        name: "floor: constant color",
+        shading: Shading::Constant,
+        defs: &[],
+        builds_on: None,
+    },
+    Stage {
+        name: "surface set-up alone",
+        shading: PHONG,
+        defs: &["PHONG_ABLATION_NO_LIGHTS"],
+        builds_on: Some(0),
+    },
+    Stage {
+        name: "+ the loops reading position, direction and color",
+        shading: PHONG,
+        defs: &["PHONG_ABLATION_NO_TERMS", "PHONG_ABLATION_NO_AMBIENT"],
+        builds_on: Some(1),
+    },
+    Stage {
+        name: "+ diffuse (L and N·L)",
+        shading: PHONG,
+        defs: &[
+            "PHONG_ABLATION_NO_ATTENUATION",
+            "PHONG_ABLATION_NO_HIGHLIGHT",
+            "PHONG_ABLATION_NO_AMBIENT",
+        ],
+        builds_on: Some(2),
+    },
+    Stage {
+        name: "+ attenuation and cone (reading range, decay and the cone's fields)",
+        shading: PHONG,
+        defs: &["PHONG_ABLATION_NO_HIGHLIGHT", "PHONG_ABLATION_NO_AMBIENT"],
+        builds_on: Some(3),
+    },
+    Stage {
+        name: "+ highlight (reading the specular color)",
+        shading: PHONG,
+        defs: &["PHONG_ABLATION_NO_AMBIENT"],
+        builds_on: Some(4),
+    },
+    Stage {
+        name: "full shader (+ ambient and emissive)",
+        shading: PHONG,
+        defs: &[],
+        builds_on: Some(5),
+    },
+    Stage {
+        name: "surface set-up + the loops reading every field the full shader reads",
+        shading: PHONG,
+        defs: &[
+            "PHONG_ABLATION_NO_TERMS",
+            "PHONG_ABLATION_ALL_FIELDS",
+            "PHONG_ABLATION_NO_AMBIENT",
+        ],
+        builds_on: Some(1),
+    },
+];
+
+/// The ablation table of the showcase at `size`²: the rows take turns over `rounds` rounds
+/// and each gives the median of its rounds (ms), with its ratio to the floor, its cost over
+/// the row it builds on, and how many pixels its picture changes from that row's (a cut
+/// that did not reach the shader would change none where the stage has work to do).
+/// Writes `ablation.csv` (one line per row and round) into `directory`.
+pub fn table(
+    size: u32,
+    rounds: usize,
+    frames: Frames,
+    culling: PhongLightCulling,
+    directory: &Path,
+) {
+    let scene = Scene::Showcase;
+    let mut csv = String::from("size,stage,round,median_ms\n");
+    let mut pictures: [Vec<u8>; STAGES.len()] = [const { Vec::new() }; STAGES.len()];
+    let times: [f64; STAGES.len()] = alternating_medians(rounds, |row, round| {
+        let stage = &STAGES[row];
+        let (median, picture) =
+            median_frame_time_and_picture(scene, size, stage.shading, culling, frames, stage.defs);
+        let median = ms(median);
+        if round == 0 {
+            pictures[row] = picture;
+        }
+        let _ = writeln!(csv, "{size},\"{}\",{round},{median:.3}", stage.name);
+        eprintln!(
+            "{} {size}² {}, round {round}: {median:.1} ms",
+            scene.name(),
+            stage.name
+        );
+        median
+    });
+    let floor = times[0];
+    let mut table = String::from(
+        "| stage | ms | × floor | added ms | pixels changed |\n|---|---|---|---|---|\n",
+    );
+    for (row, stage) in STAGES.iter().enumerate() {
+        let (added, changed) = match stage.builds_on {
+            Some(base) => (
+                format!("{:+.1}", times[row] - times[base]),
+                format!("{:.1} %", changed_percent(&pictures[base], &pictures[row])),
+            ),
+            None => ("".into(), "".into()),
+        };
+        let _ = writeln!(
+            table,
+            "| {} | {:.1} | {:.2} | {added} | {changed} |",
+            stage.name,
+            times[row],
+            times[row] / floor,
+        );
+    }
+    println!(
+        "\nThe shader ablation, {} at {size}², median ms (the median of {rounds} rounds); \
+         added ms and pixels changed: from the row each builds on (the row above; for the \
+         last, the surface set-up):\n\n{table}",
+        scene.name()
+    );
+    write(&directory.join("ablation.csv"), &csv);
+}
+
+/// The share of pixels (RGBA, 4 bytes each) in which `a` and `b` differ, percent.
+fn changed_percent(a: &[u8], b: &[u8]) -> f64 {
+    let pixels = a.len().min(b.len()) / 4;
+    let changed = a
+        .chunks_exact(4)
+        .zip(b.chunks_exact(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    100.0 * changed as f64 / pixels.max(1) as f64
+}
