@@ -8,14 +8,14 @@ use bevy::{
     render::{
         RenderApp,
         gpu_readback::{Readback, ReadbackComplete},
-        render_resource::{PipelineCache, PollType, TextureFormat, TextureUsages},
+        render_resource::{PollType, TextureFormat, TextureUsages},
         renderer::RenderDevice,
         view::Msaa,
     },
     shader::ShaderDefVal,
 };
 use bevy_phong::PhongLightCulling;
-use bevy_phong_headless::{failed_pipelines, headless_app, run_until_settled};
+use bevy_phong_headless::{assert_no_failed_pipelines, headless_app, run_until_settled};
 use std::{
     sync::{Arc, Mutex},
     time::{Duration, Instant},
@@ -73,16 +73,7 @@ pub fn median_frame_time_and_picture(
     phong_defs: &[&str],
 ) -> (Duration, Vec<u8>) {
     let mut measured = measured_app(scene, size, shading, culling, frames, phong_defs);
-    let cache = measured
-        .app
-        .sub_app(RenderApp)
-        .world()
-        .resource::<PipelineCache>();
-    let failed = failed_pipelines(cache);
-    assert!(
-        failed.is_empty(),
-        "pipelines failed to compile with {phong_defs:?}: {failed:#?}"
-    );
+    assert_no_failed_pipelines(&measured.app, &format!("shader defs {phong_defs:?}"));
     let picture = read_back(&mut measured.app, measured.target, size);
     (measured.median, picture)
 }

@@ -10,10 +10,9 @@ use bevy::{
     pbr::{ExtendedMaterial, MaterialExtension},
     prelude::*,
     render::{
-        RenderApp,
         error_handler::RenderErrorHandler,
         gpu_readback::{Readback, ReadbackComplete},
-        render_resource::{PipelineCache, TextureFormat, TextureUsages},
+        render_resource::{TextureFormat, TextureUsages},
         view::Msaa,
     },
 };
@@ -29,7 +28,8 @@ use std::{
 };
 
 use crate::{
-    Comparison, FloatImage, app::headless_app_with_assets, failed_pipelines, run_until_settled,
+    Comparison, FloatImage, app::headless_app_with_assets, assert_no_failed_pipelines,
+    run_until_settled,
 };
 
 /// The camera every scene is seen from.
@@ -261,16 +261,7 @@ impl Harness {
         if !run_until_settled(&mut self.app, MAX_SETTLE_FRAMES, App::update) {
             panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
         }
-        let cache = self
-            .app
-            .sub_app(RenderApp)
-            .world()
-            .resource::<PipelineCache>();
-        let failed = failed_pipelines(cache);
-        assert!(
-            failed.is_empty(),
-            "pipelines failed to compile: {failed:#?}"
-        );
+        assert_no_failed_pipelines(&self.app, "the harness's scene");
     }
 
     /// Runs exactly one frame and returns what it rendered.

@@ -77,6 +77,18 @@ pub fn failed_pipelines(cache: &PipelineCache) -> Vec<String> {
         .collect()
 }
 
+/// Panics, naming `what` and every failed pipeline ([`failed_pipelines`]), when a pipeline of
+/// `app`'s render world failed to compile: Bevy would draw nothing with it, so a test would
+/// compare, or a benchmark time, an empty frame.
+pub fn assert_no_failed_pipelines(app: &App, what: &str) {
+    let cache = app.sub_app(RenderApp).world().resource::<PipelineCache>();
+    let failed = failed_pipelines(cache);
+    assert!(
+        failed.is_empty(),
+        "{what}: pipelines failed to compile: {failed:#?}"
+    );
+}
+
 fn label(descriptor: &PipelineDescriptor) -> Option<String> {
     match descriptor {
         PipelineDescriptor::RenderPipelineDescriptor(render) => {
