@@ -207,10 +207,9 @@ use crate::{
     plugin::PhongSystems,
     render::{
         DataTexture, DataTextureWrite, LightBuffer, LightBufferResized, LightChanges, LightQuery,
-        MIN_CAPACITY, push_visible, words_of,
+        MIN_CAPACITY, lit_lights, push_visible, words_of,
     },
     shadows::{PhongShadowRequest, ShadowRequests, ShadowSlots},
-    validation::is_finite_transform,
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
@@ -352,10 +351,7 @@ fn request_kind_shadows<L: PhongLightKind>(
     lights: LightQuery<L>,
     mut requests: ResMut<ShadowRequests>,
 ) {
-    for (entity, light, transform, visibility) in &lights {
-        if !visibility.get() || !is_finite_transform(transform) {
-            continue;
-        }
+    for (entity, light, transform) in lit_lights(&lights) {
         if let Some(request) = light.shadow(transform) {
             requests.push(entity, request);
         }

@@ -118,9 +118,19 @@ pub type LightQuery<'w, 's, L> = Query<
     ),
 >;
 
-/// Appends the record of every visible light in `lights` to `records`, skipping lights with
-/// a non-finite transform; `to_gpu` gets each light's shadow slot (see [`ShadowSlots`]).
-/// Returns how many.
+/// The lights in `lights` that give light: visible, with a finite transform (a light whose
+/// transform is not finite is skipped while it is; see [`crate::validation`]).
+pub(crate) fn lit_lights<'a, L: Component>(
+    lights: &'a LightQuery<L>,
+) -> impl Iterator<Item = (Entity, &'a L, &'a GlobalTransform)> {
+    lights
+        .iter()
+        .filter(|(_, _, transform, visibility)| visibility.get() && is_finite_transform(transform))
+        .map(|(entity, light, transform, _)| (entity, light, transform))
+}
+
+/// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
+/// `records`; `to_gpu` gets each light's shadow slot (see [`ShadowSlots`]). Returns how many.
 pub fn push_visible<L: Component, R>(
     lights: &LightQuery<L>,
     slots: &ShadowSlots,
@@ -129,12 +139,8 @@ pub fn push_visible<L: Component, R>(
 ) -> u32 {
     let start = records.len();
     records.extend(
-        lights
-            .iter()
-            .filter(|(_, _, transform, visibility)| {
-                visibility.get() && is_finite_transform(transform)
-            })
-            .map(|(entity, light, transform, _)| to_gpu(light, transform, slots.get(entity))),
+        lit_lights(lights)
+            .map(|(entity, light, transform)| to_gpu(light, transform, slots.get(entity))),
     );
     (records.len() - start) as u32
 }
@@ -149,7 +155,7 @@ fn with_shadow<L>(
     }
 }
 
-/// Appends the record of every visible light in `lights` with a finite transform to
+/// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
 /// `records`, its constants from `cache` (the ranges not yet limited: see
 /// [`RecordCache::limit_reach`]).
 fn push_cached<L: BuiltInLight>(
@@ -158,10 +164,7 @@ fn push_cached<L: BuiltInLight>(
     cache: &mut RecordCache<L>,
     records: &mut Vec<GpuLight>,
 ) {
-    let visible = lights
-        .iter()
-        .filter(|(_, _, transform, visibility)| visibility.get() && is_finite_transform(transform));
-    for (index, (entity, light, transform, _)) in visible.enumerate() {
+    for (index, (entity, light, transform)) in lit_lights(lights).enumerate() {
         let mut record = cache.constants(index, entity, light);
         L::place(&mut record, transform);
         record.shadow = slots.get(entity);
@@ -371,24 +374,25 @@ mod tests {
         let world = app.world_mut();
         let epsilon = world.resource::<PhongLightCulling>().epsilon;
         let mut records: Vec<GpuLight> = Vec::new();
-        let mut points =
-            world.query::<(&PhongPointLight, &GlobalTransform, &InheritedVisibility)>();
-        for (light, transform, visibility) in points.iter(world) {
-            visibility
-                .get()
-                .then(|| records.push(light.to_gpu(transform)));
-        }
-        let mut spots = world.query::<(&PhongSpotLight, &GlobalTransform, &InheritedVisibility)>();
-        for (light, transform, visibility) in spots.iter(world) {
-            visibility
-                .get()
-                .then(|| records.push(light.to_gpu(transform)));
-        }
+        push_fresh::<PhongPointLight>(world, &mut records);
+        push_fresh::<PhongSpotLight>(world, &mut records);
         let per_light_epsilon = epsilon / records.len().max(1) as f32;
         records.retain_mut(|record| limit_reach(record, per_light_epsilon));
         let mut bits: Vec<[u32; 20]> = records.iter().map(|r| bytemuck::cast(*r)).collect();
         bits.sort();
         bits
+    }
+
+    /// Appends the whole record of every visible light of kind `L`, made afresh.
+    fn push_fresh<L: BuiltInLight>(world: &mut World, records: &mut Vec<GpuLight>) {
+        let mut lights = world.query::<(&L, &GlobalTransform, &InheritedVisibility)>();
+        for (light, transform, visibility) in lights.iter(world) {
+            if visibility.get() {
+                let mut record = light.constants();
+                L::place(&mut record, transform);
+                records.push(record);
+            }
+        }
     }
 
     /// The records the gather wrote, sorted by their bits.

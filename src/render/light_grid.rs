@@ -34,7 +34,7 @@ pub struct LightGrid {
 
 /// The input of a build, compared bit for bit with the next one: the same input gives the
 /// same grid, which is then kept as it is.
-#[derive(Debug, Default, PartialEq)]
+#[derive(Debug, Default)]
 struct BuiltFrom {
     /// Each light's position and range, as bits.
     spheres: Vec<[u32; 4]>,

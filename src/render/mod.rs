@@ -45,7 +45,7 @@ mod scene_texture;
 pub use data_texture::{DATA_TEXTURE_MAX_ROWS, DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub use gather::{LightChanges, PhongLightBuffer, gather_lights};
-pub(crate) use gather::{LightQuery, push_visible};
+pub(crate) use gather::{LightQuery, lit_lights, push_visible};
 pub use gpu_types::{GpuLight, GpuLightGridHeader, GpuLightsHeader};
 pub use light_buffer::LightBufferResized;
 pub(crate) use light_buffer::{LightBuffer, MIN_CAPACITY, init_shader_buffers};

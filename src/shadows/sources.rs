@@ -2,15 +2,9 @@
 
 use super::request::{PhongShadowProjection, PhongShadowRequest, ShadowRequests};
 use crate::lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
-use crate::render::light_direction;
-use crate::validation::is_finite_transform;
+use crate::render::{LightQuery, light_direction, lit_lights};
 use bevy::{
-    camera::visibility::InheritedVisibility,
-    ecs::{
-        component::Component,
-        entity::Entity,
-        system::{Query, ResMut},
-    },
+    ecs::{component::Component, system::ResMut},
     transform::components::GlobalTransform,
 };
 
@@ -61,12 +55,10 @@ impl ShadowSource for PhongSpotLight {
 
 /// Adds the request of every visible light of kind `L` whose shadows are on.
 pub(crate) fn request_shadows<L: ShadowSource>(
-    lights: Query<(Entity, &L, &GlobalTransform, &InheritedVisibility)>,
+    lights: LightQuery<L>,
     mut requests: ResMut<ShadowRequests>,
 ) {
-    for (entity, light, transform, visibility) in &lights {
-        if visibility.get() && is_finite_transform(transform) {
-            requests.push(entity, light.shadow_request(transform));
-        }
+    for (entity, light, transform) in lit_lights(&lights) {
+        requests.push(entity, light.shadow_request(transform));
     }
 }
