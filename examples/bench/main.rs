@@ -11,6 +11,7 @@
 //! cargo run --example bench -- --shadows  # only the cost of shadows
 //! cargo run --example bench -- --webgl2   # only the storage path beside the WebGL2 one
 //! cargo run --example bench -- --ablation # only the shader ablation (--size N: at N²)
+//! cargo run --example bench -- --growth   # only how frame time grows with lights and size
 //! ```
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -28,7 +29,10 @@
 //! in the same way (`--webgl2` runs it alone). A fifth table is the shader ablation: the
 //! showcase with the Phong fragment shader cut after each stage of its work, from the
 //! constant-color floor to the full shader, at 1024² or the first `--size`, taking turns in
-//! the same way (`--ablation` runs it alone; see `ablation.rs`).
+//! the same way (`--ablation` runs it alone; see `ablation.rs`). A sixth shows how frame
+//! time grows: the field under 1 to 4,096 lights at 256², and under 64 lights from 128² to
+//! 1024², Phong with and without its light grid beside Standard and the floor, with each
+//! one's fitted cost per light per megapixel (`--growth` runs it alone; see `growth.rs`).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -38,6 +42,7 @@
 
 mod ablation;
 mod accuracy;
+mod growth;
 mod plot;
 mod scene;
 mod timing;
@@ -56,12 +61,16 @@ struct Options {
     fallback_only: bool,
     /// Whether to run only the shader ablation.
     ablation_only: bool,
+    /// Whether to run only the table of how frame time grows.
+    growth_only: bool,
     /// Whether to print one measurement and exit (see `one_row_in_own_process`).
     one_row: bool,
     /// The image size of the shadow table and the WebGL2 one, pixels.
     shadow_size: u32,
     /// The image size of the shader ablation, pixels.
     ablation_size: u32,
+    /// The points of the table of how frame time grows.
+    growth: growth::Sweep,
     /// How many times each row of the tables whose rows take turns (shadows, WebGL2,
     /// ablation) is measured.
     rounds: usize,
@@ -82,6 +91,7 @@ impl Options {
         options.shadows_only = args.iter().any(|arg| arg == "--shadows");
         options.fallback_only = args.iter().any(|arg| arg == "--webgl2");
         options.ablation_only = args.iter().any(|arg| arg == "--ablation");
+        options.growth_only = args.iter().any(|arg| arg == "--growth");
         options.one_row = args.iter().any(|arg| arg == "--one-row");
         let values = |flag: &str| -> Vec<String> {
             args.windows(2)
@@ -134,9 +144,11 @@ impl Options {
                 shadows_only: false,
                 fallback_only: false,
                 ablation_only: false,
+                growth_only: false,
                 one_row: false,
                 shadow_size: 128,
                 ablation_size: 128,
+                growth: growth::Sweep::quick(),
                 rounds: 1,
                 culling: PhongLightCulling::default(),
                 sizes: vec![128],
@@ -155,9 +167,11 @@ impl Options {
             shadows_only: false,
             fallback_only: false,
             ablation_only: false,
+            growth_only: false,
             one_row: false,
             shadow_size: 1024,
             ablation_size: 1024,
+            growth: growth::Sweep::full(),
             rounds: 5,
             culling: PhongLightCulling::default(),
             sizes: vec![512, 1024],
@@ -241,7 +255,10 @@ fn main() {
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
     }
-    let everything = !options.shadows_only && !options.fallback_only && !options.ablation_only;
+    let everything = !options.shadows_only
+        && !options.fallback_only
+        && !options.ablation_only
+        && !options.growth_only;
     if everything {
         frame_times(&options, directory);
         if options.variants {
@@ -256,6 +273,9 @@ fn main() {
             options.culling,
             directory,
         );
+    }
+    if everything || options.growth_only {
+        growth::table(&options.growth, options.frames, options.culling, directory);
     }
     if everything || options.shadows_only {
         shadow_costs(&options, directory);

@@ -83,6 +83,8 @@ fn chart(
     let x_format = move |x: &f64| {
         if x_scientific {
             format!("{x:.0e}")
+        } else if *x < 1.0 {
+            format!("{x:.2}")
         } else {
             format!("{x:.0}")
         }

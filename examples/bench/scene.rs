@@ -44,9 +44,11 @@ impl Scene {
                 "showcase on a floor, shadows {}",
                 if shadows { "on" } else { "off" }
             ),
-            Scene::Field { lights } => format!("field, {lights} point lights with range"),
+            Scene::Field { lights } => {
+                format!("field, {} with range", counted_point_lights(lights))
+            }
             Scene::FieldWithoutRanges { lights } => {
-                format!("field, {lights} point lights without range")
+                format!("field, {} without range", counted_point_lights(lights))
             }
         }
     }
@@ -58,6 +60,11 @@ impl Scene {
             _ => Vec3::new(0.0, 14.0, 16.0),
         }
     }
+}
+
+/// "1 point light", "16 point lights".
+fn counted_point_lights(count: usize) -> String {
+    format!("{count} point light{}", if count == 1 { "" } else { "s" })
 }
 
 /// Edge length of every shadow map, both materials' (Bevy's directional and point light
