@@ -4,7 +4,7 @@
 // touching them. See docs/design/webgl2.md.
 #define_import_path bevy_phong::scene
 
-#import bevy_phong::types::{PhongLight, PhongShadowView}
+#import bevy_phong::types::{PhongLight, PhongShadowView, light_from_words}
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
 #import bevy_phong::bindings::scene_data
 #import bevy_phong::data_texture::{data_light, data_texel}
@@ -123,9 +123,17 @@ fn spot_count() -> u32 {
     return lights.spot_count;
 }
 
-// The light at `index` in the light buffer.
+// The light at `index` in the light buffer, read as its five 16-byte words: lavapipe reads
+// a storage buffer one pixel and one load at a time, and a record read field by field takes
+// ten loads (docs/design/performance.md, "Reading the records").
 fn light_at(index: u32) -> PhongLight {
-    return lights.lights[index];
+    return light_from_words(
+        lights.lights[index][0],
+        lights.lights[index][1],
+        lights.lights[index][2],
+        lights.lights[index][3],
+        lights.lights[index][4],
+    );
 }
 
 // The light grid's corner of cell (0, 0, 0), world space.

@@ -27,6 +27,22 @@ struct PhongLight {
     shadow: u32,
 }
 
+// The `PhongLight` whose 80 bytes are the words `a` to `e`, in order.
+fn light_from_words(a: vec4<u32>, b: vec4<u32>, c: vec4<u32>, d: vec4<u32>, e: vec4<u32>) -> PhongLight {
+    return PhongLight(
+        bitcast<vec3<f32>>(a.xyz),
+        bitcast<f32>(a.w),
+        bitcast<vec3<f32>>(b.xyz),
+        bitcast<f32>(b.w),
+        bitcast<vec3<f32>>(c.xyz),
+        bitcast<f32>(c.w),
+        bitcast<vec3<f32>>(d.xyz),
+        bitcast<f32>(d.w),
+        bitcast<vec3<f32>>(e.xyz),
+        e.w,
+    );
+}
+
 // The light buffer (`GpuLightsHeader` in src/render/gpu_types.rs): the ambient light, then
 // `directional_count` directional lights,
 // `point_count` point lights and `spot_count` spot lights of unlimited reach (every fragment
@@ -40,7 +56,8 @@ struct PhongLights {
     spot_count: u32,
     grid_point_count: u32,
     grid_spot_count: u32,
-    lights: array<PhongLight>,
+    // Each light's `PhongLight` as five 16-byte words (`light_from_words`).
+    lights: array<array<vec4<u32>, 5>>,
 }
 
 // The light grid: cubic cells over the lights of finite reach. `data` holds one record per

@@ -60,6 +60,24 @@ fn gpu_light_matches_wgsl_phong_light() {
 }
 
 #[test]
+fn each_light_in_the_wgsl_light_buffer_takes_one_gpu_light() {
+    let module = types_module();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, ty)| ty.name.as_deref() == Some("PhongLights"))
+        .expect("struct PhongLights in bevy_phong::types");
+    let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+        panic!("PhongLights is a struct");
+    };
+    let lights = members.last().expect("PhongLights ends with its lights");
+    let naga::TypeInner::Array { stride, .. } = module.types[lights.ty].inner else {
+        panic!("PhongLights.lights is an array");
+    };
+    assert_eq!(stride as usize, size_of::<GpuLight>());
+}
+
+#[test]
 fn light_buffer_header_matches_wgsl_phong_lights() {
     let (_, members) = wgsl_struct(&types_module(), "PhongLights");
     let rust = [
