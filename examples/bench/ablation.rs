@@ -1,8 +1,10 @@
 //! The shader ablation: the showcase drawn with `PhongMaterial`'s fragment shader cut after
 //! each stage of its work, beside the constant-color floor, so that each stage's cost is the
-//! difference between two rows measured in the same run. Each stage reads only the fields
-//! of the light records that its work uses; a last row reads every field the full shader
-//! reads and computes nothing, which splits the lights' cost into reading and arithmetic.
+//! difference between two rows measured in the same run. Each stage reads only the 16-byte
+//! words of the light records that hold the fields its work uses; a row reads every field
+//! the full shader reads and computes nothing, and another does the full shader's work
+//! with the lights written into the shader: together they split the lights' cost into
+//! reading and arithmetic. `StandardMaterial` is the last row, for the ratio to it.
 //!
 //! A stage is a set of the shader's cut-point defs (`PHONG_ABLATION_*`, set by nothing but
 //! this benchmark), added to the material's fragment shader asset
@@ -19,6 +21,10 @@
 //! - `PHONG_ABLATION_NO_HIGHLIGHT` (`lighting.wgsl`): each light's term is its diffuse part.
 //! - `PHONG_ABLATION_NO_AMBIENT` (`shading.wgsl`): the color is the lights' sum alone (no
 //!   ambient, no emissive).
+//! - `PHONG_ABLATION_CONSTANT_LIGHTS` (`shading.wgsl`): the full shader with the showcase's
+//!   three light records written into it: every light's arithmetic, no record read, no
+//!   grid. Its picture is the full shader's (the table shows the pixels that differ), so
+//!   the row is the cost of the lighting if reading the lights cost nothing.
 
 use crate::{
     alternating_medians, ms,
@@ -44,8 +50,9 @@ const PHONG: Shading = Shading::Phong(Some(SpecularModel::Phong));
 
 /// The rows: from the floor to the shader without cuts, each stage adding one part of the
 /// work to the row above; then the loops reading every field the full shader reads, which
-/// adds to the surface set-up.
-const STAGES: [Stage; 8] = [
+/// adds to the surface set-up; then the full shader with the lights written into it; then
+/// `StandardMaterial`, which the targets are also stated against.
+const STAGES: [Stage; 10] = [
     Stage {
         name: "floor: constant color",
         shading: Shading::Constant,
@@ -102,6 +109,18 @@ const STAGES: [Stage; 8] = [
         ],
         builds_on: Some(1),
     },
+    Stage {
+        name: "full shader, the three lights written into it (no record read)",
+        shading: PHONG,
+        defs: &["PHONG_ABLATION_CONSTANT_LIGHTS"],
+        builds_on: Some(6),
+    },
+    Stage {
+        name: "StandardMaterial under the equivalent Bevy lights (for scale)",
+        shading: Shading::Standard,
+        defs: &[],
+        builds_on: None,
+    },
 ];
 
 /// The ablation table of the showcase at `size`²: the rows take turns over `rounds` rounds
@@ -136,8 +155,10 @@ pub fn table(
         median
     });
     let floor = times[0];
+    let standard = times[STAGES.len() - 1];
     let mut table = String::from(
-        "| stage | ms | × floor | added ms | pixels changed |\n|---|---|---|---|---|\n",
+        "| stage | ms | × floor | × Standard | added ms | pixels changed |\n\
+         |---|---|---|---|---|---|\n",
     );
     for (row, stage) in STAGES.iter().enumerate() {
         let (added, changed) = match stage.builds_on {
@@ -149,16 +170,17 @@ pub fn table(
         };
         let _ = writeln!(
             table,
-            "| {} | {:.1} | {:.2} | {added} | {changed} |",
+            "| {} | {:.1} | {:.2} | {:.2} | {added} | {changed} |",
             stage.name,
             times[row],
             times[row] / floor,
+            times[row] / standard,
         );
     }
     println!(
         "\nThe shader ablation, {} at {size}², median ms (the median of {rounds} rounds); \
          added ms and pixels changed: from the row each builds on (the row above; for the \
-         last, the surface set-up):\n\n{table}",
+         reading row, the surface set-up; for the lights written in, the full shader):\n\n{table}",
         scene.name()
     );
     write(&directory.join("ablation.csv"), &csv);

@@ -11,6 +11,9 @@
 #ifdef PHONG_ABLATION_NO_TERMS
 #import bevy_phong::types::PhongLight
 #endif
+#ifdef PHONG_ABLATION_CONSTANT_LIGHTS
+#import bevy_phong::types::PhongLight
+#endif
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -42,6 +45,9 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
 // kind (see `incidence`); while some light casts shadows (PHONG_SHADOWS), each light's
 // terms are scaled by its shadow factors.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
+#ifdef PHONG_ABLATION_CONSTANT_LIGHTS
+    return showcase_lights(surface);
+#else
     let point_start = directional_count();
     let spot_start = point_start + point_count();
     let end = spot_start + spot_count();
@@ -62,6 +68,7 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
 #endif
     }
     return color + grid_lights(surface);
+#endif
 }
 
 // Σ over the point and spot lights listed in the grid cell that holds the surface point.
@@ -89,6 +96,32 @@ fn grid_lights(surface: PhongSurface) -> vec3<f32> {
     }
     return color;
 }
+
+#ifdef PHONG_ABLATION_CONSTANT_LIGHTS
+// The benchmark's shader ablation only (examples/bench/ablation.rs): the records the gather
+// makes of the showcase's three lights (examples/bench/scene.rs; the point lights' range
+// unlimited, which their reach, over 100 units, is in that scene), written into the shader.
+var<private> SHOWCASE_LIGHTS: array<PhongLight, 3> = array<PhongLight, 3>(
+    PhongLight(vec3(0.0), 0.0, vec3(-1.0, 0.0, 0.0), 0.0, vec3(1.0), 0.0, vec3(1.0), 0.0, vec3(0.0), 0u),
+    PhongLight(vec3(-3.0, 3.0, 0.0), 3.4028235e38, vec3(0.0), 0.0, vec3(1.0, 0.0, 0.0), 0.0, vec3(1.0, 0.0, 0.0), 0.0, vec3(1.0, 0.0, 0.2), 0u),
+    PhongLight(vec3(3.0, 3.0, 0.0), 3.4028235e38, vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0, vec3(1.0, 0.0, 0.2), 0u),
+);
+
+// The first loop of `direct_lights` over `SHOWCASE_LIGHTS`: every light's arithmetic, and
+// no light record read from the scene data (the loop's count still is, so that the
+// compiler cannot fold the lights into the code).
+fn showcase_lights(surface: PhongSurface) -> vec3<f32> {
+    let end = directional_count() + 2u;
+    var color = vec3<f32>(0.0);
+    for (var index = 0u; index < end; index += 1u) {
+        let light = SHOWCASE_LIGHTS[min(index, 2u)];
+        let kind = select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= 1u);
+        let arriving = incidence(surface, light, kind);
+        color += light_of_kind(surface, light, kind, arriving, vec2<f32>(1.0));
+    }
+    return color;
+}
+#endif
 
 #ifdef PHONG_ABLATION_NO_TERMS
 // The benchmark's shader ablation only (examples/bench/ablation.rs): the sum of the fields
