@@ -5,20 +5,23 @@
 //! f64 reference model.
 //!
 //! ```sh
-//! cargo run --example bench             # the full tables (about half an hour)
+//! cargo run --example bench             # every table (about 45 minutes)
 //! cargo run --example bench -- --quick  # a small smoke run (what CI runs)
-//! cargo run --example bench -- --scene showcase --size 1024 --no-variants  # one row
+//! cargo run --example bench -- --frame-times --scene showcase --size 1024 --no-variants
 //! cargo run --example bench -- --shadows  # only the cost of shadows
 //! cargo run --example bench -- --webgl2   # only the storage path beside the WebGL2 one
 //! cargo run --example bench -- --ablation # only the shader ablation (--size N: at N²)
 //! cargo run --example bench -- --growth   # only how frame time grows with lights and size
 //! ```
 //!
+//! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`)
+//! combine: with any of them, the run measures those tables and no other.
+//!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
 //! fourth table runs each of its measurements that way, in a process of its own.
 //!
-//! `--scene` (`showcase`, `field16`, `field256`, `field4096`) and `--size` may be repeated
-//! to pick rows of the frame-time table; `--culling` (`none`, `exact`, `default`) sets the
+//! The first table is the frame times (`--frame-times`): `--scene` (`showcase`, `field16`,
+//! `field256`, `field4096`) and `--size` may be repeated to pick its rows; `--culling` (`none`, `exact`, `default`) sets the
 //! Phong column's `PhongLightCulling`; `--no-variants` skips the second table. A third table
 //! gives the cost of shadows: the showcase on a floor with its three lights casting shadows
 //! or not, Phong beside `StandardMaterial` (each with 1024² shadow maps), at 1024²
@@ -29,10 +32,10 @@
 //! in the same way (`--webgl2` runs it alone). A fifth table is the shader ablation: the
 //! showcase with the Phong fragment shader cut after each stage of its work, from the
 //! constant-color floor to the full shader, at 1024² or the first `--size`, taking turns in
-//! the same way (`--ablation` runs it alone; see `ablation.rs`). A sixth shows how frame
-//! time grows: the field under 1 to 4,096 lights at 256², and under 64 lights from 128² to
+//! the same way (`--ablation`; see `ablation.rs`). A sixth shows how frame time grows: the
+//! field under 1 to 4,096 lights at 128² and 256², and under 64 lights from 128² to
 //! 1024², Phong with and without its light grid beside Standard and the floor, with each
-//! one's fitted cost per light per megapixel (`--growth` runs it alone; see `growth.rs`).
+//! one's fitted cost per light per megapixel (`--growth`; see `growth.rs`).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -55,14 +58,8 @@ use timing::{Frames, median_frame_time};
 
 struct Options {
     variants: bool,
-    /// Whether to run only the shadow table.
-    shadows_only: bool,
-    /// Whether to run only the table of the storage path beside the WebGL2 one.
-    fallback_only: bool,
-    /// Whether to run only the shader ablation.
-    ablation_only: bool,
-    /// Whether to run only the table of how frame time grows.
-    growth_only: bool,
+    /// The tables to run.
+    tables: Tables,
     /// Whether to print one measurement and exit (see `one_row_in_own_process`).
     one_row: bool,
     /// The image size of the shadow table and the WebGL2 one, pixels.
@@ -88,10 +85,7 @@ impl Options {
         let args: Vec<String> = std::env::args().skip(1).collect();
         let mut options = Self::defaults(args.iter().any(|arg| arg == "--quick"));
         options.variants = !args.iter().any(|arg| arg == "--no-variants");
-        options.shadows_only = args.iter().any(|arg| arg == "--shadows");
-        options.fallback_only = args.iter().any(|arg| arg == "--webgl2");
-        options.ablation_only = args.iter().any(|arg| arg == "--ablation");
-        options.growth_only = args.iter().any(|arg| arg == "--growth");
+        options.tables = Tables::from_args(&args);
         options.one_row = args.iter().any(|arg| arg == "--one-row");
         let values = |flag: &str| -> Vec<String> {
             args.windows(2)
@@ -141,10 +135,7 @@ impl Options {
         if quick {
             return Self {
                 variants: true,
-                shadows_only: false,
-                fallback_only: false,
-                ablation_only: false,
-                growth_only: false,
+                tables: Tables::ALL,
                 one_row: false,
                 shadow_size: 128,
                 ablation_size: 128,
@@ -164,10 +155,7 @@ impl Options {
         }
         Self {
             variants: true,
-            shadows_only: false,
-            fallback_only: false,
-            ablation_only: false,
-            growth_only: false,
+            tables: Tables::ALL,
             one_row: false,
             shadow_size: 1024,
             ablation_size: 1024,
@@ -189,6 +177,50 @@ impl Options {
                 budget: Duration::from_secs(20),
             },
         }
+    }
+}
+
+/// Which tables a run measures.
+#[derive(Clone, Copy, Debug)]
+struct Tables {
+    /// The frame times of the picked scenes and sizes, then (unless `--no-variants`) the
+    /// variants' run time against error.
+    frame_times: bool,
+    /// The cost of shadows.
+    shadows: bool,
+    /// The storage path beside the WebGL2 one.
+    fallback: bool,
+    /// The shader ablation.
+    ablation: bool,
+    /// How frame time grows.
+    growth: bool,
+}
+
+impl Tables {
+    const ALL: Self = Self {
+        frame_times: true,
+        shadows: true,
+        fallback: true,
+        ablation: true,
+        growth: true,
+    };
+
+    /// The tables whose flags are in `args`, or all of them when none is.
+    fn from_args(args: &[String]) -> Self {
+        let named = |flag: &str| args.iter().any(|arg| arg == flag);
+        let picked = Self {
+            frame_times: named("--frame-times"),
+            shadows: named("--shadows"),
+            fallback: named("--webgl2"),
+            ablation: named("--ablation"),
+            growth: named("--growth"),
+        };
+        let any = picked.frame_times
+            || picked.shadows
+            || picked.fallback
+            || picked.ablation
+            || picked.growth;
+        if any { picked } else { Self::ALL }
     }
 }
 
@@ -255,17 +287,14 @@ fn main() {
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
     }
-    let everything = !options.shadows_only
-        && !options.fallback_only
-        && !options.ablation_only
-        && !options.growth_only;
-    if everything {
+    let tables = options.tables;
+    if tables.frame_times {
         frame_times(&options, directory);
         if options.variants {
             time_against_error(&options, directory);
         }
     }
-    if everything || options.ablation_only {
+    if tables.ablation {
         ablation::table(
             options.ablation_size,
             options.rounds,
@@ -274,13 +303,13 @@ fn main() {
             directory,
         );
     }
-    if everything || options.growth_only {
+    if tables.growth {
         growth::table(&options.growth, options.frames, options.culling, directory);
     }
-    if everything || options.shadows_only {
+    if tables.shadows {
         shadow_costs(&options, directory);
     }
-    if everything || options.fallback_only {
+    if tables.fallback {
         fallback_costs(&options, directory);
     }
 }
