@@ -21,8 +21,9 @@
 //! fourth table runs each of its measurements that way, in a process of its own.
 //!
 //! The first table is the frame times (`--frame-times`): `--scene` (`showcase`, `field16`,
-//! `field256`, `field4096`) and `--size` may be repeated to pick its rows; `--culling` (`none`, `exact`, `default`) sets the
-//! Phong column's `PhongLightCulling`; `--no-variants` skips the second table. A third table
+//! `field256`, `field4096`) and `--size` may be repeated to pick its rows; `--culling`
+//! (`none`, `exact`, `default`) sets the Phong column's `PhongLightCulling`;
+//! `--no-variants` skips the second table. A third table
 //! gives the cost of shadows: the showcase on a floor with its three lights casting shadows
 //! or not, Phong beside `StandardMaterial` (each with 1024² shadow maps), at 1024²
 //! (`--shadows` runs it alone; its rows take turns over five rounds, each the median of

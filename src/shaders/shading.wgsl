@@ -7,13 +7,7 @@
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
-#import bevy_phong::types::{GRID_CELL_WORDS, PhongSurface}
-#ifdef PHONG_ABLATION_NO_TERMS
-#import bevy_phong::types::PhongLight
-#endif
-#ifdef PHONG_ABLATION_CONSTANT_LIGHTS
-#import bevy_phong::types::PhongLight
-#endif
+#import bevy_phong::types::{GRID_CELL_WORDS, PhongLight, PhongSurface}
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
