@@ -1,21 +1,26 @@
-//! The CPU cost of the gather system: writing 10, 1,000 and 10,000 lights into the light
-//! buffer when all of them moved, when all of them changed color, and when all of them were
-//! marked changed with nothing different; and checking them when none changed.
+//! The CPU cost of the gather and cluster systems: writing 10, 1,000 and 10,000 lights into
+//! the light buffer and listing them in a camera's clusters when all of them moved, when all
+//! of them changed color, and when all of them were marked changed with nothing different;
+//! and checking them when none changed.
 //!
 //! ```sh
 //! cargo bench --bench gather
 //! ```
 
+use bevy::camera::primitives::Frustum;
 use bevy::{
     asset::AssetPlugin, camera::visibility::InheritedVisibility,
     ecs::schedule::SingleThreadedExecutor, prelude::*, transform::TransformPlugin,
 };
-use bevy_phong::{prelude::*, render::gather_lights};
+use bevy_phong::{
+    prelude::*,
+    render::{assign_lights_to_clusters, gather_lights},
+};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::time::{Duration, Instant};
 
-/// A world with `count` visible point and spot lights and the plugin's resources, and a
-/// schedule that runs the gather system alone.
+/// A world with `count` visible point and spot lights, a camera that sees them all, and the
+/// plugin's resources, and a schedule that runs the gather and cluster systems alone.
 fn world_with_lights(count: usize) -> (App, Schedule) {
     let mut app = App::new();
     app.add_plugins((
@@ -45,10 +50,25 @@ fn world_with_lights(count: usize) -> (App, Schedule) {
             ));
         }
     }
-    // Single-threaded, so that the timing is the system's and not the executor's.
+    // The camera above the lights (x 0 to 100, z 0 to 100), looking down at their middle.
+    let transform =
+        Transform::from_xyz(50.0, 80.0, 130.0).looking_at(Vec3::new(50.0, 0.0, 50.0), Vec3::Y);
+    let projection = Projection::Perspective(PerspectiveProjection {
+        aspect_ratio: 16.0 / 9.0,
+        ..default()
+    });
+    let frustum: Frustum = projection.compute_frustum(&GlobalTransform::from(transform));
+    world.spawn((
+        Camera3d::default(),
+        projection,
+        frustum,
+        transform,
+        GlobalTransform::from(transform),
+    ));
+    // Single-threaded, so that the timing is the systems' and not the executor's.
     let mut schedule = Schedule::default();
     schedule.set_executor(SingleThreadedExecutor::new());
-    schedule.add_systems(gather_lights);
+    schedule.add_systems((gather_lights, assign_lights_to_clusters).chain());
     schedule.run(app.world_mut());
     (app, schedule)
 }
@@ -56,7 +76,7 @@ fn world_with_lights(count: usize) -> (App, Schedule) {
 /// How every light is changed before each timed gather.
 #[derive(Clone, Copy)]
 enum Change {
-    /// Moved along x, back and forth: every record's position and the light grid change.
+    /// Moved along x, back and forth: every record's position and the clusters change.
     Moved,
     /// Given another color, back and forth: every record's constants change, and its
     /// ε-limited reach with them.

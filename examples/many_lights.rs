@@ -1,12 +1,12 @@
 //! Two thousand colored point lights, each with a range, circling over a field of spheres:
-//! the light grid lets each fragment loop over the few dozen lights that reach it.
+//! per-camera light clusters let each fragment loop over the few dozen lights that reach it.
 //!
 //! ```sh
 //! cargo run --example many_lights                       # a window, where a display exists
 //! cargo run --example many_lights -- --headless out.png # a PNG, and exit
 //! ```
 //!
-//! Keys: G turns the light grid on and off (the frame time printed each second shows the
+//! Keys: G turns the light clusters on and off (the frame time printed each second shows the
 //! difference), B switches Phong / Blinn-Phong, Space pauses the lights.
 
 mod support;
@@ -35,7 +35,7 @@ fn main() {
     let mut app = support::example_app("many_lights");
     support::show_key_help(
         &mut app,
-        "G light grid on/off, B Phong / Blinn-Phong, Space pause",
+        "G light clusters on/off, B Phong / Blinn-Phong, Space pause",
     )
     .add_plugins((PhongPlugin, FrameTimeDiagnosticsPlugin::default()))
     .insert_resource(PhongAmbientLight {
@@ -144,8 +144,11 @@ fn keys(
     mut materials: ResMut<Assets<PhongMaterial>>,
 ) {
     if keys.just_pressed(KeyCode::KeyG) {
-        culling.grid = !culling.grid;
-        println!("light grid {}", if culling.grid { "on" } else { "off" });
+        culling.clusters = !culling.clusters;
+        println!(
+            "light clusters {}",
+            if culling.clusters { "on" } else { "off" }
+        );
     }
     if keys.just_pressed(KeyCode::KeyB) {
         support::switch_specular_model(&mut materials);

@@ -1,5 +1,6 @@
 //! Skipping the lights that cannot reach a surface point: each point and spot light's
-//! influence radius, and the world-space grid that lists, per cell, the lights that reach it.
+//! influence radius, and the clusters of each camera's view that list the lights that may
+//! reach them.
 //!
 //! A point or spot light reaches no further than its `range`. With [`PhongLightCulling`]'s
 //! `epsilon` (ε) above zero it also stops where its light has faded below `ε / n`, `n` being
@@ -10,15 +11,21 @@
 //! full-strength material colors), however many lights the scene has. A light without
 //! fall-off (`Decay::NONE`) has no influence radius.
 //!
-//! Lights with a finite reach (a range, an influence radius, or both) are sorted into a
-//! world-space grid of cubic cells. A fragment finds its cell and loops only over the lights
-//! listed there; lights of unlimited reach and directional lights are looped over by every
-//! fragment. Sorting is conservative: a light is listed in every cell its sphere touches, so
-//! the grid itself changes no result. See `render::light_grid` for the cell size.
+//! Lights with a finite reach (a range, an influence radius, or both) are listed in
+//! clusters, per camera: each active 3D camera's view is cut into tiles of the screen ×
+//! slices of depth ([`PhongViewClusters`], 16 × 9 × 24 by default, as Bevy cuts its own), and
+//! each cluster lists the lights whose sphere may meet it. A fragment finds its view's
+//! cluster and loops only over the lights listed there; lights of unlimited reach and
+//! directional lights are looped over by every fragment. So a light that reaches no
+//! camera's view costs no fragment anything, however large the world. Listing is
+//! conservative: a light is listed in every cluster its sphere may touch, so clusters
+//! change no result. See `render::clusters` for the cut and `render::view_key` for how a
+//! fragment finds its view.
 
 use bevy::{
-    ecs::resource::Resource,
-    prelude::{ReflectDefault, ReflectResource},
+    ecs::{component::Component, resource::Resource},
+    math::UVec2,
+    prelude::{ReflectComponent, ReflectDefault, ReflectResource},
     reflect::Reflect,
 };
 use serde::{Deserialize, Serialize};
@@ -47,10 +54,10 @@ pub struct PhongLightCulling {
     /// `ε · (k_d + k_s · strength)`. `0` skips only past each light's `range`: the exact
     /// SPEC.md model. Default [`PhongLightCulling::DEFAULT_EPSILON`].
     pub epsilon: f32,
-    /// Whether lights of finite reach are sorted into a world-space grid, so that a fragment
-    /// loops over the lights of its cell instead of all of them. Exact either way. Default
-    /// `true`.
-    pub grid: bool,
+    /// Whether lights of finite reach are listed in each view's clusters, so that a fragment
+    /// loops over the lights of its cluster instead of all of them. Exact either way.
+    /// Default `true`.
+    pub clusters: bool,
 }
 
 impl PhongLightCulling {
@@ -59,17 +66,17 @@ impl PhongLightCulling {
     /// 8-bit image rounds to the same value or its neighbour.
     pub const DEFAULT_EPSILON: f32 = 1.0 / 1024.0;
 
-    /// No skipping by ε (only ranges), no grid: every fragment loops over every light, as
-    /// SPEC.md writes the sum.
+    /// No skipping by ε (only ranges), no clusters: every fragment loops over every light,
+    /// as SPEC.md writes the sum.
     pub const NONE: Self = Self {
         epsilon: 0.0,
-        grid: false,
+        clusters: false,
     };
 
-    /// The exact model (ε = 0) with the grid: lights are skipped only past their range.
+    /// The exact model (ε = 0) with clusters: lights are skipped only past their range.
     pub const EXACT: Self = Self {
         epsilon: 0.0,
-        grid: true,
+        clusters: true,
     };
 }
 
@@ -77,7 +84,48 @@ impl Default for PhongLightCulling {
     fn default() -> Self {
         Self {
             epsilon: Self::DEFAULT_EPSILON,
-            grid: true,
+            clusters: true,
+        }
+    }
+}
+
+/// How a camera's view is cut into light clusters: `tiles.x × tiles.y` tiles of the screen
+/// times `slices` slices of depth (logarithmic from the projection's `near` to its `far` for
+/// a perspective camera, even for an orthographic one, one slice for a custom projection).
+/// A component on a camera; without it a camera gets [`PhongViewClusters::default`].
+///
+/// Finer clusters list fewer lights per fragment but cost more to fill on the CPU and more
+/// memory (16 bytes per cluster, 4 per light listed). Values are clamped to
+/// `1..=`[`Self::MAX_TILES`] tiles along each axis and `1..=`[`Self::MAX_SLICES`] slices.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Reflect)]
+#[reflect(Component, Default, Debug, PartialEq, Clone)]
+pub struct PhongViewClusters {
+    /// Tiles across and down the view. Default 16 × 9.
+    pub tiles: UVec2,
+    /// Slices of depth. Default 24.
+    pub slices: u32,
+}
+
+impl PhongViewClusters {
+    /// Most tiles along one axis.
+    pub const MAX_TILES: u32 = 64;
+    /// Most depth slices.
+    pub const MAX_SLICES: u32 = 64;
+
+    /// These values brought into their ranges.
+    pub fn clamped(self) -> Self {
+        Self {
+            tiles: self.tiles.clamp(UVec2::ONE, UVec2::splat(Self::MAX_TILES)),
+            slices: self.slices.clamp(1, Self::MAX_SLICES),
+        }
+    }
+}
+
+impl Default for PhongViewClusters {
+    fn default() -> Self {
+        Self {
+            tiles: UVec2::new(16, 9),
+            slices: 24,
         }
     }
 }

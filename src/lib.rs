@@ -54,9 +54,11 @@
 //!   maximum count.
 //! - **Culling** ([`culling`]) skips the lights that cannot reach a point: past each light's
 //!   range, and (with [`PhongLightCulling`]'s ε) where it has faded below a bound on the
-//!   total error; a world-space light grid lets each fragment loop over only the lights of
-//!   its cell. Materials without a highlight use a shader variant without the specular
-//!   term ([`PhongMaterialKey`]).
+//!   total error; each camera's view is cut into clusters ([`PhongViewClusters`]) that
+//!   list the lights that may reach them, so each fragment loops over only the lights of
+//!   its cluster, and a light that reaches no view costs nothing per fragment. Materials
+//!   without a highlight use a shader variant without the specular term
+//!   ([`PhongMaterialKey`]).
 //! - **The light buffer** ([`render`]) is a storage buffer that the gather system rewrites
 //!   in the frames where a light changed; see that module for how it stays bound.
 //! - **Shaders** are embedded: `bevy_phong::types`, `bevy_phong::lighting` (one function per
@@ -102,7 +104,7 @@ mod surface_inputs;
 mod test_app;
 pub mod validation;
 
-pub use culling::PhongLightCulling;
+pub use culling::{PhongLightCulling, PhongViewClusters};
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
@@ -121,7 +123,7 @@ pub mod prelude {
     pub use crate::{
         Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCulling,
         PhongMaterial, PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongShadows,
-        PhongSpotLight, SpecularModel,
+        PhongSpotLight, PhongViewClusters, SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 

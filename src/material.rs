@@ -74,7 +74,7 @@ impl SpecularModel {
 /// [`normal_map_texture`]: Self::normal_map_texture
 /// # Lights and shadows
 ///
-/// The material holds only surface data. The lights, the light grid and the shadow maps
+/// The material holds only surface data. The lights, their clusters and the shadow maps
 /// are the plugin's: its bind group gets them from the render world when it is built (see
 /// [`crate::render`]).
 #[derive(Asset, Clone, Debug, Reflect)]

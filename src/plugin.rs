@@ -1,13 +1,16 @@
 //! [`PhongPlugin`] and the system sets it runs in.
 
 use crate::{
-    culling::PhongLightCulling,
+    culling::{PhongLightCulling, PhongViewClusters},
     lights::{
         Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
         PhongShadows, PhongSpotLight,
     },
     material::{PhongMaterial, SpecularModel},
-    render::{LightBufferResized, PhongLightBuffer, gather_lights, refresh_material_bind_groups},
+    render::{
+        LightBufferResized, PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters,
+        gather_lights, refresh_material_bind_groups,
+    },
     scene::{
         PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
         spawn_phong_scenes,
@@ -48,7 +51,8 @@ pub enum PhongSystems {
     /// After this set, the shadow maps of this frame are laid out: each shadow-casting light
     /// has its views, and each view its casters.
     GatherShadows,
-    /// After this set, the light buffer holds every visible light of this frame.
+    /// After this set, the light buffer holds every visible light of this frame, and the
+    /// cluster buffer every active 3D camera's clusters.
     GatherLights,
     /// After this set, every material whose light buffer was reallocated this frame is
     /// marked modified, so its bind group is rebuilt before it is drawn.
@@ -61,9 +65,11 @@ impl Plugin for PhongPlugin {
         app.init_resource::<PhongAmbientLight>()
             .init_resource::<PhongLightCulling>()
             .init_resource::<PhongLightBuffer>()
+            .init_resource::<PhongLightClusters>()
             .add_message::<LightBufferResized>()
             .register_type::<PhongAmbientLight>()
             .register_type::<PhongLightCulling>()
+            .register_type::<PhongViewClusters>()
             .register_type::<PhongDirectionalLight>()
             .register_type::<PhongPointLight>()
             .register_type::<PhongSpotLight>()
@@ -103,7 +109,13 @@ impl Plugin for PhongPlugin {
                 )
                     .in_set(PhongSystems::Validate),
             )
-            .add_systems(PostUpdate, gather_lights.in_set(PhongSystems::GatherLights));
+            .add_systems(
+                PostUpdate,
+                (gather_lights, assign_lights_to_clusters)
+                    .chain()
+                    .after(VisibilitySystems::UpdateFrusta)
+                    .in_set(PhongSystems::GatherLights),
+            );
         crate::shadows::add_shadow_gather(app);
 
         // The shaders are registered wherever Bevy's renderer is added, also without a render
@@ -134,7 +146,7 @@ impl Plugin for PhongPlugin {
         app.add_systems(
             PostUpdate,
             crate::render::pack_scene_texture
-                .after(gather_lights)
+                .after(assign_lights_to_clusters)
                 .in_set(PhongSystems::GatherLights),
         );
         app.sub_app_mut(RenderApp).add_systems(

@@ -23,7 +23,7 @@
 //!   ambient, no emissive).
 //! - `PHONG_ABLATION_CONSTANT_LIGHTS` (`shading.wgsl`): the full shader with the showcase's
 //!   three light records written into it: every light's arithmetic, no record read, no
-//!   grid. Its picture is the full shader's (the table shows the pixels that differ), so
+//!   clusters. Its picture is the full shader's (the table shows the pixels that differ), so
 //!   the row is the cost of the lighting if reading the lights cost nothing.
 
 use crate::{

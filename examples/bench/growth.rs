@@ -1,6 +1,6 @@
 //! How frame time grows: the field of spheres under 1 to 4,096 point lights (each cut off at
 //! 4 units) at two sizes, and under a fixed number of lights at sizes from 128² to 1024²,
-//! drawn by Phong with its light grid, Phong without the grid, `StandardMaterial` (Bevy's
+//! drawn by Phong with its light clusters, Phong without them, `StandardMaterial` (Bevy's
 //! clustered lights) and the constant-color floor. Each shading's frame times are fitted
 //! to
 //!
@@ -12,8 +12,8 @@
 //! `d` its cost per light whatever the size (the CPU's share: gathering, clustering) and `a`
 //! what a frame costs whatever its size. The lights are spread evenly over the
 //! field, so the lights reaching a pixel grow in proportion to `N`: a shading that culls
-//! them well has a small `c`. Where the grid's column drops below the column without it,
-//! the grid pays for itself.
+//! them well has a small `c`. Where the clusters. column drops below the column without them,
+//! clusters pay for themselves.
 
 use crate::{
     ms,
@@ -93,16 +93,16 @@ const PHONG: Shading = Shading::Phong(Some(SpecularModel::Phong));
 
 const COLUMNS: [Column; 4] = [
     Column {
-        name: "Phong, light grid",
+        name: "Phong, clusters",
         shading: PHONG,
         culling: None,
     },
     Column {
-        name: "Phong, no grid",
+        name: "Phong, no clusters",
         shading: PHONG,
         culling: Some(PhongLightCulling {
             epsilon: PhongLightCulling::DEFAULT_EPSILON,
-            grid: false,
+            clusters: false,
         }),
     },
     Column {
@@ -148,7 +148,7 @@ pub fn table(sweep: &Sweep, frames: Frames, culling: PhongLightCulling, director
     for column in &COLUMNS {
         let _ = write!(table, " {} ms |", column.name);
     }
-    table.push_str(" grid / no grid | Phong / Standard |\n|---|---|");
+    table.push_str(" clusters / none | Phong / Standard |\n|---|---|");
     table.push_str(&"---|".repeat(COLUMNS.len() + 2));
     table.push('\n');
     for (&(lights, size), row) in points.iter().zip(&times) {
@@ -214,7 +214,7 @@ pub fn table(sweep: &Sweep, frames: Frames, culling: PhongLightCulling, director
         sweep
             .light_sweep_sizes
             .iter()
-            .map(|&size| where_the_grid_pays(&sweep.light_counts, &points, &times, size))
+            .map(|&size| where_the_clusters_pay(&sweep.light_counts, &points, &times, size))
             .collect::<String>(),
     );
     write(&directory.join("growth.csv"), &csv);
@@ -226,9 +226,9 @@ fn megapixels(size: u32) -> f64 {
     f64::from(size) * f64::from(size) / 1e6
 }
 
-/// The sentence that says from which light count on the grid's column is faster than the
+/// The sentence that says from which light count on the clusters. column is faster than the
 /// column without it, in the light sweep at `size`².
-fn where_the_grid_pays(
+fn where_the_clusters_pay(
     sweep_lights: &[usize],
     points: &[(usize, u32)],
     times: &[[f64; COLUMNS.len()]],
@@ -240,17 +240,17 @@ fn where_the_grid_pays(
         .filter(|((lights, at), _)| *at == size && sweep_lights.contains(lights))
         .map(|(&(lights, _), row)| (lights, row[0] / row[1]))
         .collect();
-    // The first light count from which on the grid is faster at every measured count.
+    // The first light count from which on clusters are faster at every measured count.
     let from = (0..sweep.len())
         .find(|&first| sweep[first..].iter().all(|&(_, ratio)| ratio < 1.0))
         .map(|first| sweep[first].0);
     match from {
         Some(lights) => format!(
-            "\nAt {size}² the grid is faster than no grid from {lights} light{} on (at every \
+            "\nAt {size}² clusters are faster than none from {lights} light{} on (at every \
              measured count from there).\n",
             if lights == 1 { "" } else { "s" }
         ),
-        None => format!("\nAt {size}² the grid is not faster than no grid at the largest count.\n"),
+        None => format!("\nAt {size}² clusters are not faster than none at the largest count.\n"),
     }
 }
 

@@ -35,7 +35,7 @@
 //! constant-color floor to the full shader, at 1024² or the first `--size`, taking turns in
 //! the same way (`--ablation`; see `ablation.rs`). A sixth shows how frame time grows: the
 //! field under 1 to 4,096 lights at 128² and 256², and under 64 lights from 128² to
-//! 1024², Phong with and without its light grid beside Standard and the floor, with each
+//! 1024², Phong with and without its light clusters beside Standard and the floor, with each
 //! one's fitted cost per light per megapixel (`--growth`; see `growth.rs`).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
@@ -120,8 +120,19 @@ impl Options {
                 "field16" => Some(Scene::Field { lights: 16 }),
                 "field256" => Some(Scene::Field { lights: 256 }),
                 "field4096" => Some(Scene::Field { lights: 4096 }),
+                "wide3840" => Some(Scene::WideWorld {
+                    lights: 256,
+                    far: 3_840,
+                }),
+                "wide60000" => Some(Scene::WideWorld {
+                    lights: 256,
+                    far: 60_000,
+                }),
                 other => {
-                    eprintln!("unknown scene {other}: showcase, field16, field256 or field4096");
+                    eprintln!(
+                        "unknown scene {other}: showcase, field16, field256, field4096, \
+                         wide3840 or wide60000"
+                    );
                     None
                 }
             })
@@ -235,27 +246,27 @@ struct Variant {
 }
 
 fn variants() -> Vec<Variant> {
-    let variant = |name: &str, ranged, specular_model, epsilon: f32, grid| Variant {
+    let variant = |name: &str, ranged, specular_model, epsilon: f32, clusters| Variant {
         name: name.into(),
         ranged,
         specular_model,
-        culling: PhongLightCulling { epsilon, grid },
+        culling: PhongLightCulling { epsilon, clusters },
     };
     let phong = Some(SpecularModel::Phong);
     let default_epsilon = PhongLightCulling::DEFAULT_EPSILON;
     let mut variants = vec![
-        variant("ranges: Phong, no grid", true, phong, 0.0, false),
+        variant("ranges: Phong, no clusters", true, phong, 0.0, false),
         variant(
-            "ranges: Blinn-Phong, no grid",
+            "ranges: Blinn-Phong, no clusters",
             true,
             Some(SpecularModel::BlinnPhong),
             0.0,
             false,
         ),
-        variant("ranges: no specular, no grid", true, None, 0.0, false),
-        variant("ranges: Phong, grid", true, phong, 0.0, true),
+        variant("ranges: no specular, no clusters", true, None, 0.0, false),
+        variant("ranges: Phong, clusters", true, phong, 0.0, true),
         variant(
-            "ranges: default (grid, eps=1/1024)",
+            "ranges: default (clusters, eps=1/1024)",
             true,
             phong,
             default_epsilon,
@@ -269,7 +280,7 @@ fn variants() -> Vec<Variant> {
         ("1/8", 0.125),
         ("1", 1.0),
     ] {
-        let name = format!("no ranges: grid, eps={name}");
+        let name = format!("no ranges: clusters, eps={name}");
         variants.push(variant(&name, false, phong, epsilon, true));
     }
     variants
@@ -495,6 +506,7 @@ fn frame_times(options: &Options, directory: &Path) {
             let lights = match scene {
                 Scene::Showcase | Scene::ShowcaseOnFloor { .. } => 3,
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
+                Scene::WideWorld { lights, far } => lights + far,
             };
             for (offset, time) in times.iter().enumerate() {
                 series[first_series + offset]

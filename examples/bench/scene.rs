@@ -34,6 +34,10 @@ pub enum Scene {
     /// `lights` point lights that fade as `1 / (1 + 4 d²)`, with no range: only ε culling
     /// bounds their reach.
     FieldWithoutRanges { lights: usize },
+    /// The field under `lights` point lights as [`Scene::Field`], and `far` more of the same
+    /// kind spread over a world 1,000 units across, each at least 40 units from the field's
+    /// middle along x or z: none reaches a visible pixel.
+    WideWorld { lights: usize, far: usize },
 }
 
 impl Scene {
@@ -50,6 +54,10 @@ impl Scene {
             Scene::FieldWithoutRanges { lights } => {
                 format!("field, {} without range", counted_point_lights(lights))
             }
+            Scene::WideWorld { lights, far } => format!(
+                "wide world, {} + {far} far away",
+                counted_point_lights(lights)
+            ),
         }
     }
 
@@ -182,8 +190,33 @@ fn point_lights(scene: Scene) -> Vec<Light> {
         })
         .into(),
         Scene::Field { lights } => field(lights, Decay::quadratic(0.2), Some(4.0)),
+        Scene::WideWorld { lights, far } => {
+            let mut near = field(lights, Decay::quadratic(0.2), Some(4.0));
+            near.extend(far_lights(far));
+            near
+        }
         Scene::FieldWithoutRanges { lights } => field(lights, Decay::quadratic(4.0), None),
     }
+}
+
+/// `count` point lights like the field's, spread over the square 1,000 units across
+/// around the field, each at least 40 units from its middle along x or z.
+fn far_lights(count: usize) -> Vec<Light> {
+    (0..)
+        .map(|i| {
+            let (u, v, w) = scatter(i + 1_000_003);
+            let position = Vec3::new(u * 1000.0 - 500.0, 0.5 + 2.5 * w, v * 1000.0 - 500.0);
+            (position, w)
+        })
+        .filter(|(position, _)| position.x.abs().max(position.z.abs()) >= 40.0)
+        .take(count)
+        .map(|(position, w)| Light {
+            position,
+            color: Color::hsl(w * 360.0, 1.0, 0.5),
+            decay: Decay::quadratic(0.2),
+            range: Some(4.0),
+        })
+        .collect()
 }
 
 /// Spawns the meshes and lights of `scene` drawn with `shading` (no camera).

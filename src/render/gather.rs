@@ -2,10 +2,10 @@
 //! into the light buffer.
 
 use super::{
-    PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER,
+    PHONG_LIGHT_BUFFER,
+    clusters::has_finite_reach,
     gpu_types::{GpuLight, GpuLightsHeader},
     light_buffer::{LightBuffer, LightBufferResized},
-    light_grid::{LightGrid, has_finite_reach},
     light_records::{BuiltInLight, linear_rgb},
     record_cache::RecordCache,
 };
@@ -30,15 +30,13 @@ use bevy::{
     transform::components::GlobalTransform,
 };
 
-/// The built-in lights' buffer and light grid, and the scratch space the gather system
-/// fills them from (kept between frames: no allocation once the scene's size is reached).
+/// The built-in lights' buffer, and the scratch space the gather system fills it from (kept
+/// between frames: no allocation once the scene's size is reached).
 #[derive(Resource, Debug)]
 pub struct PhongLightBuffer {
     buffer: LightBuffer,
     records: Vec<GpuLight>,
     header: GpuLightsHeader,
-    grid_buffer: LightBuffer,
-    grid: LightGrid,
     points: Vec<GpuLight>,
     spots: Vec<GpuLight>,
     point_cache: RecordCache<PhongPointLight>,
@@ -51,8 +49,6 @@ impl Default for PhongLightBuffer {
             buffer: LightBuffer::new(PHONG_LIGHT_BUFFER),
             records: Vec::new(),
             header: GpuLightsHeader::default(),
-            grid_buffer: LightBuffer::new(PHONG_LIGHT_GRID_BUFFER),
-            grid: LightGrid::default(),
             points: Vec::new(),
             spots: Vec::new(),
             point_cache: RecordCache::default(),
@@ -172,9 +168,10 @@ fn push_cached<L: BuiltInLight>(
     }
 }
 
-/// Writes every visible built-in light into [`PhongLightBuffer`], and those of finite reach
-/// into its light grid, when any of them, the ambient light or [`PhongLightCulling`] changed
-/// (and on the first run); otherwise it touches nothing, so no GPU buffer is uploaded again.
+/// Writes every visible built-in light into [`PhongLightBuffer`], those of finite reach
+/// last for the clusters ([`assign_lights_to_clusters`](super::assign_lights_to_clusters)),
+/// when any of them, the ambient light or [`PhongLightCulling`] changed (and on the first
+/// run); otherwise it touches nothing, so no GPU buffer is uploaded again.
 #[allow(clippy::too_many_arguments)]
 pub fn gather_lights(
     ambient: Res<PhongAmbientLight>,
@@ -226,10 +223,11 @@ pub fn gather_lights(
         .spot_cache
         .limit_reach(&mut state.spots, per_light_epsilon);
 
-    // Unlimited reach first (every fragment loops over them), then the grid's lights (the
-    // grid's loop applies no shadows, so shadow-casting lights stay out of it).
-    let in_grid = |light: &GpuLight| culling.grid && has_finite_reach(light) && light.shadow == 0;
-    let unlimited = |light: &GpuLight| !in_grid(light);
+    // Unlimited reach first (every fragment loops over them), then the clustered lights (the
+    // clusters' loop applies no shadows, so shadow-casting lights stay out of it).
+    let clustered =
+        |light: &GpuLight| culling.clusters && has_finite_reach(light) && light.shadow == 0;
+    let unlimited = |light: &GpuLight| !clustered(light);
     let mut append = |lights: &[GpuLight], include: &dyn Fn(&GpuLight) -> bool| {
         let start = state.records.len();
         state
@@ -239,40 +237,24 @@ pub fn gather_lights(
     };
     let point_count = append(&state.points, &unlimited);
     let spot_count = append(&state.spots, &unlimited);
-    let grid_point_count = append(&state.points, &in_grid);
-    let grid_spot_count = append(&state.spots, &in_grid);
-    let grid_start = (directional_count + point_count + spot_count) as usize;
-    let grid_spots_start = grid_start + grid_point_count as usize;
-    state.grid.build(
-        &state.records,
-        grid_start..grid_spots_start,
-        grid_spots_start..state.records.len(),
-    );
+    let clustered_point_count = append(&state.points, &clustered);
+    let clustered_spot_count = append(&state.spots, &clustered);
 
     state.header = GpuLightsHeader {
         ambient: linear_rgb(ambient.color),
         directional_count,
         point_count,
         spot_count,
-        grid_point_count,
-        grid_spot_count,
+        clustered_point_count,
+        clustered_spot_count,
     };
-    let lights_resized = state
+    if state
         .buffer
-        .write(&mut buffers, &state.header, &state.records);
-    let grid_resized =
-        state
-            .grid_buffer
-            .write(&mut buffers, state.grid.header(), state.grid.data());
-    for (was_resized, buffer) in [
-        (lights_resized, &state.buffer),
-        (grid_resized, &state.grid_buffer),
-    ] {
-        if was_resized {
-            resized.write(LightBufferResized {
-                buffer: buffer.handle().clone(),
-            });
-        }
+        .write(&mut buffers, &state.header, &state.records)
+    {
+        resized.write(LightBufferResized {
+            buffer: state.buffer.handle().clone(),
+        });
     }
 }
 
@@ -408,7 +390,7 @@ mod tests {
         let mut app = test_app(|app| {
             app.insert_resource(PhongLightCulling {
                 epsilon: 1e-2,
-                grid: true,
+                clusters: true,
             });
         });
         let decay = crate::Decay::DISTANCE_50;
@@ -498,7 +480,7 @@ mod tests {
     }
 
     #[test]
-    fn shadow_casting_lights_stay_out_of_the_grid() {
+    fn shadow_casting_lights_are_not_clustered() {
         let mut app = test_app(|_| {});
         let world = app.world_mut();
         world.spawn((
@@ -520,9 +502,9 @@ mod tests {
         let state = app.world().resource::<PhongLightBuffer>();
         let header = state.header();
         assert_eq!(
-            (header.point_count, header.grid_point_count),
+            (header.point_count, header.clustered_point_count),
             (1, 1),
-            "the shadow-casting light is in the unlimited run; the other is in the grid"
+            "the shadow-casting light is in the unlimited run; the other is clustered"
         );
         assert_eq!(state.records()[0].position, [2.0, 1.0, 0.0]);
         assert_eq!(state.records()[0].shadow, 1, "its first view, plus one");

@@ -42,10 +42,10 @@ pub struct GpuLight {
 ///
 /// The array that follows holds `directional_count` directional lights, then `point_count`
 /// point lights and `spot_count` spot lights of unlimited reach (every fragment loops over
-/// these), then `grid_point_count` point lights and `grid_spot_count` spot lights of finite
-/// reach, which fragments find through the light grid ([`GpuLightGridHeader`]).
-/// Shadow-casting point and spot lights are never in the grid (the grid's loop applies no
-/// shadows).
+/// these), then `clustered_point_count` point lights and `clustered_spot_count` spot
+/// lights of finite reach, which fragments find through their view's clusters
+/// ([`GpuClustersHeader`]). Shadow-casting point and spot lights are never clustered (the
+/// clusters' loop applies no shadows).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightsHeader {
@@ -57,10 +57,10 @@ pub struct GpuLightsHeader {
     pub point_count: u32,
     /// Number of spot lights of unlimited reach after those point lights.
     pub spot_count: u32,
-    /// Number of point lights of finite reach after those spot lights (in the grid).
-    pub grid_point_count: u32,
-    /// Number of spot lights of finite reach at the end of the array (in the grid).
-    pub grid_spot_count: u32,
+    /// Number of point lights of finite reach after those spot lights (clustered).
+    pub clustered_point_count: u32,
+    /// Number of spot lights of finite reach at the end of the array (clustered).
+    pub clustered_spot_count: u32,
 }
 
 impl GpuLightsHeader {
@@ -69,42 +69,42 @@ impl GpuLightsHeader {
         (self.directional_count
             + self.point_count
             + self.spot_count
-            + self.grid_point_count
-            + self.grid_spot_count) as usize
+            + self.clustered_point_count
+            + self.clustered_spot_count) as usize
     }
 }
 
-/// The fixed part at the start of the light grid buffer (`PhongLightGrid` in WGSL, before
-/// its `data` array): 32 bytes. [`CELL_WORDS`](Self::CELL_WORDS) describes the array.
+/// The fixed part at the start of the light cluster buffer (`PhongLightClusters` in WGSL,
+/// before its `data` array): 16 bytes. The array holds [`VIEW_WORDS`](Self::VIEW_WORDS)
+/// words per view, then [`CLUSTER_WORDS`](Self::CLUSTER_WORDS) per cluster of each view,
+/// then light indices; `render::clusters` describes them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuLightGridHeader {
-    /// World-space corner of cell `(0, 0, 0)`, the grid's minimum.
-    pub origin: [f32; 3],
-    /// Edge length of the cubic cells, world units.
-    pub cell_size: f32,
-    /// Number of cells along x, y and z; zeros when no light is in the grid.
-    pub dimensions: [u32; 3],
+pub struct GpuClustersHeader {
+    /// Number of views whose clusters the data holds; 0 when no light is clustered (or no
+    /// camera renders).
+    pub view_count: u32,
     /// Unused; the array that follows starts at a 16-byte boundary.
-    pub padding: u32,
+    pub padding: [u32; 3],
 }
 
-impl GpuLightGridHeader {
-    /// `u32` words per cell record in the array after the header: `[first, point_count,
-    /// spot_count, 0]`, one record per cell (x fastest, then y, then z), then the light
-    /// indices the records point into.
-    pub const CELL_WORDS: u32 = 4;
+impl GpuClustersHeader {
+    /// `u32` words per view record: `[key, first, tiles_x, tiles_y, slices, logarithmic,
+    /// depth_scale, depth_bias]`.
+    pub const VIEW_WORDS: u32 = 8;
 
-    /// A grid of no cells.
+    /// `u32` words per cluster record: `[first, point_count, spot_count, 0]`, the cluster's
+    /// point lights at `data[first..]` and its spot lights after them.
+    pub const CLUSTER_WORDS: u32 = 4;
+
+    /// No views, no clusters.
     pub const EMPTY: Self = Self {
-        origin: [0.0; 3],
-        cell_size: 1.0,
-        dimensions: [0; 3],
-        padding: 0,
+        view_count: 0,
+        padding: [0; 3],
     };
 }
 
-impl Default for GpuLightGridHeader {
+impl Default for GpuClustersHeader {
     fn default() -> Self {
         Self::EMPTY
     }
@@ -112,4 +112,4 @@ impl Default for GpuLightGridHeader {
 
 const _: () = assert!(size_of::<GpuLight>() == 80);
 const _: () = assert!(size_of::<GpuLightsHeader>() == 32);
-const _: () = assert!(size_of::<GpuLightGridHeader>() == 32);
+const _: () = assert!(size_of::<GpuClustersHeader>() == 16);

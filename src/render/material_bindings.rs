@@ -1,8 +1,8 @@
 //! How a [`PhongMaterial`] is bound: its own surface data (the uniform and the texture maps)
-//! beside the plugin's scene data (the lights, the light grid and the shadow maps), which the
+//! beside the plugin's scene data (the lights, their clusters and the shadow maps), which the
 //! bind group takes from the render world when Bevy prepares the material.
 
-use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_GRID_BUFFER};
+use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
 use crate::material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform};
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
@@ -56,14 +56,14 @@ impl From<&PhongMaterial> for SurfaceBindings {
 
 /// The plugin's scene data that every Phong material binds beside its own, read from the
 /// render world (the names are those of `bevy_phong::bindings`): 1 the light buffer
-/// (`lights`), 2 the light grid (`light_grid`), 11 the shadow views (`shadow_views`), 12 the
+/// (`lights`), 2 the light clusters (`light_clusters`), 11 the shadow views (`shadow_views`), 12 the
 /// shadow map array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`). A
 /// material of its own that lights with the crate's shader functions adds these bindings
 /// the same way [`PhongMaterial`] does.
 ///
 /// Where a shader stage has fewer than [`Self::STORAGE_BUFFERS_NEEDED`] storage buffers
 /// (WebGL2 has none), binding 1 is instead one `texture_2d<u32>` that holds the lights, the
-/// grid and the shadow views (`scene_data`), and bindings 2 and 11 are absent; the shaders
+/// clusters and the shadow views (`scene_data`), and bindings 2 and 11 are absent; the shaders
 /// choose the same way from Bevy's `AVAILABLE_STORAGE_BUFFER_BINDINGS`.
 #[derive(SystemParam)]
 pub struct PhongSceneBindings<'w> {
@@ -79,8 +79,8 @@ impl PhongSceneBindings<'_> {
     /// Binding index of the scene data texture, where storage buffers are missing (in
     /// place of the light buffer).
     pub const SCENE_DATA: u32 = 1;
-    /// Binding index of the light grid.
-    pub const LIGHT_GRID: u32 = 2;
+    /// Binding index of the light clusters.
+    pub const LIGHT_CLUSTERS: u32 = 2;
     /// Binding index of the shadow views.
     pub const SHADOW_VIEWS: u32 = 11;
     /// Binding index of the shadow map array.
@@ -123,7 +123,7 @@ impl PhongSceneBindings<'_> {
         } else {
             vec![
                 entry(Self::LIGHTS, storage),
-                entry(Self::LIGHT_GRID, storage),
+                entry(Self::LIGHT_CLUSTERS, storage),
                 entry(Self::SHADOW_VIEWS, storage),
             ]
         };
@@ -148,7 +148,7 @@ impl PhongSceneBindings<'_> {
     fn buffer_bindings(&self) -> Result<Vec<(u32, OwnedBindingResource)>, AsBindGroupError> {
         [
             (Self::LIGHTS, &PHONG_LIGHT_BUFFER),
-            (Self::LIGHT_GRID, &PHONG_LIGHT_GRID_BUFFER),
+            (Self::LIGHT_CLUSTERS, &PHONG_LIGHT_CLUSTER_BUFFER),
             (Self::SHADOW_VIEWS, &PHONG_SHADOW_VIEW_BUFFER),
         ]
         .into_iter()

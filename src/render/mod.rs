@@ -4,21 +4,33 @@
 //! ```text
 //!  main world (PostUpdate)                      render world (Render)
 //!  ─────────────────────────                    ─────────────────────────────────────
-//!  light components ──validate──▶ gather_lights
-//!        │                          │ records, light grid (bytes, rewritten only in
-//!        │                          ▼ frames where a light changed)
+//!  light components ──validate──▶ gather_lights: records (rewritten only in frames
+//!        │                          │             where a light changed)
+//!  cameras (frusta) ─────────────▶ assign_lights_to_clusters: every view's clusters
+//!        │                          │   (rebuilt only when a view or a clustered light
+//!        │                          ▼    changed)
 //!        │                  ShaderBuffer assets ──extract──▶ GpuShaderBuffer (storage)
 //!        │                                                        │
 //!  PhongMaterial (surface data only) ──extract──▶ prepare: bind group = the material's
 //!                                                 uniform and maps + PhongSceneBindings
+//!                                                        │
+//!  fragment: view_key(view.frustum) ─▶ its view's record ─▶ its cluster ─▶ its lights
 //! ```
 //!
-//! The lights live in two buffers the plugin owns, the light records and the light grid
-//! (see [`crate::culling`]). The gather system writes their bytes in the main world only in
-//! frames where a light changed; Bevy uploads them to the render world (into the same GPU
-//! buffer while its size holds). A [`PhongMaterial`](crate::PhongMaterial) holds no handle
-//! to them: when Bevy prepares its bind group, [`PhongSceneBindings`] adds the plugin's
+//! The lights live in two buffers the plugin owns, the light records and the light
+//! clusters (see [`crate::culling`]). The gather system writes the records in the main world
+//! only in frames where a light changed; the cluster system lists the lights of finite
+//! reach in the clusters of every active 3D camera's view, in frames where a view or one of
+//! those lights changed. Bevy uploads both to the render world (into the same GPU buffer
+//! while its size holds). A [`PhongMaterial`](crate::PhongMaterial) holds no handle to
+//! them: when Bevy prepares its bind group, [`PhongSceneBindings`] adds the plugin's
 //! buffers from the render world beside the material's own uniform and texture maps.
+//!
+//! Bevy binds its own lights and clusters per view, in the view bind group, which a
+//! material cannot extend; and WebGL2 allows no fifth bind group for a per-view one of the
+//! crate's. So every view's clusters sit side by side in one buffer of the material bind
+//! group, and a fragment finds its own view's by a key it computes from Bevy's view
+//! uniform (see `view_key`).
 //!
 //! When the light count outgrows a buffer it is reallocated, which gives it a new GPU
 //! buffer. Material bind groups hold the old one, so every material type registered with
@@ -31,22 +43,25 @@
 //! data texture instead (`scene_texture`, read in WGSL through `bevy_phong::scene`), chosen
 //! once at render startup from the device's limits; see `docs/design/webgl2.md`.
 
+mod cluster_views;
+mod clusters;
 mod data_texture;
 mod gather;
 mod gpu_types;
 mod light_buffer;
-mod light_grid;
 mod light_records;
 mod material_bindings;
 mod material_upkeep;
 mod record_cache;
 mod scene_texture;
+mod view_key;
 
+pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
 pub use data_texture::{DATA_TEXTURE_MAX_ROWS, DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub use gather::{LightChanges, PhongLightBuffer, gather_lights};
 pub(crate) use gather::{LightQuery, lit_lights, push_visible};
-pub use gpu_types::{GpuLight, GpuLightGridHeader, GpuLightsHeader};
+pub use gpu_types::{GpuClustersHeader, GpuLight, GpuLightsHeader};
 pub use light_buffer::LightBufferResized;
 pub(crate) use light_buffer::{LightBuffer, MIN_CAPACITY, init_shader_buffers};
 pub use light_records::{light_direction, linear_rgb};
@@ -56,6 +71,7 @@ pub(crate) use scene_texture::{
     PHONG_SCENE_TEXTURE, STORAGE_BUFFERS_NEEDED, announce_scene_data_path, needs_scene_texture,
     pack_scene_texture,
 };
+pub use view_key::view_key;
 
 use bevy::{
     asset::{Handle, uuid_handle},
@@ -67,8 +83,8 @@ use bevy::{
 pub(crate) const PHONG_LIGHT_BUFFER: Handle<ShaderBuffer> =
     uuid_handle!("6a0d3e0c-5b35-4c57-9c38-2f1b7d8a4e21");
 
-/// The storage buffer that holds the light grid of the built-in lights (see
+/// The storage buffer that holds every view's light clusters of the built-in lights (see
 /// [`crate::culling`]), bound by every [`PhongMaterial`](crate::PhongMaterial) through
 /// [`PhongSceneBindings`].
-pub(crate) const PHONG_LIGHT_GRID_BUFFER: Handle<ShaderBuffer> =
+pub(crate) const PHONG_LIGHT_CLUSTER_BUFFER: Handle<ShaderBuffer> =
     uuid_handle!("0c8f2f8e-59a4-4d0e-8d3b-6f0f4b8a9c12");

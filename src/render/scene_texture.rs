@@ -1,6 +1,6 @@
 //! The scene data in one data texture, for devices without enough storage buffers (WebGL2).
 //!
-//! The lights, the light grid and the shadow views are written as usual into their
+//! The lights, their clusters and the shadow views are written as usual into their
 //! [`ShaderBuffer`] assets; on such a device [`pack_scene_texture`] then copies their bytes,
 //! unchanged, into one data texture (see [`super::data_texture`]) that materials bind
 //! instead of the three buffers. The shaders read it through the same accessors
@@ -8,24 +8,24 @@
 //! `AVAILABLE_STORAGE_BUFFER_BINDINGS`. See `docs/design/webgl2.md`.
 //!
 //! Layout, in texels: texel 0 holds the first texel of each region
-//! `[lights, grid, shadow views, 0]`; then the three buffers' bytes, each region starting on
+//! `[lights, clusters, shadow views, 0]`; then the three buffers' bytes, each region starting on
 //! a texel of its own. The lights always start at texel 1 (`LIGHTS_START` in WGSL).
 //!
 //! # Capacity
 //!
 //! The texture holds [`DATA_TEXTURE_MAX_TEXELS`] texels (64 MiB): a light takes 5, its
-//! place in the light grid a word per cell it reaches, a shadow view 9. That is about
-//! 800,000 lights outside the grid. Past it, lights are left out in this order, with one
+//! place in the clusters a word per cluster it may reach, a shadow view 9. That is about
+//! 800,000 lights not clustered. Past it, lights are left out in this order, with one
 //! warning each time the count left out changes:
-//! 1. the light grid and every light in it (finite reach, no shadow);
+//! 1. the clusters and every clustered light (finite reach, no shadow);
 //! 2. then lights of unlimited reach from the end of the buffer: spot lights, then point
 //!    lights, then directional lights.
 //!
 //! The lights that remain are lit exactly as they would be with room for all.
 
 use super::{
-    GpuLight, GpuLightGridHeader, GpuLightsHeader, LightBufferResized, PHONG_LIGHT_BUFFER,
-    PHONG_LIGHT_GRID_BUFFER,
+    GpuClustersHeader, GpuLight, GpuLightsHeader, LightBufferResized, PHONG_LIGHT_BUFFER,
+    PHONG_LIGHT_CLUSTER_BUFFER,
     data_texture::{DATA_TEXTURE_MAX_TEXELS, DataTexture, DataTextureWrite, words_of},
 };
 use crate::shadows::PHONG_SHADOW_VIEW_BUFFER;
@@ -61,7 +61,7 @@ pub(crate) fn announce_scene_data_path(device: Res<RenderDevice>) {
     if needs_scene_texture(&device) {
         info!(
             "bevy_phong: the device has {} storage buffers per shader stage (fewer than \
-             {STORAGE_BUFFERS_NEEDED}): the lights, light grid and shadow views are read from \
+             {STORAGE_BUFFERS_NEEDED}): the lights, light clusters and shadow views are read from \
              a data texture",
             device.limits().max_storage_buffers_per_shader_stage
         );
@@ -98,9 +98,9 @@ pub(crate) fn pack_scene_texture(
     if !device.is_some_and(|device| needs_scene_texture(&device)) {
         return;
     }
-    let [lights, grid, views] = [
+    let [lights, clusters, views] = [
         &PHONG_LIGHT_BUFFER,
-        &PHONG_LIGHT_GRID_BUFFER,
+        &PHONG_LIGHT_CLUSTER_BUFFER,
         &PHONG_SHADOW_VIEW_BUFFER,
     ]
     .map(|handle| {
@@ -109,12 +109,12 @@ pub(crate) fn pack_scene_texture(
             .and_then(|buffer| buffer.data.as_deref())
             .unwrap_or(&[])
     });
-    let packed = pack(lights, grid, views, DATA_TEXTURE_MAX_TEXELS);
+    let packed = pack(lights, clusters, views, DATA_TEXTURE_MAX_TEXELS);
     if packed.left_out != scene.left_out {
         if packed.left_out > 0 {
             warn!(
                 "bevy_phong: the scene data texture holds {DATA_TEXTURE_MAX_TEXELS} texels: \
-                 {} lights are left out (the light grid's first, then spot, point and \
+                 {} lights are left out (the clustered ones first, then spot, point and \
                  directional lights from the last)",
                 packed.left_out
             );
@@ -139,10 +139,10 @@ struct Packed {
 const HEADER_BYTES: usize = size_of::<GpuLightsHeader>();
 const RECORD_BYTES: usize = size_of::<GpuLight>();
 
-/// The directory texel, then the light buffer (its header and used records), the grid and
+/// The directory texel, then the light buffer (its header and used records), the clusters and
 /// the shadow views, each from a texel of its own, within `max_texels` texels (see the
 /// module documentation for what is left out past it).
-fn pack(lights: &[u8], grid: &[u8], views: &[u8], max_texels: usize) -> Packed {
+fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Packed {
     let mut header = lights
         .get(..HEADER_BYTES)
         .map(bytemuck::pod_read_unaligned::<GpuLightsHeader>)
@@ -152,18 +152,20 @@ fn pack(lights: &[u8], grid: &[u8], views: &[u8], max_texels: usize) -> Packed {
     let records =
         |header: &GpuLightsHeader| &body[..header.light_count().min(stored) * RECORD_BYTES];
     let texels = |bytes: usize| bytes.div_ceil(16);
-    let total = |header: &GpuLightsHeader, grid: &[u8]| {
-        1 + texels(HEADER_BYTES + records(header).len()) + texels(grid.len()) + texels(views.len())
+    let total = |header: &GpuLightsHeader, clusters: &[u8]| {
+        1 + texels(HEADER_BYTES + records(header).len())
+            + texels(clusters.len())
+            + texels(views.len())
     };
     let full = header.light_count();
-    let empty_grid = bytemuck::bytes_of(&GpuLightGridHeader::EMPTY);
-    let mut grid = grid;
-    if total(&header, grid) > max_texels {
-        header.grid_point_count = 0;
-        header.grid_spot_count = 0;
-        grid = empty_grid;
+    let no_clusters = bytemuck::bytes_of(&GpuClustersHeader::EMPTY);
+    let mut clusters = clusters;
+    if total(&header, clusters) > max_texels {
+        header.clustered_point_count = 0;
+        header.clustered_spot_count = 0;
+        clusters = no_clusters;
     }
-    while total(&header, grid) > max_texels && header.light_count() > 0 {
+    while total(&header, clusters) > max_texels && header.light_count() > 0 {
         let counts = [
             &mut header.spot_count,
             &mut header.point_count,
@@ -176,7 +178,7 @@ fn pack(lights: &[u8], grid: &[u8], views: &[u8], max_texels: usize) -> Packed {
     let mut words = vec![0u32; 4];
     let regions: [&[&[u8]]; 3] = [
         &[bytemuck::bytes_of(&header), records(&header)],
-        &[grid],
+        &[clusters],
         &[views],
     ];
     for (region, parts) in regions.into_iter().enumerate() {
@@ -196,12 +198,12 @@ fn pack(lights: &[u8], grid: &[u8], views: &[u8], max_texels: usize) -> Packed {
 mod tests {
     use super::*;
 
-    fn light_buffer(directional: u32, point: u32, spot: u32, grid_point: u32) -> Vec<u8> {
+    fn light_buffer(directional: u32, point: u32, spot: u32, clustered_point: u32) -> Vec<u8> {
         let header = GpuLightsHeader {
             directional_count: directional,
             point_count: point,
             spot_count: spot,
-            grid_point_count: grid_point,
+            clustered_point_count: clustered_point,
             ..bytemuck::Zeroable::zeroed()
         };
         let count = header.light_count();
@@ -221,11 +223,11 @@ mod tests {
     #[test]
     fn each_region_starts_on_its_own_texel_after_the_directory() {
         let lights = light_buffer(1, 0, 0, 0);
-        let grid = [2u8; 36];
+        let clusters = [2u8; 36];
         let views = [3u8; 16];
-        let packed = pack(&lights, &grid, &views, usize::MAX);
+        let packed = pack(&lights, &clusters, &views, usize::MAX);
         // Directory, 2 texels of header and 5 of one light (spare capacity left out), 3 of
-        // grid (36 bytes rounded up), 1 of views.
+        // clusters (36 bytes rounded up), 1 of views.
         assert_eq!(&packed.words[..4], &[1, 8, 11, 0]);
         assert_eq!(packed.words.len(), 4 * 12);
         assert_eq!(packed.words[4 + 3], 1, "directional count");
@@ -233,43 +235,45 @@ mod tests {
         assert_eq!(
             packed.words[8 * 4 + 9],
             0,
-            "the grid's last texel is zero-padded"
+            "the clusters' last texel is zero-padded"
         );
         assert_eq!(packed.words[11 * 4], u32::from_le_bytes([3; 4]));
         assert_eq!(packed.left_out, 0);
     }
 
     #[test]
-    fn past_capacity_the_grid_goes_first_then_spot_point_and_directional_lights() {
+    fn past_capacity_the_clusters_go_first_then_spot_point_and_directional_lights() {
         let lights = light_buffer(2, 3, 4, 5);
-        let grid = [1u8; 16 * 10];
+        let clusters = [1u8; 16 * 10];
         let views = [0u8; 16];
         let header_of = |packed: &Packed| -> GpuLightsHeader {
             let start = packed.words[0] as usize * 4;
             bytemuck::pod_read_unaligned(bytemuck::cast_slice(&packed.words[start..start + 8]))
         };
         // Everything: 1 + 2 + 5 · 14 + 10 + 1 = 84 texels.
-        assert_eq!(pack(&lights, &grid, &views, 84).left_out, 0);
-        // One texel short: the grid and its 5 lights go; the grid region is an empty header.
-        let packed = pack(&lights, &grid, &views, 83);
+        assert_eq!(pack(&lights, &clusters, &views, 84).left_out, 0);
+        // One texel short: the clusters and their 5 lights go; the clusters' region is an
+        // empty header.
+        let packed = pack(&lights, &clusters, &views, 83);
         assert_eq!(packed.left_out, 5);
         let header = header_of(&packed);
         assert_eq!(
             (
-                header.grid_point_count,
-                header.grid_spot_count,
+                header.clustered_point_count,
+                header.clustered_spot_count,
                 header.spot_count
             ),
             (0, 0, 4)
         );
-        let grid_start = packed.words[1] as usize * 4;
+        let clusters_start = packed.words[1] as usize * 4;
         assert_eq!(
-            &packed.words[grid_start + 4..grid_start + 7],
-            &[0, 0, 0],
-            "no cells"
+            &packed.words[clusters_start..clusters_start + 4],
+            &[0, 0, 0, 0],
+            "no views"
         );
-        // Room for 1 + 2 + 5 · 4 + 2 + 1 = 26 texels: the 4 spots go, then a point light.
-        let packed = pack(&lights, &grid, &views, 26);
+        // Room for 26 texels, 1 + 2 + 5 · 4 + 1 + 1 = 25 used (an empty clusters header is one
+        // texel): the 4 spots go, then a point light.
+        let packed = pack(&lights, &clusters, &views, 26);
         assert_eq!(packed.left_out, 10);
         let header = header_of(&packed);
         assert_eq!(
@@ -285,6 +289,6 @@ mod tests {
         assert_eq!(f32::from_bits(packed.words[first + 3]), 0.0);
         assert_eq!(f32::from_bits(packed.words[first + 3 * 20 + 3]), 3.0);
         // No room at all: every light is left out, never a panic.
-        assert_eq!(pack(&lights, &grid, &views, 0).left_out, 14);
+        assert_eq!(pack(&lights, &clusters, &views, 0).left_out, 14);
     }
 }

@@ -2,18 +2,18 @@
 // and the plugin's scene data (1, 2, 11–13; `PhongSceneBindings`).
 #define_import_path bevy_phong::bindings
 
-#import bevy_phong::types::{PhongLightGrid, PhongLights, PhongMaterialUniform, PhongShadowViews}
+#import bevy_phong::types::{PhongLightClusters, PhongLights, PhongMaterialUniform, PhongShadowViews}
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> material: PhongMaterialUniform;
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
 // Where a stage has fewer than 8 storage buffers (WebGL2 has none; Bevy's pipeline cache
-// gives every shader the device's count): the lights, the grid and the shadow views in one
+// gives every shader the device's count): the lights, the clusters and the shadow views in one
 // texture (src/render/scene_texture.rs), read through `bevy_phong::scene`. The 8 is
 // `PhongSceneBindings::STORAGE_BUFFERS_NEEDED`.
 @group(#{MATERIAL_BIND_GROUP}) @binding(1) var scene_data: texture_2d<u32>;
 #else
 @group(#{MATERIAL_BIND_GROUP}) @binding(1) var<storage, read> lights: PhongLights;
-@group(#{MATERIAL_BIND_GROUP}) @binding(2) var<storage, read> light_grid: PhongLightGrid;
+@group(#{MATERIAL_BIND_GROUP}) @binding(2) var<storage, read> light_clusters: PhongLightClusters;
 @group(#{MATERIAL_BIND_GROUP}) @binding(11) var<storage, read> shadow_views: PhongShadowViews;
 #endif
 @group(#{MATERIAL_BIND_GROUP}) @binding(3) var base_color_texture: texture_2d<f32>;

@@ -1,4 +1,4 @@
-// The scene data every Phong material reads (lights, light grid, shadow views), through
+// The scene data every Phong material reads (lights, light clusters, shadow views), through
 // accessors: the rest of the shaders never name the bindings that hold it, so that where
 // storage buffers are missing (WebGL2) the same data can be read from elsewhere without
 // touching them. See docs/design/webgl2.md.
@@ -9,7 +9,7 @@
 #import bevy_phong::bindings::scene_data
 #import bevy_phong::data_texture::{data_light, data_texel}
 #else
-#import bevy_phong::bindings::{light_grid, lights, shadow_views}
+#import bevy_phong::bindings::{light_clusters, lights, shadow_views}
 #endif
 
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS < 8
@@ -18,7 +18,7 @@ fn texel(index: u32) -> vec4<u32> {
     return data_texel(scene_data, index);
 }
 
-// The first texel of region `region` (1 grid, 2 shadow views), from texel 0.
+// The first texel of region `region` (1 clusters, 2 shadow views), from texel 0.
 fn region_start(region: u32) -> u32 {
     return texel(0u)[region];
 }
@@ -44,26 +44,26 @@ fn spot_count() -> u32 {
     return texel(LIGHTS_START + 1u).y;
 }
 
+fn clustered_point_count() -> u32 {
+    return texel(LIGHTS_START + 1u).z;
+}
+
+fn clustered_spot_count() -> u32 {
+    return texel(LIGHTS_START + 1u).w;
+}
+
 fn light_at(index: u32) -> PhongLight {
     return data_light(scene_data, LIGHTS_START + 2u + 5u * index);
 }
 
-// The grid's header is texels 0–1 of its region (`GpuLightGridHeader`), its words four to
-// a texel from texel 2.
-fn grid_origin() -> vec3<f32> {
-    return bitcast<vec3<f32>>(texel(region_start(1u)).xyz);
+// The clusters' header is texel 0 of its region (`GpuClustersHeader`), its words four to
+// a texel from texel 1.
+fn cluster_view_count() -> u32 {
+    return texel(region_start(1u)).x;
 }
 
-fn grid_cell_size() -> f32 {
-    return bitcast<f32>(texel(region_start(1u)).w);
-}
-
-fn grid_dimensions() -> vec3<u32> {
-    return texel(region_start(1u) + 1u).xyz;
-}
-
-fn grid_word(index: u32) -> u32 {
-    return texel(region_start(1u) + 2u + index / 4u)[index % 4u];
+fn cluster_word(index: u32) -> u32 {
+    return texel(region_start(1u) + 1u + index / 4u)[index % 4u];
 }
 
 // The shadow views' header is texel 0 of its region, each view 9 texels from texel 1.
@@ -110,7 +110,7 @@ fn ambient_color() -> vec3<f32> {
 }
 
 // How many directional, point and spot lights of unlimited reach the light buffer holds, in
-// that order from index 0 (the grid's lights follow them).
+// that order from index 0 (the clustered lights follow them).
 fn directional_count() -> u32 {
     return lights.directional_count;
 }
@@ -121,6 +121,15 @@ fn point_count() -> u32 {
 
 fn spot_count() -> u32 {
     return lights.spot_count;
+}
+
+// How many point and spot lights of finite reach follow those, in that order (clustered).
+fn clustered_point_count() -> u32 {
+    return lights.clustered_point_count;
+}
+
+fn clustered_spot_count() -> u32 {
+    return lights.clustered_spot_count;
 }
 
 // The light at `index` in the light buffer, read as its five 16-byte words: lavapipe reads
@@ -136,24 +145,14 @@ fn light_at(index: u32) -> PhongLight {
     );
 }
 
-// The light grid's corner of cell (0, 0, 0), world space.
-fn grid_origin() -> vec3<f32> {
-    return light_grid.origin;
+// How many views have clusters; 0 when no light is clustered.
+fn cluster_view_count() -> u32 {
+    return light_clusters.view_count;
 }
 
-// The edge length of the grid's cells, world units.
-fn grid_cell_size() -> f32 {
-    return light_grid.cell_size;
-}
-
-// Cells along x, y, z; zeros when no light is in the grid.
-fn grid_dimensions() -> vec3<u32> {
-    return light_grid.dimensions;
-}
-
-// Word `index` of the grid's data (`PhongLightGrid.data`).
-fn grid_word(index: u32) -> u32 {
-    return light_grid.data[index];
+// Word `index` of the clusters' data (`PhongLightClusters.data`).
+fn cluster_word(index: u32) -> u32 {
+    return light_clusters.data[index];
 }
 
 // How many shadow views the frame has.

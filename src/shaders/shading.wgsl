@@ -3,11 +3,12 @@
 
 #import bevy_phong::bindings::material
 #import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface, unshadowed_light}
-#import bevy_phong::scene::{ambient_color, directional_count, grid_cell_size, grid_dimensions, grid_origin, grid_word, light_at, point_count, spot_count}
+#import bevy_phong::scene::{ambient_color, cluster_view_count, cluster_word, clustered_point_count, clustered_spot_count, directional_count, light_at, point_count, spot_count}
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
+#import bevy_pbr::mesh_view_bindings::view
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
-#import bevy_phong::types::{GRID_CELL_WORDS, PhongLight, PhongSurface}
+#import bevy_phong::types::{CLUSTER_VIEW_WORDS, CLUSTER_WORDS, PhongLight, PhongSurface}
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -35,7 +36,7 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
 }
 
 // Σ over every light that reaches the surface point: the directional lights, the point and
-// spot lights of unlimited reach, and those of the point's grid cell. One loop lights every
+// spot lights of unlimited reach, and those of the point's cluster. One loop lights every
 // kind (see `incidence`); while some light casts shadows (PHONG_SHADOWS), each light's
 // terms are scaled by its shadow factors.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
@@ -61,26 +62,82 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
         color += light_of_kind(surface, light, kind, arriving, factors);
 #endif
     }
-    return color + grid_lights(surface);
+    return color + clustered_lights(surface);
 #endif
 }
 
-// Σ over the point and spot lights listed in the grid cell that holds the surface point.
-fn grid_lights(surface: PhongSurface) -> vec3<f32> {
-    let dimensions = grid_dimensions();
-    let cell = (surface.position - grid_origin()) / grid_cell_size();
-    // Outside the grid no light of finite reach arrives; `!(…)` also rejects NaN.
-    if !(all(cell >= vec3<f32>(0.0)) && all(cell < vec3<f32>(dimensions))) {
-        return vec3<f32>(0.0);
+// The key of the view being drawn (src/render/view_key.rs): FNV-1a over the bits of its six
+// frustum half-spaces, which Bevy's view uniform holds as the camera's `Frustum` has them.
+fn view_key() -> u32 {
+    var key = 2166136261u;
+    for (var plane = 0u; plane < 6u; plane += 1u) {
+        let bits = bitcast<vec4<u32>>(view.frustum[plane]);
+        key = (key ^ bits.x) * 16777619u;
+        key = (key ^ bits.y) * 16777619u;
+        key = (key ^ bits.z) * 16777619u;
+        key = (key ^ bits.w) * 16777619u;
     }
-    let cell_index = vec3<u32>(cell);
-    let record = GRID_CELL_WORDS * (cell_index.x + dimensions.x * (cell_index.y + dimensions.y * cell_index.z));
-    let start = grid_word(record);
-    let spot_start = start + grid_word(record + 1u);
-    let end = spot_start + grid_word(record + 2u);
+    return key;
+}
+
+// The first word of the cluster data's record of the view being drawn, or
+// `CLUSTER_VIEW_WORDS * cluster_view_count()` for a view without clusters.
+fn view_record() -> u32 {
+    let end = CLUSTER_VIEW_WORDS * cluster_view_count();
+    if end == 0u {
+        return end;
+    }
+    let key = view_key();
+    for (var record = 0u; record < end; record += CLUSTER_VIEW_WORDS) {
+        if cluster_word(record) == key {
+            return record;
+        }
+    }
+    return end;
+}
+
+// The first word of the record of the cluster that holds the world position `position` in
+// the view whose record starts at word `record` (src/render/clusters.rs): its tile from the
+// unjittered normalized device coordinates, its slice from the depth in front of the camera.
+fn cluster_record(record: u32, position: vec3<f32>) -> u32 {
+    let first = cluster_word(record + 1u);
+    let tiles = vec2<u32>(cluster_word(record + 2u), cluster_word(record + 3u));
+    let slices = cluster_word(record + 4u);
+    let logarithmic = cluster_word(record + 5u) != 0u;
+    let depth_scale = bitcast<f32>(cluster_word(record + 6u));
+    let depth_bias = bitcast<f32>(cluster_word(record + 7u));
+    let world = vec4<f32>(position, 1.0);
+    let clip = view.unjittered_clip_from_world * world;
+    let ndc = clip.xy / clip.w;
+    let tile = min(vec2<u32>(max((ndc * 0.5 + 0.5) * vec2<f32>(tiles), vec2<f32>(0.0))), tiles - 1u);
+    let depth = -(view.view_from_world * world).z;
+    let f = select(depth, log2(max(depth, 1e-30)), logarithmic);
+    let slice = min(u32(max(f * depth_scale + depth_bias, 0.0)), slices - 1u);
+    return first + CLUSTER_WORDS * (tile.x + tiles.x * (tile.y + tiles.y * slice));
+}
+
+// Σ over the point and spot lights of finite reach that may reach the surface point: those
+// listed in its cluster of the view being drawn, or every one where the view has no
+// clusters (a camera that appeared after the lights were listed, a key collision).
+fn clustered_lights(surface: PhongSurface) -> vec3<f32> {
+    let record = view_record();
     var color = vec3<f32>(0.0);
+    if record == CLUSTER_VIEW_WORDS * cluster_view_count() {
+        let start = directional_count() + point_count() + spot_count();
+        let spot_start = start + clustered_point_count();
+        let end = spot_start + clustered_spot_count();
+        for (var index = start; index < end; index += 1u) {
+            let kind = select(LIGHT_POINT, LIGHT_SPOT, index >= spot_start);
+            color += unshadowed_light(surface, light_at(index), kind);
+        }
+        return color;
+    }
+    let cluster = cluster_record(record, surface.position);
+    let start = cluster_word(cluster);
+    let spot_start = start + cluster_word(cluster + 1u);
+    let end = spot_start + cluster_word(cluster + 2u);
     for (var slot = start; slot < end; slot += 1u) {
-        let light = light_at(grid_word(slot));
+        let light = light_at(cluster_word(slot));
 #ifdef PHONG_ABLATION_NO_TERMS
         color += record_sum(light);
 #else

@@ -46,35 +46,34 @@ fn light_from_words(a: vec4<u32>, b: vec4<u32>, c: vec4<u32>, d: vec4<u32>, e: v
 // The light buffer (`GpuLightsHeader` in src/render/gpu_types.rs): the ambient light, then
 // `directional_count` directional lights,
 // `point_count` point lights and `spot_count` spot lights of unlimited reach (every fragment
-// loops over them), then `grid_point_count` point lights and `grid_spot_count` spot lights
-// of finite reach (fragments find these through the light grid), in that order. No
-// shadow-casting light is in the grid.
+// loops over them), then `clustered_point_count` point lights and `clustered_spot_count`
+// spot lights of finite reach (fragments find these through their view's clusters), in that
+// order. No shadow-casting light is clustered.
 struct PhongLights {
     ambient: vec3<f32>,
     directional_count: u32,
     point_count: u32,
     spot_count: u32,
-    grid_point_count: u32,
-    grid_spot_count: u32,
+    clustered_point_count: u32,
+    clustered_spot_count: u32,
     // Each light's `PhongLight` as five 16-byte words (`light_from_words`).
     lights: array<array<vec4<u32>, 5>>,
 }
 
-// The light grid: cubic cells over the lights of finite reach. `data` holds one record per
-// cell (x fastest, then y, then z): `[first, point_count, spot_count, 0]`, where
-// `data[first..]` are the indices (into `PhongLights.lights`) of the cell's point lights,
-// then of its spot lights.
-// `u32` words per cell record in `PhongLightGrid.data` (`GpuLightGridHeader::CELL_WORDS`).
-const GRID_CELL_WORDS: u32 = 4u;
+// Every view's light clusters (src/render/clusters.rs): `data` holds one record per view
+// (`VIEW_WORDS`: `[key, first, tiles_x, tiles_y, slices, logarithmic, depth_scale,
+// depth_bias]`), then each view's cluster records from its `first` word (x fastest, then y,
+// then slice): `[first, point_count, spot_count, 0]`, where `data[first..]` are the indices
+// (into `PhongLights.lights`) of the cluster's point lights, then of its spot lights.
+// `u32` words per view record (`GpuClustersHeader::VIEW_WORDS`).
+const CLUSTER_VIEW_WORDS: u32 = 8u;
+// `u32` words per cluster record (`GpuClustersHeader::CLUSTER_WORDS`).
+const CLUSTER_WORDS: u32 = 4u;
 
-struct PhongLightGrid {
-    // World-space corner of cell (0, 0, 0).
-    origin: vec3<f32>,
-    // Edge length of the cells, world units.
-    cell_size: f32,
-    // Cells along x, y, z; zeros when no light is in the grid.
-    dimensions: vec3<u32>,
-    padding: u32,
+struct PhongLightClusters {
+    // Views whose clusters `data` holds; 0 when no light is clustered.
+    view_count: u32,
+    padding: array<u32, 3>,
     data: array<u32>,
 }
 

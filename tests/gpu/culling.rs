@@ -1,4 +1,4 @@
-//! Light culling (`PhongLightCulling`): the light grid changes no pixel, and ε culling
+//! Light culling (`PhongLightCulling`): clusters change no pixel, and ε culling
 //! renders exactly the model with each light's range shortened to its influence radius,
 //! whose distance from the exact model is measured here and bounded by
 //! `ε · (k_d + k_s · strength)` for all skipped lights together.
@@ -42,22 +42,22 @@ fn set_culling(harness: &mut Harness, culling: PhongLightCulling) {
     harness.world_mut().insert_resource(culling);
 }
 
-fn grid_light_count(harness: &mut Harness) -> u32 {
+fn clustered_light_count(harness: &mut Harness) -> u32 {
     let header = *harness.world_mut().resource::<PhongLightBuffer>().header();
-    header.grid_point_count + header.grid_spot_count
+    header.clustered_point_count + header.clustered_spot_count
 }
 
 #[test]
-fn the_light_grid_changes_no_pixel() {
+fn clusters_change_no_pixel() {
     let (mut harness, inputs) = scene(600, Decay::new(1.0, 0.5, 0.5), Some(3.0));
-    for (case, culling, in_grid) in [
-        ("grid_of_600_lights", PhongLightCulling::EXACT, 600),
-        ("no_grid_600_lights", PhongLightCulling::NONE, 0),
-        ("grid_again_600_lights", PhongLightCulling::EXACT, 600),
+    for (case, culling, clustered) in [
+        ("clusters_of_600_lights", PhongLightCulling::EXACT, 600),
+        ("no_clusters_600_lights", PhongLightCulling::NONE, 0),
+        ("clusters_again_600_lights", PhongLightCulling::EXACT, 600),
     ] {
         set_culling(&mut harness, culling);
         let rendered = harness.render_next_frame();
-        assert_eq!(grid_light_count(&mut harness), in_grid, "{case}");
+        assert_eq!(clustered_light_count(&mut harness), clustered, "{case}");
         harness
             .compare(&rendered, &inputs)
             .assert_within(case, TOLERANCE);
@@ -85,7 +85,7 @@ fn epsilon_culling_renders_the_model_with_influence_radii() {
             &mut harness,
             PhongLightCulling {
                 epsilon,
-                grid: true,
+                clusters: true,
             },
         );
         let rendered = harness.render_next_frame();
@@ -103,8 +103,8 @@ fn epsilon_culling_renders_the_model_with_influence_radii() {
         let bound = f64::from(epsilon) * response + TOLERANCE;
         exact.assert_within(&format!("{case}_against_exact_model"), bound);
         assert!(
-            grid_light_count(&mut harness) > 0,
-            "{case}: lights of finite reach go into the grid"
+            clustered_light_count(&mut harness) > 0,
+            "{case}: lights of finite reach are clustered"
         );
     }
 }

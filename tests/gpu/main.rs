@@ -3,7 +3,9 @@
 //! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
 //!   reference model, on each pixel's own inputs;
 //! - `searchlight`: the same for the searchlight example's extension;
-//! - `culling`: the light grid and ε culling against the reference model;
+//! - `clusters`: per-view light clusters against the reference model, around the frustum,
+//!   with two cameras and through 0 → 3,000 → 0 lights; the shader finds its own view;
+//! - `culling`: light clusters and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
 //! - `game_features`: double-sided materials, fog, HDR, bloom, tonemapping, MSAA, blending,
@@ -28,6 +30,7 @@
 
 #[path = "../fuzz/cases.rs"]
 mod cases;
+mod clusters;
 mod contract;
 mod culling;
 mod frames;

@@ -5,7 +5,7 @@ use crate::library::library;
 use bevy::render::render_resource::ShaderType;
 use bevy_phong::{
     PhongMaterialUniform,
-    render::{GpuLight, GpuLightGridHeader, GpuLightsHeader},
+    render::{GpuClustersHeader, GpuLight, GpuLightsHeader},
     shadows::{GpuShadowView, GpuShadowViewsHeader},
 };
 use std::mem::offset_of;
@@ -89,12 +89,12 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
         ("point_count", offset_of!(GpuLightsHeader, point_count)),
         ("spot_count", offset_of!(GpuLightsHeader, spot_count)),
         (
-            "grid_point_count",
-            offset_of!(GpuLightsHeader, grid_point_count),
+            "clustered_point_count",
+            offset_of!(GpuLightsHeader, clustered_point_count),
         ),
         (
-            "grid_spot_count",
-            offset_of!(GpuLightsHeader, grid_spot_count),
+            "clustered_spot_count",
+            offset_of!(GpuLightsHeader, clustered_spot_count),
         ),
         ("lights", size_of::<GpuLightsHeader>()),
     ];
@@ -102,14 +102,12 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
 }
 
 #[test]
-fn light_grid_header_matches_wgsl_phong_light_grid() {
-    let (_, members) = wgsl_struct(&types_module(), "PhongLightGrid");
+fn light_clusters_header_matches_wgsl_phong_light_clusters() {
+    let (_, members) = wgsl_struct(&types_module(), "PhongLightClusters");
     let rust = [
-        ("origin", offset_of!(GpuLightGridHeader, origin)),
-        ("cell_size", offset_of!(GpuLightGridHeader, cell_size)),
-        ("dimensions", offset_of!(GpuLightGridHeader, dimensions)),
-        ("padding", offset_of!(GpuLightGridHeader, padding)),
-        ("data", size_of::<GpuLightGridHeader>()),
+        ("view_count", offset_of!(GpuClustersHeader, view_count)),
+        ("padding", offset_of!(GpuClustersHeader, padding)),
+        ("data", size_of::<GpuClustersHeader>()),
     ];
     assert_eq!(members, rust_members(&rust));
 }

@@ -11,7 +11,7 @@ use bevy::{
 };
 use bevy_phong::{
     PhongMaterial, PhongMaterialUniform, SpecularModel,
-    render::{GpuLightGridHeader, PhongSceneBindings},
+    render::{GpuClustersHeader, PhongSceneBindings},
     shadows::GpuShadowView,
 };
 use naga::{Expression, Literal};
@@ -139,7 +139,7 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
     ];
     let storage = [
         ("lights", PhongSceneBindings::LIGHTS),
-        ("light_grid", PhongSceneBindings::LIGHT_GRID),
+        ("light_clusters", PhongSceneBindings::LIGHT_CLUSTERS),
         ("shadow_views", PhongSceneBindings::SHADOW_VIEWS),
     ];
     let texture = [("scene_data", PhongSceneBindings::SCENE_DATA)];
@@ -200,10 +200,14 @@ fn every_data_texture_has_the_rust_width() {
 }
 
 #[test]
-fn the_shader_reads_each_grid_cell_record_at_the_rust_stride() {
+fn the_shader_reads_each_cluster_and_view_record_at_the_rust_stride() {
     let types = library().module("bevy_phong::types", &[]);
     assert_eq!(
-        constant(&types, "GRID_CELL_WORDS"),
-        GpuLightGridHeader::CELL_WORDS
+        constant(&types, "CLUSTER_WORDS"),
+        GpuClustersHeader::CLUSTER_WORDS
+    );
+    assert_eq!(
+        constant(&types, "CLUSTER_VIEW_WORDS"),
+        GpuClustersHeader::VIEW_WORDS
     );
 }

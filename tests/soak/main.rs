@@ -68,13 +68,12 @@ const RSS_GROWTH_BOUND: u64 = 48 << 20;
 /// light count and the same shadow-casting lights, so the ratio is 1 but for which lights
 /// they are: how many meshes there are, and which lights reach every pixel. That last one
 /// drifts: the falling half's lights have lived through more invalid writes, and a light
-/// moved to a finite but far-flung place (1e38) or given a range of 1e38 stretches the
-/// light grid over its sphere, which coarsens every cell (see `light_grid.rs`); the rising
-/// half's frame time jumps fourfold (58 to 228 ms from 520 to 680 lights) about when the
-/// first such light is likely to appear. With a dozen frames per band in the short run, the
+/// given a range of 1e38 is listed in every cluster of the view, so that every fragment
+/// loops over it; the rising half's frame time jumps about when the first such light is
+/// likely to appear. With a dozen frames per band in the short run, the
 /// bands of fewer than 1,000 lights differ by up to 4.5 for that reason (see also
 /// [`MIN_BAND_FRAMES`]). A cost that grows with the frame number (records left in the light
-/// buffer, a grid never cleared, change detection running over dead entities) grows without
+/// buffer, clusters never cleared, change detection running over dead entities) grows without
 /// bound and passes any such ratio within the long run.
 const BAND_RATIO_BOUND: f64 = 2.5;
 /// Bands with fewer frames than this in either half are printed but not held to
@@ -85,7 +84,7 @@ const BAND_RATIO_BOUND: f64 = 2.5;
 /// per band and changes the count by 3 a frame.
 const MIN_BAND_FRAMES: usize = 30;
 /// Largest ratio of the mean frame time of the falling half to that of the rising half,
-/// over all light counts: the bands of many lights, where the grid's stretch matters least,
+/// over all light counts: the bands of many lights, where such a light matters least,
 /// weigh most in it, and measured 1.03 to 1.24; a cost growing with the frame number grows
 /// past any bound.
 const HALF_RATIO_BOUND: f64 = 1.5;

@@ -93,6 +93,10 @@ impl<M: Material> SurfaceInputs<M> {
     }
 }
 
+/// Marks the camera that renders into the harness's target (a test may add others).
+#[derive(Component)]
+pub struct HarnessCamera;
+
 #[derive(Resource, Clone, Default)]
 struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
 
@@ -159,6 +163,7 @@ impl Harness {
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
         let target = app.world_mut().resource_mut::<Assets<Image>>().add(target);
         app.world_mut().spawn((
+            HarnessCamera,
             Camera3d::default(),
             Camera {
                 clear_color: ClearColorConfig::Custom(Color::NONE),
@@ -184,7 +189,7 @@ impl Harness {
     pub fn camera_mut(&mut self) -> EntityWorldMut<'_> {
         let world = self.app.world_mut();
         let camera = world
-            .query_filtered::<Entity, With<Camera3d>>()
+            .query_filtered::<Entity, With<HarnessCamera>>()
             .single(world)
             .expect("the harness has one camera");
         world.entity_mut(camera)
@@ -238,7 +243,7 @@ impl Harness {
         };
         world.despawn(entity);
         let mut cameras =
-            world.query_filtered::<(&mut Transform, &mut Projection), With<Camera3d>>();
+            world.query_filtered::<(&mut Transform, &mut Projection), With<HarnessCamera>>();
         for (mut camera_transform, mut camera_projection) in cameras.iter_mut(world) {
             *camera_transform = transform;
             *camera_projection = projection.clone();
@@ -248,7 +253,7 @@ impl Harness {
     /// Moves the camera to `position`, looking at the origin (before `capture_inputs`).
     pub fn look_from(&mut self, position: Vec3) {
         let world = self.app.world_mut();
-        let mut camera = world.query_filtered::<&mut Transform, With<Camera3d>>();
+        let mut camera = world.query_filtered::<&mut Transform, With<HarnessCamera>>();
         for mut transform in camera.iter_mut(world) {
             *transform = Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y);
         }
@@ -386,7 +391,7 @@ impl Harness {
     pub fn camera_position(&mut self) -> DVec3 {
         let world = self.app.world_mut();
         world
-            .query_filtered::<&GlobalTransform, With<Camera3d>>()
+            .query_filtered::<&GlobalTransform, With<HarnessCamera>>()
             .single(world)
             .expect("the harness has one camera")
             .translation()

@@ -1,0 +1,418 @@
+//! The per-view light clusters (see [`crate::culling`]): each camera's view cut into
+//! clusters, tiles of the screen × slices of depth, each listing the lights of finite reach
+//! whose sphere may meet it.
+//!
+//! A tile is a rectangle of normalized device coordinates (`tiles.x × tiles.y` of them over
+//! the view, x fastest); a slice an interval of depth in front of the camera, spaced
+//! logarithmically for perspective views and evenly for orthographic ones (see
+//! [`DepthSlices`]). The first and last slices reach to the camera and to infinity, so
+//! every fragment of the view is in some cluster. A light is listed in a cluster unless its
+//! sphere, widened by a margin that covers the shader's rounding, lies wholly outside one of
+//! the cluster's six bounding planes: a light that can reach a point of the view is listed
+//! in that point's cluster, and a light outside every view's frustum is listed nowhere.
+//!
+//! The data, after [`GpuClustersHeader`], is `u32` words: one record of [`VIEW_WORDS`] per
+//! view, `[key, first, tiles.x, tiles.y, slices, logarithmic, scale, bias]` (`scale` and
+//! `bias` as `f32` bits; `first` the word where its cluster records start); then every
+//! view's cluster records `[first, point_count, spot_count, 0]` (x fastest, then y, then
+//! slice), whose point lights are `data[first..]` and spot lights follow, each an index
+//! into the light buffer; then those indices.
+
+use super::gpu_types::{GpuClustersHeader, GpuLight};
+use bevy::math::{DMat4, DVec3, DVec4, Mat4, UVec2, Vec3};
+use std::ops::{Range, RangeInclusive};
+
+/// `u32` words per view record.
+pub const VIEW_WORDS: usize = GpuClustersHeader::VIEW_WORDS as usize;
+/// `u32` words per cluster record.
+const CLUSTER_WORDS: usize = GpuClustersHeader::CLUSTER_WORDS as usize;
+
+/// How a view's depth `d` (world units in front of the camera, view space `-z`) is cut into
+/// slices: slice `floor(f(d) · scale + bias)`, clamped to `0..count`, where `f` is `log2` for
+/// logarithmic slices and the identity otherwise.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DepthSlices {
+    /// Number of slices, at least 1.
+    pub count: u32,
+    /// Whether `f` is `log2` (perspective views).
+    pub logarithmic: bool,
+    /// Slices per unit of `f(d)`.
+    pub scale: f32,
+    /// The slice of `f(d) = 0`.
+    pub bias: f32,
+}
+
+impl DepthSlices {
+    /// One slice, for views whose depth range is unknown.
+    pub const ONE: Self = Self {
+        count: 1,
+        logarithmic: false,
+        scale: 0.0,
+        bias: 0.0,
+    };
+
+    /// `count` slices from `near` to `far`, each as many times deeper than the one before
+    /// (a perspective view's); [`Self::ONE`] unless `0 < near < far`, both finite.
+    pub fn logarithmic(count: u32, near: f32, far: f32) -> Self {
+        let (near, far) = (f64::from(near), f64::from(far));
+        if !(near > 0.0 && far > near && far.is_finite()) || count <= 1 {
+            return Self::ONE;
+        }
+        let scale = f64::from(count) / (far / near).log2();
+        Self {
+            count,
+            logarithmic: true,
+            scale: scale as f32,
+            bias: (-near.log2() * scale) as f32,
+        }
+    }
+
+    /// `count` slices of equal depth from `near` to `far` (an orthographic view's);
+    /// [`Self::ONE`] unless `near < far`, both finite.
+    pub fn linear(count: u32, near: f32, far: f32) -> Self {
+        let (near, far) = (f64::from(near), f64::from(far));
+        if !(far > near && near.is_finite() && far.is_finite()) || count <= 1 {
+            return Self::ONE;
+        }
+        let scale = f64::from(count) / (far - near);
+        Self {
+            count,
+            logarithmic: false,
+            scale: scale as f32,
+            bias: (-near * scale) as f32,
+        }
+    }
+
+    /// The slice that holds depth `depth`, computed as the shader does but in `f64`.
+    fn slice_of(&self, depth: f64) -> u32 {
+        let f = if self.logarithmic {
+            // The shader takes log2 of max(d, 1e-30): far below any near plane.
+            depth.max(1e-30).log2()
+        } else {
+            depth
+        };
+        let slice = (f * f64::from(self.scale) + f64::from(self.bias)).floor();
+        slice.clamp(0.0, f64::from(self.count - 1)) as u32
+    }
+}
+
+/// One view as its clusters are built: a camera's transform and projection as Bevy's view
+/// uniform holds them, and how it is cut.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClusterView {
+    /// The view's key ([`super::view_key::view_key`]).
+    pub key: u32,
+    /// World space to view space (Bevy's `view.view_from_world`).
+    pub view_from_world: Mat4,
+    /// View space to clip space without temporal jitter, as in Bevy's
+    /// `view.unjittered_clip_from_world`.
+    pub clip_from_view: Mat4,
+    /// Tiles across and down the view, each at least 1.
+    pub tiles: UVec2,
+    /// The depth slices.
+    pub slices: DepthSlices,
+}
+
+impl ClusterView {
+    /// Number of clusters.
+    fn cluster_count(&self) -> usize {
+        (self.tiles.x * self.tiles.y * self.slices.count) as usize
+    }
+
+    /// The view's record in the cluster data, its clusters' records starting at word `first`.
+    fn record(&self, first: u32) -> [u32; VIEW_WORDS] {
+        [
+            self.key,
+            first,
+            self.tiles.x,
+            self.tiles.y,
+            self.slices.count,
+            u32::from(self.slices.logarithmic),
+            self.slices.scale.to_bits(),
+            self.slices.bias.to_bits(),
+        ]
+    }
+}
+
+/// Leaves one of each set of identical views in `views`, and none of the views whose keys
+/// collide while they differ (their fragments then loop over every light of finite reach,
+/// see [`super::view_key`]). Returns how many views were left out for a collision.
+pub fn keep_distinct_views(views: &mut Vec<ClusterView>) -> usize {
+    views.sort_by_key(|view| view.key);
+    let mut kept: Vec<ClusterView> = Vec::with_capacity(views.len());
+    let mut left_out = 0;
+    for group in views.chunk_by(|a, b| a.key == b.key) {
+        if group.iter().all(|view| view == &group[0]) {
+            kept.push(group[0]);
+        } else {
+            left_out += group.len();
+        }
+    }
+    *views = kept;
+    left_out
+}
+
+/// A view's cluster boundaries in view space, for testing spheres against them.
+struct ViewBounds {
+    view_from_world: DMat4,
+    /// The planes `ndc.x = -1 + 2i / tiles.x` for `i` in `0..=tiles.x`, each `(n, w)` with
+    /// `n` a unit vector: `n · p + w ≥ 0` where `ndc.x` is at least the plane's.
+    columns: Vec<DVec4>,
+    /// The same for `ndc.y` and `tiles.y`.
+    rows: Vec<DVec4>,
+    /// The plane `w = 0` of clip space, normalized, `n · p + w > 0` in front of the camera
+    /// (zero for an orthographic view, where every point is in front). The tile planes are
+    /// met again behind the camera, where no fragment is: this plane leaves that out.
+    front: DVec4,
+    slices: DepthSlices,
+    /// The camera's distance from the world origin, for the rounding margin.
+    camera_distance: f64,
+}
+
+impl ViewBounds {
+    fn new(view: &ClusterView) -> Self {
+        let view_from_world = view.view_from_world.as_dmat4();
+        let clip_from_view = view.clip_from_view.as_dmat4();
+        let world_from_view = view_from_world.inverse();
+        Self {
+            view_from_world,
+            columns: boundary_planes(&clip_from_view, 0, view.tiles.x),
+            rows: boundary_planes(&clip_from_view, 1, view.tiles.y),
+            front: normalized(clip_from_view.row(3)),
+            slices: view.slices,
+            camera_distance: world_from_view.w_axis.truncate().length(),
+        }
+    }
+
+    /// The clusters (columns, rows, slices) that a sphere at `center` (world space) of
+    /// radius `radius` may meet; `None` when it meets none.
+    fn clusters_met(&self, center: Vec3, radius: f32) -> Option<[RangeInclusive<u32>; 3]> {
+        let world_center = center.as_dvec3();
+        let center = self.view_from_world.transform_point3(world_center);
+        let radius = f64::from(radius);
+        // The shader finds a fragment's cluster in f32 from Bevy's f32 matrices: its view
+        // space position is off by a few units of f32 rounding of the positions involved,
+        // its tile and slice by a few roundings of those. The margin is far above both.
+        let reach = radius
+            + 1e-4 * (center.length() + radius)
+            + 1e-6 * (world_center.length() + self.camera_distance);
+        if self.front.truncate().dot(center) + self.front.w < -reach {
+            return None;
+        }
+        let columns = tiles_met(&self.columns, center, reach)?;
+        let rows = tiles_met(&self.rows, center, reach)?;
+        let depth = -center.z;
+        let slices = self.slices.slice_of(depth - reach)..=self.slices.slice_of(depth + reach);
+        Some([columns, rows, slices])
+    }
+}
+
+/// The planes of `ndc[axis] = -1 + 2i / tiles` in view space, for `i` in `0..=tiles`,
+/// normalized (a plane of zero normal stays zero, and meets every sphere).
+fn boundary_planes(clip_from_view: &DMat4, axis: usize, tiles: u32) -> Vec<DVec4> {
+    let (row, w) = (clip_from_view.row(axis), clip_from_view.row(3));
+    (0..=tiles)
+        .map(|i| {
+            let ndc = -1.0 + 2.0 * f64::from(i) / f64::from(tiles);
+            // ndc ≥ x  ⇔  row · p - x · (w · p) ≥ 0, where w · p > 0 (in front of the camera).
+            normalized(row - ndc * w)
+        })
+        .collect()
+}
+
+/// `plane` scaled so that its normal is a unit vector; zero if its normal is zero.
+fn normalized(plane: DVec4) -> DVec4 {
+    let length = plane.truncate().length();
+    if length > 0.0 {
+        plane / length
+    } else {
+        DVec4::ZERO
+    }
+}
+
+/// The tiles between consecutive `planes` that a sphere at `center` reaching `reach` meets:
+/// tile `i` lies on the inner side of plane `i` and the outer side of plane `i + 1`.
+fn tiles_met(planes: &[DVec4], center: DVec3, reach: f64) -> Option<RangeInclusive<u32>> {
+    let distance = |plane: &DVec4| plane.truncate().dot(center) + plane.w;
+    let mut met = None::<(u32, u32)>;
+    for (tile, pair) in planes.windows(2).enumerate() {
+        if distance(&pair[0]) >= -reach && distance(&pair[1]) <= reach {
+            let tile = tile as u32;
+            met = Some(met.map_or((tile, tile), |(first, _)| (first, tile)));
+        }
+    }
+    met.map(|(first, last)| first..=last)
+}
+
+/// Every view's clusters as last built, and the scratch space they are built in (kept
+/// between frames: no allocation once the scene's size is reached).
+#[derive(Debug, Default)]
+pub struct LightClusters {
+    header: GpuClustersHeader,
+    data: Vec<u32>,
+    pairs: Vec<(u32, u32)>,
+    built_from: BuiltFrom,
+}
+
+/// The input of a build, compared with the next one: the same input gives the same
+/// clusters, which are then kept as they are.
+#[derive(Debug, Default)]
+struct BuiltFrom {
+    views: Vec<ClusterView>,
+    /// Each light's position and range, as bits.
+    spheres: Vec<[u32; 4]>,
+    points: Range<usize>,
+    spots: Range<usize>,
+}
+
+impl BuiltFrom {
+    fn is(
+        &self,
+        views: &[ClusterView],
+        lights: &[GpuLight],
+        points: &Range<usize>,
+        spots: &Range<usize>,
+    ) -> bool {
+        self.views == views
+            && self.points == *points
+            && self.spots == *spots
+            && self.spheres.len() == spots.end - points.start
+            && self
+                .spheres
+                .iter()
+                .zip(&lights[points.start..spots.end])
+                .all(|(sphere, light)| *sphere == sphere_bits(light))
+    }
+
+    fn set(
+        &mut self,
+        views: &[ClusterView],
+        lights: &[GpuLight],
+        points: Range<usize>,
+        spots: Range<usize>,
+    ) {
+        self.views.clear();
+        self.views.extend_from_slice(views);
+        self.spheres.clear();
+        self.spheres
+            .extend(lights[points.start..spots.end].iter().map(sphere_bits));
+        (self.points, self.spots) = (points, spots);
+    }
+}
+
+/// A light's position and range, as bits.
+fn sphere_bits(light: &GpuLight) -> [u32; 4] {
+    let [x, y, z] = light.position;
+    [x, y, z, light.range].map(f32::to_bits)
+}
+
+/// Whether `light` (a point or spot light) has a finite sphere of reach that clusters can
+/// hold.
+pub fn has_finite_reach(light: &GpuLight) -> bool {
+    let center = Vec3::from(light.position);
+    light.range < f32::MAX
+        && (center - light.range).is_finite()
+        && (center + light.range).is_finite()
+}
+
+impl LightClusters {
+    /// How many views the data holds.
+    pub fn header(&self) -> &GpuClustersHeader {
+        &self.header
+    }
+
+    /// The view records, the cluster records, then the light indices they point into.
+    pub fn data(&self) -> &[u32] {
+        &self.data
+    }
+
+    /// Lists the point lights `lights[points]` and the spot lights `lights[spots]` (every
+    /// one with [`has_finite_reach`]; `spots` follows `points`) in the clusters of each of
+    /// `views` that they may meet. Returns `false`, keeping the clusters as they are, when
+    /// these are the views and lights of the last build, at the same places with the same
+    /// ranges. With no light or no view there is no cluster: the header says 0 views.
+    pub fn build(
+        &mut self,
+        views: &[ClusterView],
+        lights: &[GpuLight],
+        points: Range<usize>,
+        spots: Range<usize>,
+    ) -> bool {
+        debug_assert_eq!(points.end, spots.start);
+        if self.built_from.is(views, lights, &points, &spots) {
+            return false;
+        }
+        self.built_from
+            .set(views, lights, points.clone(), spots.clone());
+        self.data.clear();
+        self.pairs.clear();
+        let bounded = &lights[points.start..spots.end];
+        if bounded.is_empty() || views.is_empty() {
+            self.header = GpuClustersHeader::EMPTY;
+            return true;
+        }
+        self.header = GpuClustersHeader {
+            view_count: views.len() as u32,
+            ..GpuClustersHeader::EMPTY
+        };
+
+        // The view records, each pointing at its cluster records, which follow them.
+        let mut first = views.len() * VIEW_WORDS;
+        for view in views {
+            self.data.extend(view.record(first as u32));
+            first += view.cluster_count() * CLUSTER_WORDS;
+        }
+        let records_end = first;
+        self.data.resize(records_end, 0);
+
+        // Count each cluster's point lights (word 1) and spot lights (word 2), and note every
+        // (cluster record, light) pair.
+        let (data, pairs) = (&mut self.data, &mut self.pairs);
+        for (view_index, view) in views.iter().enumerate() {
+            let bounds = ViewBounds::new(view);
+            let view_first = data[view_index * VIEW_WORDS + 1] as usize;
+            let (columns, rows) = (view.tiles.x as usize, view.tiles.y as usize);
+            for (index, light) in bounded.iter().enumerate() {
+                let light_index = points.start + index;
+                let word = if light_index < points.end { 1 } else { 2 };
+                let Some([xs, ys, slices]) =
+                    bounds.clusters_met(Vec3::from(light.position), light.range)
+                else {
+                    continue;
+                };
+                for slice in slices {
+                    for y in ys.clone() {
+                        let row = (slice as usize * rows + y as usize) * columns;
+                        for x in xs.clone() {
+                            let record = view_first + CLUSTER_WORDS * (row + x as usize);
+                            data[record + word] += 1;
+                            pairs.push((record as u32, light_index as u32));
+                        }
+                    }
+                }
+            }
+        }
+        // Give each cluster its first index (word 0) and a write cursor (word 3).
+        let mut next = records_end as u32;
+        for record in data[views.len() * VIEW_WORDS..].chunks_exact_mut(CLUSTER_WORDS) {
+            record[0] = next;
+            record[3] = next;
+            next += record[1] + record[2];
+        }
+        data.resize(next as usize, 0);
+        // Per view, the pairs are in light order, points before spots: so is each list.
+        for &(record, light_index) in pairs.iter() {
+            let cursor = &mut data[record as usize + 3];
+            let slot = *cursor as usize;
+            *cursor += 1;
+            data[slot] = light_index;
+        }
+        for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(CLUSTER_WORDS) {
+            record[3] = 0;
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests;
