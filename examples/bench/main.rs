@@ -21,7 +21,9 @@
 //! fourth table runs each of its measurements that way, in a process of its own.
 //!
 //! The first table is the frame times (`--frame-times`): `--scene` (`showcase`, `field16`,
-//! `field256`, `field4096`) and `--size` may be repeated to pick its rows; `--culling`
+//! `field256`, `field4096`, and `wide3840` / `wide60000`: the 256-light field with that
+//! many more lights spread over a world 1,000 units across, reaching no visible pixel) and
+//! `--size` may be repeated to pick its rows; `--culling`
 //! (`none`, `exact`, `default`) sets the Phong column's `PhongLightCulling`;
 //! `--no-variants` skips the second table. A third table
 //! gives the cost of shadows: the showcase on a floor with its three lights casting shadows

@@ -13,7 +13,7 @@ use bevy::{
     asset::Assets,
     camera::{Camera, Camera3d, Projection, primitives::Frustum},
     ecs::{
-        change_detection::DetectChangesMut,
+        change_detection::{DetectChanges, DetectChangesMut},
         message::MessageWriter,
         query::With,
         resource::Resource,
@@ -148,6 +148,14 @@ pub fn assign_lights_to_clusters(
         *collisions_said = collisions;
     }
 
+    // The lights' records are rewritten only in frames where a light changed: otherwise only
+    // the views can have changed the clusters.
+    let unchanged = !lights.is_changed()
+        && state.clusters.was_built_for(&state.views)
+        && state.buffer.capacity() > 0;
+    if unchanged {
+        return;
+    }
     let header = lights.header();
     let first = (header.directional_count + header.point_count + header.spot_count) as usize;
     let spots = first + header.clustered_point_count as usize;

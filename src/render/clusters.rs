@@ -321,6 +321,11 @@ impl LightClusters {
         &self.header
     }
 
+    /// Whether the last build was for `views`.
+    pub fn was_built_for(&self, views: &[ClusterView]) -> bool {
+        self.built_from.views == views
+    }
+
     /// The view records, the cluster records, then the light indices they point into.
     pub fn data(&self) -> &[u32] {
         &self.data
