@@ -62,7 +62,7 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
         color += light_of_kind(surface, light, kind, arriving, factors);
 #endif
     }
-    return color + clustered_lights(surface);
+    return color + clustered_lights(surface, end);
 #endif
 }
 
@@ -80,12 +80,15 @@ fn view_key() -> u32 {
     return key;
 }
 
+// What `view_record` returns for a view without clusters.
+const NO_VIEW_RECORD: u32 = 0xffffffffu;
+
 // The first word of the cluster data's record of the view being drawn, or
-// `CLUSTER_VIEW_WORDS * cluster_view_count()` for a view without clusters.
+// `NO_VIEW_RECORD` for a view without clusters.
 fn view_record() -> u32 {
     let end = CLUSTER_VIEW_WORDS * cluster_view_count();
     if end == 0u {
-        return end;
+        return NO_VIEW_RECORD;
     }
     let key = view_key();
     for (var record = 0u; record < end; record += CLUSTER_VIEW_WORDS) {
@@ -93,7 +96,7 @@ fn view_record() -> u32 {
             return record;
         }
     }
-    return end;
+    return NO_VIEW_RECORD;
 }
 
 // The first word of the record of the cluster that holds the world position `position` in
@@ -118,12 +121,12 @@ fn cluster_record(record: u32, position: vec3<f32>) -> u32 {
 
 // Σ over the point and spot lights of finite reach that may reach the surface point: those
 // listed in its cluster of the view being drawn, or every one where the view has no
-// clusters (a camera that appeared after the lights were listed, a key collision).
-fn clustered_lights(surface: PhongSurface) -> vec3<f32> {
+// clusters (a camera that appeared after the lights were listed, a key collision). The
+// clustered lights start at index `start` of the light buffer.
+fn clustered_lights(surface: PhongSurface, start: u32) -> vec3<f32> {
     let record = view_record();
     var color = vec3<f32>(0.0);
-    if record == CLUSTER_VIEW_WORDS * cluster_view_count() {
-        let start = directional_count() + point_count() + spot_count();
+    if record == NO_VIEW_RECORD {
         let spot_start = start + clustered_point_count();
         let end = spot_start + clustered_spot_count();
         for (var index = start; index < end; index += 1u) {
@@ -133,15 +136,15 @@ fn clustered_lights(surface: PhongSurface) -> vec3<f32> {
         return color;
     }
     let cluster = cluster_record(record, surface.position);
-    let start = cluster_word(cluster);
-    let spot_start = start + cluster_word(cluster + 1u);
-    let end = spot_start + cluster_word(cluster + 2u);
-    for (var slot = start; slot < end; slot += 1u) {
+    let first = cluster_word(cluster);
+    let spot_slot = first + cluster_word(cluster + 1u);
+    let end = spot_slot + cluster_word(cluster + 2u);
+    for (var slot = first; slot < end; slot += 1u) {
         let light = light_at(cluster_word(slot));
 #ifdef PHONG_ABLATION_NO_TERMS
         color += record_sum(light);
 #else
-        let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_start);
+        let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_slot);
         color += unshadowed_light(surface, light, kind);
 #endif
     }

@@ -45,7 +45,8 @@ fn objects() -> (Harness, SurfaceInputs) {
     (harness, inputs)
 }
 
-fn clustered_light_count(harness: &mut Harness) -> u32 {
+/// How many point and spot lights the gather put in the clustered part of the light buffer.
+pub fn clustered_light_count(harness: &mut Harness) -> u32 {
     let header = *harness.world_mut().resource::<PhongLightBuffer>().header();
     header.clustered_point_count + header.clustered_spot_count
 }

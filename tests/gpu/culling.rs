@@ -3,9 +3,10 @@
 //! whose distance from the exact model is measured here and bounded by
 //! `ε · (k_d + k_s · strength)` for all skipped lights together.
 
+use crate::clusters::clustered_light_count;
 use crate::frames::{SIZE, TOLERANCE, spawn_objects};
 use bevy::prelude::*;
-use bevy_phong::{prelude::*, reference, render::PhongLightBuffer};
+use bevy_phong::{prelude::*, reference};
 use bevy_phong_headless::{Harness, SurfaceInputs};
 
 /// The frame tests' objects under `count` point lights scattered over the floor, each fading
@@ -40,11 +41,6 @@ fn scene(count: usize, decay: Decay, range: Option<f32>) -> (Harness, SurfaceInp
 
 fn set_culling(harness: &mut Harness, culling: PhongLightCulling) {
     harness.world_mut().insert_resource(culling);
-}
-
-fn clustered_light_count(harness: &mut Harness) -> u32 {
-    let header = *harness.world_mut().resource::<PhongLightBuffer>().header();
-    header.clustered_point_count + header.clustered_spot_count
 }
 
 #[test]
