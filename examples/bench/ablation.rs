@@ -6,25 +6,28 @@
 //! with the lights written into the shader: together they split the lights' cost into
 //! reading and arithmetic. `StandardMaterial` is the last row, for the ratio to it.
 //!
-//! A stage is a set of the shader's cut-point defs (`PHONG_ABLATION_*`, set by nothing but
-//! this benchmark), added to the material's fragment shader asset
-//! ([`median_frame_time_and_picture`]):
+//! A stage is a set of defs of the benchmark's own fragment shader, `ablation.wgsl` beside
+//! this file, which the benchmark puts in place of `PhongMaterial`'s fragment shader for
+//! the row ([`median_frame_time_and_picture`]); the crate's shaders carry no cut. That
+//! shader is made of the crate's WGSL functions (`phong_surface`, `incidence`,
+//! `phong_light`, `light_at`, the cluster look-up, ...) in the loops of the crate's
+//! `direct_lights`, so each cut removes one stage and nothing else:
 //!
-//! - `PHONG_ABLATION_NO_LIGHTS` (`phong_material.wgsl`): the fragment returns a color made
-//!   of the surface set-up alone (normal, view vector, the material's colors and maps).
-//! - `PHONG_ABLATION_NO_TERMS` (`shading.wgsl`): the light loops read the fields of every
-//!   record they reach that the diffuse term uses (position, direction, color) and sum
-//!   them, computing nothing else; with `PHONG_ABLATION_ALL_FIELDS`, every field the shader
-//!   reads without shadows.
-//! - `PHONG_ABLATION_NO_ATTENUATION` (`lighting.wgsl`): every light arrives at full
-//!   strength along L (no distance attenuation, range or cone).
-//! - `PHONG_ABLATION_NO_HIGHLIGHT` (`lighting.wgsl`): each light's term is its diffuse part.
-//! - `PHONG_ABLATION_NO_AMBIENT` (`shading.wgsl`): the color is the lights' sum alone (no
-//!   ambient, no emissive).
-//! - `PHONG_ABLATION_CONSTANT_LIGHTS` (`shading.wgsl`): the full shader with the showcase's
-//!   three light records written into it: every light's arithmetic, no record read, no
-//!   clusters. Its picture is the full shader's (the table shows the pixels that differ), so
-//!   the row is the cost of the lighting if reading the lights cost nothing.
+//! - `NO_LIGHTS`: the fragment returns a color made of the surface set-up alone (normal,
+//!   view vector, the material's colors and maps).
+//! - `NO_TERMS`: the light loops read the fields of every record they reach that the
+//!   diffuse term uses (position, direction, color) and sum them, computing nothing else;
+//!   with `ALL_FIELDS`, every field the shader reads without shadows.
+//! - `NO_ATTENUATION`: every light arrives at full strength along L (no distance
+//!   attenuation, range or cone).
+//! - `NO_HIGHLIGHT`: each light's term is its diffuse part.
+//! - `NO_AMBIENT`: the color is the lights' sum alone (no ambient, no emissive).
+//! - `CONSTANT_LIGHTS`: the full shader with the showcase's three light records written
+//!   into it: every light's arithmetic, no record read, no clusters. Its picture is the full
+//!   shader's (the table shows the pixels that differ), so the row is the cost of the
+//!   lighting if reading the lights cost nothing.
+//!
+//! The full shader's row draws with the crate's shader itself, unchanged.
 
 use crate::{
     alternating_medians, ms,
@@ -40,7 +43,8 @@ struct Stage {
     /// The row's name in the table and the CSV file (quoted there: it holds no quotes).
     name: &'static str,
     shading: Shading,
-    /// The cut-point defs added to `PhongMaterial`'s fragment shader.
+    /// The defs of `ablation.wgsl`, drawn in place of `PhongMaterial`'s fragment shader;
+    /// none: the crate's shader.
     defs: &'static [&'static str],
     /// The row (index into [`STAGES`]) whose work this one adds to; `None` for the floor.
     builds_on: Option<usize>,
@@ -62,35 +66,31 @@ const STAGES: [Stage; 10] = [
     Stage {
         name: "surface set-up alone",
         shading: PHONG,
-        defs: &["PHONG_ABLATION_NO_LIGHTS"],
+        defs: &["NO_LIGHTS"],
         builds_on: Some(0),
     },
     Stage {
         name: "+ the loops reading position, direction and color",
         shading: PHONG,
-        defs: &["PHONG_ABLATION_NO_TERMS", "PHONG_ABLATION_NO_AMBIENT"],
+        defs: &["NO_TERMS", "NO_AMBIENT"],
         builds_on: Some(1),
     },
     Stage {
         name: "+ diffuse (L and N·L)",
         shading: PHONG,
-        defs: &[
-            "PHONG_ABLATION_NO_ATTENUATION",
-            "PHONG_ABLATION_NO_HIGHLIGHT",
-            "PHONG_ABLATION_NO_AMBIENT",
-        ],
+        defs: &["NO_ATTENUATION", "NO_HIGHLIGHT", "NO_AMBIENT"],
         builds_on: Some(2),
     },
     Stage {
         name: "+ attenuation and cone (reading range, decay and the cone's fields)",
         shading: PHONG,
-        defs: &["PHONG_ABLATION_NO_HIGHLIGHT", "PHONG_ABLATION_NO_AMBIENT"],
+        defs: &["NO_HIGHLIGHT", "NO_AMBIENT"],
         builds_on: Some(3),
     },
     Stage {
         name: "+ highlight (reading the specular color)",
         shading: PHONG,
-        defs: &["PHONG_ABLATION_NO_AMBIENT"],
+        defs: &["NO_AMBIENT"],
         builds_on: Some(4),
     },
     Stage {
@@ -102,17 +102,13 @@ const STAGES: [Stage; 10] = [
     Stage {
         name: "surface set-up + the loops reading every field the full shader reads",
         shading: PHONG,
-        defs: &[
-            "PHONG_ABLATION_NO_TERMS",
-            "PHONG_ABLATION_ALL_FIELDS",
-            "PHONG_ABLATION_NO_AMBIENT",
-        ],
+        defs: &["NO_TERMS", "ALL_FIELDS", "NO_AMBIENT"],
         builds_on: Some(1),
     },
     Stage {
         name: "full shader, the three lights written into it (no record read)",
         shading: PHONG,
-        defs: &["PHONG_ABLATION_CONSTANT_LIGHTS"],
+        defs: &["CONSTANT_LIGHTS"],
         builds_on: Some(6),
     },
     Stage {

@@ -7,7 +7,6 @@ use bevy::{
     prelude::*,
     render::{
         RenderApp,
-        gpu_readback::{Readback, ReadbackComplete},
         render_resource::{PollType, TextureFormat, TextureUsages},
         renderer::RenderDevice,
         view::Msaa,
@@ -15,16 +14,15 @@ use bevy::{
     shader::ShaderDefVal,
 };
 use bevy_phong::PhongLightCulling;
-use bevy_phong_headless::{assert_no_failed_pipelines, headless_app, run_until_settled};
-use std::{
-    sync::{Arc, Mutex},
-    time::{Duration, Instant},
+use bevy_phong_headless::{
+    assert_no_failed_pipelines, headless_app, read_back_frame, run_until_settled,
 };
+use std::time::{Duration, Instant};
 
 /// The asset path of `PhongMaterial`'s fragment shader (`src/shaders/phong_material.wgsl`).
 const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wgsl";
 
-/// Frames to wait for a shader to load, and for a readback to arrive, before giving up.
+/// Frames to wait for a shader to load before giving up.
 const MAX_WAIT_FRAMES: u32 = 600;
 
 /// How many frames to measure.
@@ -55,8 +53,9 @@ pub fn median_frame_time(
     measured_app(scene, size, shading, culling, frames, &[]).median
 }
 
-/// [`median_frame_time`] with `phong_defs` added to the shader defs of `PhongMaterial`'s
-/// fragment shader (the benchmark's shader ablation: `examples/bench/ablation.rs`), and
+/// [`median_frame_time`] with `PhongMaterial`'s fragment shader replaced by the ablation's,
+/// cut by `ablation_defs`, where they are not empty (the benchmark's shader ablation:
+/// `examples/bench/ablation.rs`), and
 /// the picture of a frame drawn after the measured ones: `size`² pixels, row by row, each
 /// RGBA with 8-bit sRGB channels.
 ///
@@ -70,11 +69,19 @@ pub fn median_frame_time_and_picture(
     shading: Shading,
     culling: PhongLightCulling,
     frames: Frames,
-    phong_defs: &[&str],
+    ablation_defs: &[&str],
 ) -> (Duration, Vec<u8>) {
-    let mut measured = measured_app(scene, size, shading, culling, frames, phong_defs);
-    assert_no_failed_pipelines(&measured.app, &format!("shader defs {phong_defs:?}"));
-    let picture = read_back(&mut measured.app, measured.target, size);
+    let mut measured = measured_app(scene, size, shading, culling, frames, ablation_defs);
+    assert_no_failed_pipelines(&measured.app, &format!("shader defs {ablation_defs:?}"));
+    let picture = read_back_frame(
+        &mut measured.app,
+        &measured.target,
+        4 * size as usize,
+        size as usize,
+        |app| {
+            frame(app);
+        },
+    );
     (measured.median, picture)
 }
 
@@ -85,28 +92,29 @@ struct Measured {
     target: Handle<Image>,
     /// The median frame time.
     median: Duration,
-    /// The Phong fragment shader whose defs were changed, held so that it stays loaded
-    /// with them (an asset no handle holds is unloaded, and loads afresh when next asked
+    /// The Phong fragment shader replaced by the ablation's, held so that it stays loaded
+    /// as it is (an asset no handle holds is unloaded, and loads afresh when next asked
     /// for).
     _changed_shader: Option<Handle<Shader>>,
 }
 
-/// Measures `scene` as [`median_frame_time`] does, with `phong_defs` added to the shader
-/// defs of `PhongMaterial`'s fragment shader before any mesh is spawned.
+/// Measures `scene` as [`median_frame_time`] does, with `PhongMaterial`'s fragment shader
+/// replaced by the ablation's, cut by `ablation_defs`, before any mesh is spawned (unless
+/// `ablation_defs` is empty).
 fn measured_app(
     scene: Scene,
     size: u32,
     shading: Shading,
     culling: PhongLightCulling,
     frames: Frames,
-    phong_defs: &[&str],
+    ablation_defs: &[&str],
 ) -> Measured {
     let mut app = headless_app(|app| {
         app.add_plugins(MaterialPlugin::<ConstantColor>::default())
             .insert_resource(culling);
     });
-    let changed_shader = (!phong_defs.is_empty())
-        .then(|| add_shader_defs(&mut app, PHONG_MATERIAL_SHADER, phong_defs));
+    let changed_shader = (!ablation_defs.is_empty())
+        .then(|| replace_with_ablation_shader(&mut app, PHONG_MATERIAL_SHADER, ablation_defs));
     let target = spawn_camera(app.world_mut(), scene, size);
     spawn_scene(app.world_mut(), scene, shading);
 
@@ -133,17 +141,24 @@ fn measured_app(
     }
 }
 
-/// Waits until the shader asset at `path` has loaded, then adds `defs` to its own
-/// `Shader::shader_defs`. Bevy composes every pipeline of that shader with the asset's defs
-/// added to the pipeline's (`bevy_shader` 0.19.1, `ShaderCache::get`), and naga_oil applies
-/// them to every module it imports: the defs reach `#ifdef`s in any of the crate's modules.
-/// Returns the shader's handle, to be held while the app runs: an asset no handle holds is
-/// unloaded, and the material would then load the file afresh, without the defs.
+/// The benchmark's cut fragment shader (`examples/bench/ablation.wgsl`), composed from the
+/// crate's WGSL functions.
+const ABLATION_SHADER: &str = include_str!("ablation.wgsl");
+
+/// Waits until the shader asset at `path` has loaded, then puts the ablation's shader
+/// ([`ABLATION_SHADER`]) with `defs` in its place. Bevy composes every pipeline of that
+/// asset anew when it changes, so the material draws with the cut shader; the crate's
+/// shaders are not touched. Returns the shader's handle, to be held while the app runs: an
+/// asset no handle holds is unloaded, and the material would then load the file afresh.
 ///
 /// # Panics
 ///
 /// When the shader has not loaded within [`MAX_WAIT_FRAMES`] frames.
-fn add_shader_defs(app: &mut App, path: &'static str, defs: &[&str]) -> Handle<Shader> {
+fn replace_with_ablation_shader(
+    app: &mut App,
+    path: &'static str,
+    defs: &[&str],
+) -> Handle<Shader> {
     let handle: Handle<Shader> = app.world().resource::<AssetServer>().load(path);
     let mut frames = 0;
     while !app.world().resource::<AssetServer>().is_loaded(&handle) {
@@ -152,43 +167,11 @@ fn add_shader_defs(app: &mut App, path: &'static str, defs: &[&str]) -> Handle<S
         std::thread::sleep(Duration::from_millis(1));
         frames += 1;
     }
+    let defs = defs.iter().map(|&def| ShaderDefVal::from(def)).collect();
     let mut shaders = app.world_mut().resource_mut::<Assets<Shader>>();
     let mut shader = shaders.get_mut(&handle).expect("the shader has loaded");
-    shader
-        .shader_defs
-        .extend(defs.iter().map(|&def| ShaderDefVal::from(def)));
+    *shader = Shader::from_wgsl_with_defs(ABLATION_SHADER, "examples/bench/ablation.wgsl", defs);
     handle
-}
-
-/// Draws one more frame and reads the camera's `size`² target back: RGBA with 8-bit
-/// channels, row by row, without the readback's row padding.
-///
-/// # Panics
-///
-/// When the readback has not arrived within [`MAX_WAIT_FRAMES`] frames.
-fn read_back(app: &mut App, target: Handle<Image>, size: u32) -> Vec<u8> {
-    let received: Arc<Mutex<Option<Vec<u8>>>> = Arc::default();
-    let sink = received.clone();
-    let entity = app
-        .world_mut()
-        .spawn(Readback::texture(target))
-        .observe(move |readback: On<ReadbackComplete>| {
-            *sink.lock().unwrap() = Some(readback.data.clone());
-        })
-        .id();
-    for _ in 0..MAX_WAIT_FRAMES {
-        frame(app);
-        if let Some(bytes) = received.lock().unwrap().take() {
-            app.world_mut().despawn(entity);
-            let row_bytes = bytes.len() / size as usize;
-            return bytes
-                .chunks_exact(row_bytes)
-                .flat_map(|row| &row[..4 * size as usize])
-                .copied()
-                .collect();
-        }
-    }
-    panic!("the readback did not arrive within {MAX_WAIT_FRAMES} frames");
 }
 
 /// A camera that renders `scene` into a `size`² sRGB image; returns the image.

@@ -15,7 +15,7 @@ use bevy::{
     },
     time::TimeUpdateStrategy,
 };
-use bevy_phong_headless::headless_plugins;
+use bevy_phong_headless::{headless_plugins, without_row_padding};
 use std::time::Duration;
 
 /// Bevy's plugins without a window, a loop that renders until the PNG is written, and the
@@ -130,10 +130,7 @@ fn save_capture(
     }
     *saved = true;
     let (width, height) = (PICTURE_SIZE.x as usize, PICTURE_SIZE.y as usize);
-    let row_bytes = readback.data.len() / height;
-    let pixels: Vec<u8> = (0..height)
-        .flat_map(|row| readback.data[row * row_bytes..row * row_bytes + width * 4].to_vec())
-        .collect();
+    let pixels = without_row_padding(&readback.data, 4 * width, height);
     if let Some(parent) = path.parent() {
         let _ = std::fs::create_dir_all(parent);
     }

@@ -172,9 +172,6 @@ fn phong_light(
 #ifdef PHONG_NO_SPECULAR
     // The material's k_s · strength is zero: the variant without the highlight.
     return diffuse;
-#else ifdef PHONG_ABLATION_NO_HIGHLIGHT
-    // The benchmark's shader ablation only (examples/bench/ablation.rs): no highlight.
-    return diffuse;
 #else
     return diffuse + specular * surface.specular * highlight(surface, to_light, n_dot_l);
 #endif
@@ -239,12 +236,6 @@ struct Incidence {
 // light's work per light instead of a loop's body per kind. `directional_light`,
 // `point_light` and `spot_light` are this, unshadowed.
 fn incidence(surface: PhongSurface, light: PhongLight, kind: u32) -> Incidence {
-#ifdef PHONG_ABLATION_NO_ATTENUATION
-    // The benchmark's shader ablation only (examples/bench/ablation.rs): L alone, every
-    // light at full strength (no distance attenuation, range or cone).
-    let toward_position = normalize_or_zero(light.position - surface.position);
-    return Incidence(select(-light.direction, toward_position, kind != LIGHT_DIRECTIONAL), 1.0);
-#else
     let ray = ray_toward(surface, light.position, light.decay, light.range);
     let cone = spot_cone(-ray.to_light, light.direction, light.outer_versine, light.cone_scale, light.spot_exponent);
     let at_point = kind != LIGHT_DIRECTIONAL;
@@ -252,7 +243,6 @@ fn incidence(surface: PhongSurface, light: PhongLight, kind: u32) -> Incidence {
         select(-light.direction, ray.to_light, at_point),
         select(1.0, ray.attenuation * select(1.0, cone, kind == LIGHT_SPOT), at_point),
     );
-#endif
 }
 
 // The term of a light of `kind` arriving as `incidence`, with the light's color and

@@ -26,13 +26,6 @@ fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @locatio
     );
     surface.receives_shadows = receives_shadows(in.instance_index);
     surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb);
-#ifdef PHONG_ABLATION_NO_LIGHTS
-    // The benchmark's shader ablation only (examples/bench/ablation.rs): the surface set-up
-    // without any light, its normal, view vector and colors all used (a headlight).
-    let colors = (surface.diffuse + 0.25 * surface.specular) * surface.ambient_occlusion;
-    let lit = vec4<f32>(abs(dot(surface.normal, surface.view)) * colors + mapped.emissive, mapped.base_color.a);
-#else
     let lit = vec4<f32>(lit_color(surface, mapped.emissive), mapped.base_color.a);
-#endif
     return camera_effects(lit, in.world_position.xyz, in.position.xy);
 }

@@ -8,7 +8,7 @@
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_view_bindings::view
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
-#import bevy_phong::types::{CLUSTER_VIEW_WORDS, CLUSTER_WORDS, PhongLight, PhongSurface}
+#import bevy_phong::types::{CLUSTER_VIEW_WORDS, CLUSTER_WORDS, PhongSurface}
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -40,18 +40,12 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
 // kind (see `incidence`); while some light casts shadows (PHONG_SHADOWS), each light's
 // terms are scaled by its shadow factors.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
-#ifdef PHONG_ABLATION_CONSTANT_LIGHTS
-    return showcase_lights(surface);
-#else
     let point_start = directional_count();
     let spot_start = point_start + point_count();
     let end = spot_start + spot_count();
     var color = vec3<f32>(0.0);
     for (var index = 0u; index < end; index += 1u) {
         let light = light_at(index);
-#ifdef PHONG_ABLATION_NO_TERMS
-        color += record_sum(light);
-#else
         let kind = select(select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= point_start), LIGHT_SPOT, index >= spot_start);
         let arriving = incidence(surface, light, kind);
 #ifdef PHONG_SHADOWS
@@ -60,10 +54,8 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
         let factors = vec2<f32>(1.0);
 #endif
         color += light_of_kind(surface, light, kind, arriving, factors);
-#endif
     }
     return color + clustered_lights(surface, end);
-#endif
 }
 
 // The key of the view being drawn (src/render/view_key.rs): FNV-1a over the bits of its six
@@ -140,67 +132,15 @@ fn clustered_lights(surface: PhongSurface, start: u32) -> vec3<f32> {
     let spot_slot = first + cluster_word(cluster + 1u);
     let end = spot_slot + cluster_word(cluster + 2u);
     for (var slot = first; slot < end; slot += 1u) {
-        let light = light_at(cluster_word(slot));
-#ifdef PHONG_ABLATION_NO_TERMS
-        color += record_sum(light);
-#else
         let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_slot);
-        color += unshadowed_light(surface, light, kind);
-#endif
+        color += unshadowed_light(surface, light_at(cluster_word(slot)), kind);
     }
     return color;
 }
-
-#ifdef PHONG_ABLATION_CONSTANT_LIGHTS
-// The benchmark's shader ablation only (examples/bench/ablation.rs): the records the gather
-// makes of the showcase's three lights (examples/bench/scene.rs; the point lights' range
-// unlimited, which their reach, over 100 units, is in that scene), written into the shader.
-var<private> SHOWCASE_LIGHTS: array<PhongLight, 3> = array<PhongLight, 3>(
-    PhongLight(vec3(0.0), 0.0, vec3(-1.0, 0.0, 0.0), 0.0, vec3(1.0), 0.0, vec3(1.0), 0.0, vec3(0.0), 0u),
-    PhongLight(vec3(-3.0, 3.0, 0.0), 3.4028235e38, vec3(0.0), 0.0, vec3(1.0, 0.0, 0.0), 0.0, vec3(1.0, 0.0, 0.0), 0.0, vec3(1.0, 0.0, 0.2), 0u),
-    PhongLight(vec3(3.0, 3.0, 0.0), 3.4028235e38, vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0, vec3(1.0, 0.0, 0.2), 0u),
-);
-
-// The first loop of `direct_lights` over `SHOWCASE_LIGHTS`: every light's arithmetic, and
-// no light record read from the scene data (the loop's count still is, so that the
-// compiler cannot fold the lights into the code).
-fn showcase_lights(surface: PhongSurface) -> vec3<f32> {
-    let end = directional_count() + 2u;
-    var color = vec3<f32>(0.0);
-    for (var index = 0u; index < end; index += 1u) {
-        let light = SHOWCASE_LIGHTS[min(index, 2u)];
-        let kind = select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= 1u);
-        let arriving = incidence(surface, light, kind);
-        color += light_of_kind(surface, light, kind, arriving, vec2<f32>(1.0));
-    }
-    return color;
-}
-#endif
-
-#ifdef PHONG_ABLATION_NO_TERMS
-// The benchmark's shader ablation only (examples/bench/ablation.rs): the sum of the fields
-// of a light record that the diffuse term reads (position, direction, color) or, with
-// PHONG_ABLATION_ALL_FIELDS, of every field the shader reads without shadows, so that the
-// loops read them and compute nothing else.
-fn record_sum(light: PhongLight) -> vec3<f32> {
-    let diffuse_fields = light.position + light.direction + light.color;
-#ifdef PHONG_ABLATION_ALL_FIELDS
-    let scalars = light.range + light.outer_versine + light.cone_scale + light.spot_exponent;
-    return diffuse_fields + light.specular + light.decay + vec3<f32>(scalars);
-#else
-    return diffuse_fields;
-#endif
-}
-#endif
 
 // SPEC.md's whole equation: emissive + ambient + Σ lights, with the given emissive color.
 fn lit_color(surface: PhongSurface, emissive: vec3<f32>) -> vec3<f32> {
-#ifdef PHONG_ABLATION_NO_AMBIENT
-    // The benchmark's shader ablation only (examples/bench/ablation.rs): Σ lights alone.
-    return direct_lights(surface);
-#else
     return emissive + ambient_light(surface) + direct_lights(surface);
-#endif
 }
 
 // SPEC.md's whole equation for the bound material without its texture maps.

@@ -15,21 +15,16 @@ pub struct FloatImage {
 }
 
 impl FloatImage {
-    /// The image in `bytes`, a texture readback whose rows may be padded to the device's
-    /// row alignment.
-    pub(crate) fn from_readback(width: u32, height: u32, bytes: &[u8]) -> Self {
-        let row_bytes = bytes.len() / height as usize;
-        let pixels = (0..height as usize)
-            .flat_map(|row| {
-                let start = row * row_bytes;
-                bytemuck::cast_slice::<u8, [f32; 4]>(&bytes[start..start + width as usize * 16])
-                    .to_vec()
-            })
-            .collect();
+    /// The image in `bytes`: `width * height` RGBA32F pixels, row by row, without padding
+    /// (as [`read_back_frame`](crate::read_back_frame) returns them).
+    pub(crate) fn from_rows(width: u32, height: u32, bytes: &[u8]) -> Self {
         Self {
             width,
             height,
-            pixels,
+            pixels: bytes
+                .chunks_exact(16)
+                .map(bytemuck::pod_read_unaligned)
+                .collect(),
         }
     }
 

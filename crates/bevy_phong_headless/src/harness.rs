@@ -11,7 +11,6 @@ use bevy::{
     prelude::*,
     render::{
         error_handler::RenderErrorHandler,
-        gpu_readback::{Readback, ReadbackComplete},
         render_resource::{TextureFormat, TextureUsages},
         view::Msaa,
     },
@@ -24,12 +23,12 @@ use bevy_phong::{
 };
 use std::{
     collections::HashMap,
-    sync::{Arc, Mutex, MutexGuard},
+    sync::{Mutex, MutexGuard},
 };
 
 use crate::{
     Comparison, FloatImage, app::headless_app_with_assets, assert_no_failed_pipelines,
-    run_until_settled,
+    read_back_frame, run_until_settled,
 };
 
 /// The camera every scene is seen from.
@@ -39,8 +38,6 @@ pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
 const MAX_SETTLE_FRAMES: u32 = 600;
 /// Frames to wait for a scene file and what it names to load before giving up.
 const MAX_LOAD_FRAMES: u32 = 2_000;
-/// Frames to wait for a readback to arrive before giving up.
-const MAX_READBACK_FRAMES: u32 = 60;
 
 /// A material whose per-pixel inputs [`Harness`] captures: it says which faces it draws,
 /// so that the capture draws the same ones.
@@ -97,9 +94,6 @@ impl<M: Material> SurfaceInputs<M> {
 #[derive(Component)]
 pub struct HarnessCamera;
 
-#[derive(Resource, Clone, Default)]
-struct Received(Arc<Mutex<HashMap<Entity, Vec<u8>>>>);
-
 /// A headless app with a float render target, the Phong plugin and a camera.
 pub struct Harness {
     /// The app; [`Self::world_mut`] reaches its main world.
@@ -149,15 +143,6 @@ impl Harness {
         app.insert_resource(RenderErrorHandler(|error, _, _| {
             panic!("render error ({:?}): {}", error.ty, error.description)
         }));
-        let received = Received::default();
-        let sink = received.clone();
-        app.insert_resource(received);
-        app.add_observer(move |readback: On<ReadbackComplete>| {
-            sink.0
-                .lock()
-                .unwrap()
-                .insert(readback.entity, readback.data.clone());
-        });
 
         let mut target = Image::new_target_texture(width, height, TextureFormat::Rgba32Float, None);
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
@@ -271,21 +256,9 @@ impl Harness {
 
     /// Runs exactly one frame and returns what it rendered.
     pub fn render_next_frame(&mut self) -> FloatImage {
-        let entity = self
-            .app
-            .world_mut()
-            .spawn(Readback::texture(self.target.clone()))
-            .id();
-        self.app.update();
-        self.app.world_mut().despawn(entity);
-        let received = self.app.world().resource::<Received>().clone();
-        for _ in 0..MAX_READBACK_FRAMES {
-            if let Some(bytes) = received.0.lock().unwrap().remove(&entity) {
-                return FloatImage::from_readback(self.width, self.height, &bytes);
-            }
-            self.app.update();
-        }
-        panic!("readback did not arrive within {MAX_READBACK_FRAMES} frames");
+        let (width, height) = (self.width as usize, self.height as usize);
+        let bytes = read_back_frame(&mut self.app, &self.target, 16 * width, height, App::update);
+        FloatImage::from_rows(self.width, self.height, &bytes)
     }
 
     /// Renders every Phong mesh's world position and normal instead of its color.

@@ -12,6 +12,9 @@
 //!   per-pixel inputs each pixel was lit with ([`Harness::capture_inputs`]), and compares a
 //!   frame with `bevy_phong::reference` pixel by pixel ([`Harness::compare`], giving a
 //!   [`Comparison`]).
+//! - [`read_back_frame`] reads one frame of a render target back (the harness, the
+//!   benchmark), and [`without_row_padding`] strips the GPU copy's row padding (the
+//!   examples' headless runs, which read back from a running app).
 //!
 //! It renders on whatever Vulkan device wgpu picks; `WGPU_ADAPTER_NAME=llvmpipe` selects
 //! Mesa's software renderer, on which the render tests' tolerances were set.
@@ -28,6 +31,8 @@ mod float_image;
 #[cfg(not(target_arch = "wasm32"))]
 mod harness;
 mod pipelines;
+#[cfg(not(target_arch = "wasm32"))]
+mod readback;
 
 #[cfg(not(target_arch = "wasm32"))]
 pub use app::{headless_app, headless_app_with_assets, headless_plugins};
@@ -37,6 +42,8 @@ pub use comparison::{Comparison, Expected};
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
 pub use harness::{CAMERA_POSITION, CapturedMaterial, Harness, HarnessCamera, SurfaceInputs};
+#[cfg(not(target_arch = "wasm32"))]
+pub use readback::{MAX_READBACK_FRAMES, read_back_frame, without_row_padding};
 pub use pipelines::{
     assert_no_failed_pipelines, failed_pipelines, pipelines_compiling, run_until_settled,
 };
