@@ -19,7 +19,7 @@
 //! directional lights are looped over by every fragment. So a light that reaches no
 //! camera's view costs no fragment anything, however large the world. Listing is
 //! conservative: a light is listed in every cluster its sphere may touch, so clusters
-//! change no result. See `render::clusters` for the cut and `render::view_key` for how a
+//! change no result. See `render::clusters` for the cut and `view_key` for how a
 //! fragment finds its view.
 
 use bevy::{

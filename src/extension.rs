@@ -204,12 +204,11 @@
 
 use crate::render::DATA_TEXTURE_MAX_TEXELS;
 use crate::{
-    plugin::PhongSystems,
-    render::{
-        DataTexture, DataTextureWrite, LightBuffer, LightBufferResized, LightChanges, LightQuery,
-        MIN_CAPACITY, lit_lights, push_visible, words_of,
-    },
+    lights::{LightQuery, lit_lights},
+    render::{DataTexture, DataTextureWrite, LightChanges, push_visible, words_of},
+    schedule::PhongSystems,
     shadows::{PhongShadowRequest, ShadowRequests, ShadowSlots},
+    storage_buffer::{LightBuffer, LightBufferResized, MIN_CAPACITY, init_shader_buffers},
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
@@ -321,7 +320,7 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
                 "PhongLightKind::Gpu must be a non-empty multiple of 16 bytes, as WGSL lays it out"
             )
         };
-        crate::render::init_shader_buffers(app);
+        init_shader_buffers(app);
         if !app.world().contains_resource::<Assets<Image>>() {
             app.init_asset::<Image>();
         }

@@ -38,11 +38,11 @@
 //! also put a Phong light of the same kind on a Bevy light's entity: the mirror owns it.
 
 use crate::{
-    PhongSystems,
     lights::{
         Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
         PhongShadows, PhongSpotLight,
     },
+    schedule::PhongSystems,
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},

@@ -83,6 +83,30 @@
 //!   and the file's lights become Phong lights.
 //! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
 //!   with, for checking a render against [`reference`](mod@reference).
+//!
+//! ## Layers
+//!
+//! The top-level modules form layers. Besides itself, a module uses only modules of lower
+//! layers (none of its own layer or above), so that the imports point one way and no
+//! module needs the plugin that ties them together. From the bottom:
+//!
+//! 1. foundations, which use nothing of the crate: `limits`, `direction`, `quoting`,
+//!    `schedule` (the [`PhongSystems`] sets), `shadow_presence` (whether the scene casts
+//!    shadows, read by the material key), `storage_buffer` (the growable GPU buffer),
+//!    `view_key` (how a fragment finds its view's clusters and cascades);
+//! 2. the data model: `lights` (with the rule of which lights give light), `material`,
+//!    `culling`;
+//! 3. rules over the model: `validation`, `reference`;
+//! 4. `shadows`, which lays out and draws the shadow maps;
+//! 5. `render`, which gathers the lights and binds them, with the shadow maps, to materials;
+//! 6. features on top of those: `scene`, `interop`, `extension`, `surface_inputs`;
+//! 7. `plugin`, which adds all of it to an app;
+//! 8. `gltf`, whose [`PhongGltfPlugin`] adds the mirror of Bevy's lights and expects
+//!    [`PhongPlugin`].
+//!
+//! Tests are exempt (the `#[cfg(test)]` items and files, such as `test_app`): they may use
+//! any layer. A unit test (`layering_tests`) reads the sources and fails on an import that
+//! points up or sideways.
 
 pub mod culling;
 mod direction;
@@ -98,11 +122,18 @@ mod quoting;
 pub mod reference;
 pub mod render;
 pub mod scene;
+mod schedule;
+mod shadow_presence;
 pub mod shadows;
+mod storage_buffer;
 mod surface_inputs;
 #[cfg(test)]
 mod test_app;
 pub mod validation;
+mod view_key;
+
+#[cfg(test)]
+mod layering_tests;
 
 pub use culling::{PhongLightCulling, PhongViewClusters};
 #[cfg(feature = "gltf")]
@@ -113,7 +144,9 @@ pub use lights::{
     PhongSpotLight,
 };
 pub use material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel};
-pub use plugin::{PhongMaterialAppExt, PhongPlugin, PhongSystems};
+pub use plugin::{PhongMaterialAppExt, PhongPlugin};
+pub use schedule::PhongSystems;
+pub use shadows::PhongLit;
 pub use surface_inputs::{
     SurfaceInput, SurfaceInputUniform, SurfaceInputsKey, SurfaceInputsMaterial, SurfaceInputsPlugin,
 };

@@ -1,6 +1,7 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
 use crate::limits;
+use crate::shadow_presence::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
@@ -267,8 +268,8 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
-            shadows: crate::shadows::SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
-            soft_shadows: crate::shadows::SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
+            shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
+            soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
         }
     }
 }

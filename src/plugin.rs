@@ -1,4 +1,5 @@
-//! [`PhongPlugin`] and the system sets it runs in.
+//! [`PhongPlugin`], which adds every part of the crate to an app, and
+//! [`PhongMaterialAppExt`] for the materials that bind its lights.
 
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
@@ -8,24 +9,26 @@ use crate::{
     },
     material::{PhongMaterial, SpecularModel},
     render::{
-        LightBufferResized, PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters,
-        gather_lights, refresh_material_bind_groups,
+        PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters, gather_lights,
+        refresh_material_bind_groups,
     },
     scene::{
         PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
         spawn_phong_scenes,
     },
+    schedule::{PhongSystems, configure_phong_systems},
+    shadows::PhongLit,
+    storage_buffer::{LightBufferResized, init_shader_buffers},
     validation::{InvalidInput, validate_ambient_light, validate_lights, validate_materials},
 };
 use bevy::{
     app::{App, Plugin, PostUpdate, PreUpdate},
-    asset::{AssetApp, AssetEventSystems, Assets, embedded_asset},
+    asset::{AssetApp, Assets, embedded_asset},
     camera::visibility::VisibilitySystems,
-    ecs::schedule::{IntoScheduleConfigs, SystemSet},
-    pbr::{Material, MaterialPlugin},
+    ecs::schedule::IntoScheduleConfigs,
+    pbr::{Material, MaterialPlugin, MeshMaterial3d},
     render::RenderApp,
     shader::{Shader, load_shader_library},
-    transform::TransformSystems,
 };
 use core::hash::Hash;
 
@@ -39,29 +42,10 @@ use core::hash::Hash;
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PhongPlugin;
 
-/// The crate's systems in `PostUpdate`, in this order, after transform and visibility
-/// propagation and before Bevy sends the frame's asset events.
-#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum PhongSystems {
-    /// After this set, every light component, the ambient light and every material changed
-    /// this frame holds only valid values (see [`crate::validation`]).
-    Validate,
-    /// Each light kind asks for the shadows its lights cast this frame.
-    RequestShadows,
-    /// After this set, the shadow maps of this frame are laid out: each shadow-casting light
-    /// has its views, and each view its casters.
-    GatherShadows,
-    /// After this set, the light buffer holds every visible light of this frame, and the
-    /// cluster buffer every active 3D camera's clusters.
-    GatherLights,
-    /// After this set, every material whose light buffer was reallocated this frame is
-    /// marked modified, so its bind group is rebuilt before it is drawn.
-    RefreshMaterials,
-}
-
 impl Plugin for PhongPlugin {
     fn build(&self, app: &mut App) {
-        crate::render::init_shader_buffers(app);
+        init_shader_buffers(app);
+        configure_phong_systems(app);
         app.init_resource::<PhongAmbientLight>()
             .init_resource::<PhongLightCulling>()
             .init_resource::<PhongLightBuffer>()
@@ -83,20 +67,6 @@ impl Plugin for PhongPlugin {
             .register_asset_loader(PhongSceneLoader)
             .add_systems(PreUpdate, spawn_phong_scenes)
             .register_asset_reflect::<PhongMaterial>()
-            .configure_sets(
-                PostUpdate,
-                (
-                    PhongSystems::Validate,
-                    PhongSystems::RequestShadows,
-                    PhongSystems::GatherShadows,
-                    PhongSystems::GatherLights,
-                    PhongSystems::RefreshMaterials,
-                )
-                    .chain()
-                    .after(TransformSystems::Propagate)
-                    .after(VisibilitySystems::VisibilityPropagate)
-                    .before(AssetEventSystems),
-            )
             .add_message::<InvalidInput>()
             .add_systems(
                 PostUpdate,
@@ -127,6 +97,7 @@ impl Plugin for PhongPlugin {
             load_shader_library!(app, "shaders/bindings.wgsl");
             load_shader_library!(app, "shaders/data_texture.wgsl");
             load_shader_library!(app, "shaders/scene.wgsl");
+            load_shader_library!(app, "shaders/view_key.wgsl");
             load_shader_library!(app, "shaders/shading.wgsl");
             load_shader_library!(app, "shaders/normals.wgsl");
             load_shader_library!(app, "shaders/texture_maps.wgsl");
@@ -164,7 +135,9 @@ impl Plugin for PhongPlugin {
 pub trait PhongMaterialAppExt {
     /// Adds `MaterialPlugin::<M>` and keeps `M`'s bind groups on the current light buffers:
     /// when a buffer is reallocated, every `M` is rebuilt in the same frame, after the new
-    /// buffer is uploaded.
+    /// buffer is uploaded. Meshes drawn with `M` are marked
+    /// [`PhongLit`](crate::PhongLit), so that the cameras that see them get shadow
+    /// maps.
     fn add_phong_material<M: Material>(&mut self) -> &mut Self
     where
         M::Data: PartialEq + Eq + Hash + Clone;
@@ -180,6 +153,8 @@ impl PhongMaterialAppExt for App {
                 PostUpdate,
                 refresh_material_bind_groups::<M>.in_set(PhongSystems::RefreshMaterials),
             );
+        // Already required where `M` was added before: that requirement stands.
+        let _ = self.try_register_required_components::<MeshMaterial3d<M>, PhongLit>();
         if let Some(render_app) = self.get_sub_app_mut(RenderApp) {
             crate::render::schedule_light_buffers_before::<M>(render_app);
         }

@@ -23,10 +23,11 @@
 
 use crate::{
     culling::influence_radius,
-    lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    lights::{
+        PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight, light_direction,
+    },
     limits,
     material::{PhongMaterial, SpecularModel},
-    render::light_direction,
 };
 use bevy::{
     color::{Color, ColorToComponents},

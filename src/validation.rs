@@ -49,6 +49,10 @@ use bevy::{
 };
 use core::fmt;
 
+/// The rule of the table's last row, defined with the lights (whose every reader skips a
+/// light while its transform is not finite); validation only warns.
+pub use crate::lights::is_finite_transform;
+
 /// What was invalid and what replaced it; also logged as a warning.
 #[derive(Message, Clone, Debug, PartialEq)]
 pub struct InvalidInput {
@@ -344,12 +348,6 @@ impl Validate for PhongSpotLight {
         checker.scalar("exponent", &mut self.exponent, limits::EXPONENT);
         checker.shadows(&mut self.shadows);
     }
-}
-
-/// Whether a light at `transform` can be gathered: a finite translation and basis.
-pub fn is_finite_transform(transform: &GlobalTransform) -> bool {
-    let affine = transform.affine();
-    affine.translation.is_finite() && affine.matrix3.is_finite()
 }
 
 /// Lights whose component or transform changed.

@@ -2,11 +2,14 @@
 //!
 //! Each light is a component that requires [`Transform`](bevy::prelude::Transform) and
 //! [`Visibility`](bevy::prelude::Visibility): spawn it with a transform and it lights every
-//! [`PhongMaterial`](crate::PhongMaterial) from the next rendered frame on.
+//! [`PhongMaterial`](crate::PhongMaterial) from the next rendered frame on. A light gives
+//! light while it is visible and its transform is finite; it shines along its entity's -Z
+//! (`lit`).
 
 mod ambient;
 mod decay;
 mod directional;
+mod lit;
 mod point;
 mod shadows;
 mod spot;
@@ -14,6 +17,8 @@ mod spot;
 pub use ambient::PhongAmbientLight;
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
+pub(crate) use lit::{LightQuery, lit_lights};
+pub use lit::{is_finite_transform, light_direction};
 pub use point::PhongPointLight;
 pub use shadows::{PhongCascades, PhongShadows};
 pub use spot::PhongSpotLight;

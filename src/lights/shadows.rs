@@ -90,7 +90,8 @@ impl PhongShadows {
 
 /// How a directional light's shadow is split along the camera's view (cascaded shadow maps):
 /// each cascade is a shadow map covering one slice of the view's depth, nearer slices with
-/// finer texels. The slices are fitted to the first active 3D camera (lowest `order`).
+/// finer texels. Every active 3D camera gets cascades of its own, fitted to its own view
+/// (cameras with the same frustum share them); the settings here apply to each.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
 #[reflect(Default, Debug, PartialEq, Clone)]
 #[serde(default, deny_unknown_fields)]

@@ -2,13 +2,13 @@
 //! lights of finite reach in those views, rebuilt when a view or such a light changed.
 
 use super::{
-    LightBufferResized, PHONG_LIGHT_CLUSTER_BUFFER,
+    PHONG_LIGHT_CLUSTER_BUFFER,
     clusters::{ClusterView, DepthSlices, LightClusters, keep_distinct_views},
     gather::PhongLightBuffer,
-    light_buffer::LightBuffer,
-    view_key::view_key,
 };
 use crate::culling::PhongViewClusters;
+use crate::storage_buffer::{LightBuffer, LightBufferResized};
+use crate::view_key::view_key;
 use bevy::{
     asset::Assets,
     camera::{Camera, Camera3d, Projection, primitives::Frustum},

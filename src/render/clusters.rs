@@ -100,7 +100,7 @@ impl DepthSlices {
 /// uniform holds them, and how it is cut.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ClusterView {
-    /// The view's key ([`super::view_key::view_key`]).
+    /// The view's key ([`crate::view_key::view_key`]).
     pub key: u32,
     /// World space to view space (Bevy's `view.view_from_world`).
     pub view_from_world: Mat4,
@@ -136,7 +136,7 @@ impl ClusterView {
 
 /// Leaves one of each set of identical views in `views`, and none of the views whose keys
 /// collide while they differ (their fragments then loop over every light of finite reach,
-/// see [`super::view_key`]). Returns how many views were left out for a collision.
+/// see [`crate::view_key`]). Returns how many views were left out for a collision.
 pub fn keep_distinct_views(views: &mut Vec<ClusterView>) -> usize {
     views.sort_by_key(|view| view.key);
     let mut kept: Vec<ClusterView> = Vec::with_capacity(views.len());

@@ -17,7 +17,7 @@ use bevy::{
 pub const DATA_TEXTURE_WIDTH: u32 = 2048;
 
 /// Most rows, the same bound: `2048 × 2048` texels of 16 bytes, 64 MiB.
-pub const DATA_TEXTURE_MAX_ROWS: u32 = 2048;
+pub(crate) const DATA_TEXTURE_MAX_ROWS: u32 = 2048;
 
 /// Most texels a data texture holds.
 pub const DATA_TEXTURE_MAX_TEXELS: usize =

@@ -5,21 +5,22 @@ use super::{
     PHONG_LIGHT_BUFFER,
     clusters::has_finite_reach,
     gpu_types::{GpuLight, GpuLightsHeader},
-    light_buffer::{LightBuffer, LightBufferResized},
     light_records::{BuiltInLight, linear_rgb},
     record_cache::RecordCache,
 };
 use crate::culling::PhongLightCulling;
-use crate::lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::lights::{
+    LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
+    lit_lights,
+};
 use crate::shadows::ShadowSlots;
-use crate::validation::is_finite_transform;
+use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::Assets,
     camera::visibility::InheritedVisibility,
     ecs::{
         change_detection::DetectChanges,
         component::Component,
-        entity::Entity,
         lifecycle::RemovedComponents,
         message::MessageWriter,
         query::{Changed, Or, With},
@@ -101,33 +102,9 @@ impl<L: Component> LightChanges<'_, '_, L> {
     }
 }
 
-/// The lights of kind `L` with the entity, transform and visibility their record is made
-/// from.
-pub type LightQuery<'w, 's, L> = Query<
-    'w,
-    's,
-    (
-        Entity,
-        &'static L,
-        &'static GlobalTransform,
-        &'static InheritedVisibility,
-    ),
->;
-
-/// The lights in `lights` that give light: visible, with a finite transform (a light whose
-/// transform is not finite is skipped while it is; see [`crate::validation`]).
-pub(crate) fn lit_lights<'a, L: Component>(
-    lights: &'a LightQuery<L>,
-) -> impl Iterator<Item = (Entity, &'a L, &'a GlobalTransform)> {
-    lights
-        .iter()
-        .filter(|(_, _, transform, visibility)| visibility.get() && is_finite_transform(transform))
-        .map(|(entity, light, transform, _)| (entity, light, transform))
-}
-
 /// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
 /// `records`; `to_gpu` gets each light's shadow slot (see [`ShadowSlots`]). Returns how many.
-pub fn push_visible<L: Component, R>(
+pub(crate) fn push_visible<L: Component, R>(
     lights: &LightQuery<L>,
     slots: &ShadowSlots,
     records: &mut Vec<R>,
@@ -263,7 +240,7 @@ mod tests {
     use super::*;
     use crate::render::light_records::limit_reach;
     use crate::test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame};
-    use bevy::prelude::{App, Transform, Vec3, Visibility, World};
+    use bevy::prelude::{App, Entity, Transform, Vec3, Visibility, World};
 
     #[test]
     fn lights_are_uploaded_only_in_frames_where_they_change() {

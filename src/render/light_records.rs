@@ -2,22 +2,13 @@
 
 use super::gpu_types::GpuLight;
 use crate::culling::influence_radius;
-use crate::lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
-use bevy::{
-    color::Color, ecs::component::Component, math::Vec3, transform::components::GlobalTransform,
-};
+use crate::lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight, light_direction};
+use bevy::{color::Color, ecs::component::Component, transform::components::GlobalTransform};
 
 /// A color's linear RGB components (alpha dropped).
 pub fn linear_rgb(color: Color) -> [f32; 3] {
     let linear = color.to_linear();
     [linear.red, linear.green, linear.blue]
-}
-
-/// The unit vector a light travels along: the entity's world -Z, or zero for a transform
-/// that has collapsed it (zero scale). Normalized at any scale: a scale of 1e38 or 1e-30
-/// keeps the direction.
-pub fn light_direction(transform: &GlobalTransform) -> Vec3 {
-    crate::direction::normalize_or_zero(transform.affine().matrix3 * Vec3::NEG_Z)
 }
 
 /// `range`, with `None` stored as `f32::MAX` (never reached).

@@ -1,6 +1,6 @@
 //! Keeping material bind groups on the current light buffer after it is reallocated.
 
-use super::light_buffer::LightBufferResized;
+use crate::storage_buffer::LightBufferResized;
 use bevy::{
     asset::Assets,
     ecs::message::MessageReader,

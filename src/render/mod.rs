@@ -48,30 +48,33 @@ mod clusters;
 mod data_texture;
 mod gather;
 mod gpu_types;
-mod light_buffer;
 mod light_records;
 mod material_bindings;
 mod material_upkeep;
 mod record_cache;
 mod scene_texture;
-mod view_key;
 
+/// For an extension's [`PhongLightKind::to_gpu`], beside [`linear_rgb`]; defined with the
+/// lights, whose readers all share it.
+///
+/// [`PhongLightKind::to_gpu`]: crate::extension::PhongLightKind::to_gpu
+pub use crate::lights::light_direction;
+/// The key of a view, by which the shader finds the view's clusters; defined below the
+/// shadows, which key their cascades by it too.
+pub use crate::view_key::view_key;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
-pub use data_texture::{DATA_TEXTURE_MAX_ROWS, DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
+pub use data_texture::{DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
-pub use gather::{LightChanges, PhongLightBuffer, gather_lights};
-pub(crate) use gather::{LightQuery, lit_lights, push_visible};
+pub(crate) use gather::{LightChanges, push_visible};
+pub use gather::{PhongLightBuffer, gather_lights};
 pub use gpu_types::{GpuClustersHeader, GpuLight, GpuLightsHeader};
-pub use light_buffer::LightBufferResized;
-pub(crate) use light_buffer::{LightBuffer, MIN_CAPACITY, init_shader_buffers};
-pub use light_records::{light_direction, linear_rgb};
+pub use light_records::linear_rgb;
 pub use material_bindings::PhongSceneBindings;
 pub(crate) use material_upkeep::{refresh_material_bind_groups, schedule_light_buffers_before};
 pub(crate) use scene_texture::{
     PHONG_SCENE_TEXTURE, STORAGE_BUFFERS_NEEDED, announce_scene_data_path, needs_scene_texture,
     pack_scene_texture,
 };
-pub use view_key::view_key;
 
 use bevy::{
     asset::{Handle, uuid_handle},

@@ -24,11 +24,11 @@
 //! The lights that remain are lit exactly as they would be with room for all.
 
 use super::{
-    GpuClustersHeader, GpuLight, GpuLightsHeader, LightBufferResized, PHONG_LIGHT_BUFFER,
-    PHONG_LIGHT_CLUSTER_BUFFER,
+    GpuClustersHeader, GpuLight, GpuLightsHeader, PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER,
     data_texture::{DATA_TEXTURE_MAX_TEXELS, DataTexture, DataTextureWrite, words_of},
 };
 use crate::shadows::PHONG_SHADOW_VIEW_BUFFER;
+use crate::storage_buffer::LightBufferResized;
 use bevy::{
     asset::{Assets, Handle, uuid_handle},
     ecs::{

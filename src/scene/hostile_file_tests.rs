@@ -4,7 +4,7 @@
 
 use super::tests::{LoadErrors, run_until, scene_app, scene_app_with, scratch_directory, spawned};
 use super::*;
-use crate::{PhongDirectionalLight, PhongMaterial, PhongSpotLight, render::light_direction};
+use crate::{PhongDirectionalLight, PhongMaterial, PhongSpotLight, lights::light_direction};
 use bevy::{asset::UnapprovedPathMode, ecs::message::Messages, prelude::*};
 use std::{path::Path, time::Duration};
 

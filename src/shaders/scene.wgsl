@@ -100,7 +100,8 @@ fn shadow_view_at(index: u32) -> PhongShadowView {
         bitcast<f32>(c.w),
         bitcast<f32>(d.x),
         bitcast<f32>(d.y),
-        d.zw,
+        d.z,
+        d.w,
     );
 }
 #else

@@ -9,6 +9,7 @@
 #import bevy_pbr::mesh_view_bindings::view
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
 #import bevy_phong::types::{CLUSTER_VIEW_WORDS, CLUSTER_WORDS, PhongSurface}
+#import bevy_phong::view_key::view_key
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
@@ -56,20 +57,6 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
         color += light_of_kind(surface, light, kind, arriving, factors);
     }
     return color + clustered_lights(surface, end);
-}
-
-// The key of the view being drawn (src/render/view_key.rs): FNV-1a over the bits of its six
-// frustum half-spaces, which Bevy's view uniform holds as the camera's `Frustum` has them.
-fn view_key() -> u32 {
-    var key = 2166136261u;
-    for (var plane = 0u; plane < 6u; plane += 1u) {
-        let bits = bitcast<vec4<u32>>(view.frustum[plane]);
-        key = (key ^ bits.x) * 16777619u;
-        key = (key ^ bits.y) * 16777619u;
-        key = (key ^ bits.z) * 16777619u;
-        key = (key ^ bits.w) * 16777619u;
-    }
-    return key;
 }
 
 // What `view_record` returns for a view without clusters.

@@ -5,6 +5,7 @@
 #import bevy_phong::bindings::{shadow_maps, shadow_sampler}
 #import bevy_phong::scene::{shadow_view_at, shadow_view_count}
 #import bevy_phong::types::{PhongLight, PhongShadowView, PhongSurface, SHADOW_PROJECTION_PERSPECTIVE}
+#import bevy_phong::view_key::view_key
 
 // Widest filter, in texels at each side of the point: the margin the cube faces keep
 // (`MAX_FILTER_RADIUS_TEXELS` in src/shadows/views.rs).
@@ -146,8 +147,9 @@ fn cube_face(position: vec3<f32>, center: vec3<f32>) -> u32 {
 }
 
 // Where the light whose record's shadow slot is `shadow` (its first view plus one; 0: no
-// shadow) keeps its views: the first one's index, 0 where it has none (a valid index, read
-// and discarded), and whether it has views in the buffer that the surface point reads.
+// shadow) keeps the views that the surface point reads: the first one's index (0 where it
+// has none: a valid index, read and discarded), and whether it has views in the buffer that
+// the point reads.
 struct ShadowSlot {
     first: u32,
     read: bool,
@@ -155,10 +157,28 @@ struct ShadowSlot {
 
 fn shadow_slot(shadow: u32, surface: PhongSurface) -> ShadowSlot {
     let listed = shadow != 0u && shadow <= shadow_view_count();
-    let first = select(0u, shadow - 1u, listed);
-    let read = listed && surface.receives_shadows
-        && first + shadow_view_at(first).view_count <= shadow_view_count();
-    return ShadowSlot(first, read);
+    let light_first = select(0u, shadow - 1u, listed);
+    let head = shadow_view_at(light_first);
+    // At most MAX_SHADOW_VIEWS sets, however the record reads when nothing is listed.
+    let sets = select(1u, clamp(head.camera_count, 1u, 256u), listed);
+    let views = head.view_count * sets;
+    let read = listed && surface.receives_shadows && light_first + views <= shadow_view_count();
+    return ShadowSlot(camera_views(light_first, head.view_count, sets), read);
+}
+
+// The first view of the set fitted to the view being drawn, of a light whose `sets` sets of
+// `set_size` views start at `first` (a directional light's cascades, one set per camera,
+// each view marked with its camera's view key): the set whose key is the view's, else the
+// first (a view that appeared after the gather). A light with one set is `first` itself,
+// read without a loop trip.
+fn camera_views(first: u32, set_size: u32, sets: u32) -> u32 {
+    let key = view_key();
+    var chosen = first;
+    for (var index = 1u; index < sets; index += 1u) {
+        let candidate = first + index * set_size;
+        chosen = select(chosen, candidate, shadow_view_at(candidate).camera_key == key);
+    }
+    return chosen;
 }
 
 // V at the surface point of the light whose views start at `first`, `head` being the first,

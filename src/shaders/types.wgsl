@@ -78,7 +78,8 @@ struct PhongLightClusters {
 }
 
 // One shadow map (`GpuShadowView` in src/shadows/gpu_types.rs). A light's views are
-// consecutive; its first holds the count and the settings they share. Depth is reversed.
+// consecutive; its first holds the count and the settings they share. A directional light
+// has one set of cascades per camera, set after set. Depth is reversed.
 struct PhongShadowView {
     // World space to the map's clip space.
     clip_from_world: mat4x4<f32>,
@@ -88,7 +89,7 @@ struct PhongShadowView {
     projection: u32,
     // Layer of `shadow_maps`.
     layer: u32,
-    // In a light's first view: how many views it has.
+    // In the first view of a light's set: how many views the set has.
     view_count: u32,
     // The map's resolution over the layer's.
     uv_scale: f32,
@@ -111,7 +112,11 @@ struct PhongShadowView {
     // Fractions of the diffuse term and of the highlight left in full shadow.
     diffuse_in_shadow: f32,
     specular_in_shadow: f32,
-    padding: vec2<u32>,
+    // Directional cascades: the view key of the camera they were fitted to; 0 otherwise.
+    camera_key: u32,
+    // In the first view of a light's set: how many sets it has (one per camera for
+    // directional cascades, each of `view_count` views; 1 otherwise).
+    camera_count: u32,
 }
 
 // The shadow view buffer: `count` views.

@@ -2,22 +2,23 @@
 //! shadow maps, where each map looks from, and which casters each map draws.
 
 use super::{
-    MAX_SHADOW_VIEWS, SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS,
+    MAX_SHADOW_VIEWS,
+    cameras::{PhongLit, ShadowCamera, ShadowCameraQuery, shadow_cameras},
     deformed::Poses,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
-        Bounds, CascadeCamera, MAX_SPOT_MAP_ANGLE, ShadowLightView, beam_view, cascade_views,
-        cube_views, spot_view,
+        Bounds, MAX_SPOT_MAP_ANGLE, ShadowLightView, beam_view, cascade_views, cube_views,
+        spot_view,
     },
 };
 use crate::lights::PhongShadows;
 use crate::limits;
-use crate::render::{LightBuffer, LightBufferResized};
+use crate::shadow_presence::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
+use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::{AssetId, Assets, Handle, uuid_handle},
     camera::{
-        Camera, Camera3d, Projection,
         primitives::{Aabb, Frustum, Sphere},
         visibility::InheritedVisibility,
     },
@@ -163,7 +164,8 @@ type CasterData = (
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn gather_shadows(
     mut requests: ResMut<ShadowRequests>,
-    cameras: Query<(&Camera, &GlobalTransform, &Projection, &Frustum), With<Camera3d>>,
+    cameras: ShadowCameraQuery,
+    phong_lit: Query<(), With<PhongLit>>,
     casters: Query<CasterData, Without<NotShadowCaster>>,
     mut state: ResMut<PhongShadowViews>,
     mut frame: ResMut<ShadowFrame>,
@@ -172,17 +174,16 @@ pub(crate) fn gather_shadows(
     mut resized: MessageWriter<LightBufferResized>,
     poses: Poses,
 ) {
-    let camera = cameras
-        .iter()
-        .filter(|(camera, ..)| camera.is_active)
-        .min_by_key(|(camera, ..)| camera.order);
-    let eye = camera.map_or(Vec3::ZERO, |(_, transform, ..)| transform.translation());
+    let cameras = shadow_cameras(&cameras, &phong_lit);
     let mut requests = core::mem::take(&mut requests.0);
-    requests.retain(|request| match camera {
-        Some((_, _, _, frustum)) => reaches_view(request, frustum),
-        None => true,
-    });
-    requests.sort_by(|a, b| priority(a, eye).total_cmp(&priority(b, eye)));
+    if !cameras.is_empty() {
+        requests.retain(|request| {
+            cameras
+                .iter()
+                .any(|camera| reaches_view(request, &camera.frustum))
+        });
+    }
+    requests.sort_by(|a, b| priority(a, &cameras).total_cmp(&priority(b, &cameras)));
 
     let state = &mut *state;
     state.records.clear();
@@ -234,8 +235,6 @@ pub(crate) fn gather_shadows(
         }
     }
     let caster_bounds: Vec<Bounds> = state.casters.iter().map(|caster| caster.bounds).collect();
-    let cascade_camera =
-        camera.map(|(_, transform, projection, _)| cascade_camera(transform, projection));
 
     let mut new_slots = EntityHashMap::default();
     let mut next = ShadowFrame::default();
@@ -244,46 +243,50 @@ pub(crate) fn gather_shadows(
             .settings
             .resolution
             .clamp(PhongShadows::MIN_RESOLUTION, PhongShadows::MAX_RESOLUTION);
-        let views = light_views(request, cascade_camera.as_ref(), resolution, &caster_bounds);
-        if views.is_empty() {
+        let sets = light_views(request, &cameras, resolution, &caster_bounds);
+        let view_count: usize = sets.iter().map(|set| set.views.len()).sum();
+        if view_count == 0 {
             continue;
         }
-        if state.records.len() + views.len() > MAX_SHADOW_VIEWS {
+        if state.records.len() + view_count > MAX_SHADOW_VIEWS {
             if !state.warned_over_capacity {
                 warn!(
                     "more than {MAX_SHADOW_VIEWS} shadow maps requested: light {} and the lights \
-                     farther from the camera cast no shadow",
+                     farther from the cameras cast no shadow",
                     request.entity
                 );
                 state.warned_over_capacity = true;
             }
             break;
         }
-        let first = state.records.len();
-        new_slots.insert(request.entity, first as u32 + 1);
-        for view in &views {
-            let layer = state.records.len() as u32;
-            let start = next.instances.len();
-            next.instances.extend(
-                state
-                    .casters
-                    .iter()
-                    .filter(|caster| in_view(&view.clip_from_world, &caster.bounds))
-                    .map(|caster| ShadowInstance {
-                        source: caster.source.clone(),
-                        clip_from_local: view.clip_from_world * caster.world_from_local,
-                    }),
-            );
-            next.passes.push(ShadowPass {
-                layer,
-                resolution,
-                instances: start..next.instances.len(),
-            });
-            state
-                .records
-                .push(view_record(view, layer, resolution, &request.settings));
+        new_slots.insert(request.entity, state.records.len() as u32 + 1);
+        for set in &sets {
+            let first = state.records.len();
+            for view in &set.views {
+                let layer = state.records.len() as u32;
+                let start = next.instances.len();
+                next.instances.extend(
+                    state
+                        .casters
+                        .iter()
+                        .filter(|caster| in_view(&view.clip_from_world, &caster.bounds))
+                        .map(|caster| ShadowInstance {
+                            source: caster.source.clone(),
+                            clip_from_local: view.clip_from_world * caster.world_from_local,
+                        }),
+                );
+                next.passes.push(ShadowPass {
+                    layer,
+                    resolution,
+                    instances: start..next.instances.len(),
+                });
+                let mut record = view_record(view, layer, resolution, &request.settings);
+                record.camera_key = set.camera_key;
+                state.records.push(record);
+            }
+            state.records[first].view_count = set.views.len() as u32;
+            state.records[first].camera_count = sets.len() as u32;
         }
-        state.records[first].view_count = views.len() as u32;
     }
 
     let size = next
@@ -320,18 +323,23 @@ pub(crate) fn gather_shadows(
     }
 }
 
-/// Directional lights first; the others nearest to the camera first.
-fn priority(request: &ShadowRequest, eye: Vec3) -> f32 {
+/// Directional lights first; the others nearest to a camera first (to the origin where
+/// there is no camera).
+fn priority(request: &ShadowRequest, cameras: &[ShadowCamera]) -> f32 {
     match request.projection {
         PhongShadowProjection::Directional { .. } | PhongShadowProjection::Beam { .. } => -1.0,
         PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position } => {
-            position.distance_squared(eye)
+            cameras
+                .iter()
+                .map(|camera| position.distance_squared(camera.eye))
+                .reduce(f32::min)
+                .unwrap_or(position.length_squared())
         }
     }
 }
 
-/// Whether a light's reach meets the camera's view (lights out of view cast into nothing the
-/// camera sees).
+/// Whether a light's reach meets a camera's view (lights out of every view cast into nothing
+/// a camera sees).
 fn reaches_view(request: &ShadowRequest, frustum: &Frustum) -> bool {
     match request.projection {
         PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position }
@@ -349,21 +357,34 @@ fn reaches_view(request: &ShadowRequest, frustum: &Frustum) -> bool {
     }
 }
 
-/// The views of one light's maps.
+/// The views of one light's maps: for a directional light, one set of cascades per camera
+/// (none without a camera); for the others, one set.
 fn light_views(
     request: &ShadowRequest,
-    camera: Option<&CascadeCamera>,
+    cameras: &[ShadowCamera],
     resolution: u32,
     casters: &[Bounds],
-) -> Vec<ShadowLightView> {
+) -> Vec<ViewSet> {
     let near = limits::SHADOW_NEAR.apply(request.settings.near_distance);
-    match request.projection {
+    let views = match request.projection {
         PhongShadowProjection::Directional {
             direction,
             cascades,
-        } => camera.map_or_else(Vec::new, |camera| {
-            cascade_views(direction, camera, &cascades, resolution, casters)
-        }),
+        } => {
+            return cameras
+                .iter()
+                .map(|camera| ViewSet {
+                    camera_key: camera.key,
+                    views: cascade_views(
+                        direction,
+                        &camera.cascades,
+                        &cascades,
+                        resolution,
+                        casters,
+                    ),
+                })
+                .collect();
+        }
         PhongShadowProjection::Beam {
             origin,
             direction,
@@ -388,7 +409,19 @@ fn light_views(
         PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position } => {
             cube_views(position, near, resolution).to_vec()
         }
-    }
+    };
+    vec![ViewSet {
+        camera_key: 0,
+        views,
+    }]
+}
+
+/// A set of a light's views that the shader reads together: a directional light's cascades
+/// fitted to one camera, or all the views of another light.
+struct ViewSet {
+    /// The view key of the camera the cascades were fitted to; 0 for other lights.
+    camera_key: u32,
+    views: Vec<ShadowLightView>,
 }
 
 /// The record of one view. `uv_scale` holds the resolution until the array's size is known.
@@ -422,7 +455,8 @@ fn view_record(
         cascade_blend_start: view.cascade_blend_start,
         diffuse_in_shadow: limits::SHADOW_FRACTION.apply(settings.diffuse_in_shadow),
         specular_in_shadow: limits::SHADOW_FRACTION.apply(settings.specular_in_shadow),
-        padding: [0; 2],
+        camera_key: 0,
+        camera_count: 1,
     }
 }
 
@@ -479,23 +513,6 @@ fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
             let length = plane.truncate().length();
             length == 0.0 || plane.dot(point) >= -bounds.radius * length
         })
-}
-
-/// The camera's shape, for fitting cascades to it.
-fn cascade_camera(transform: &GlobalTransform, projection: &Projection) -> CascadeCamera {
-    let near = match projection {
-        Projection::Perspective(perspective) => perspective.near,
-        Projection::Orthographic(orthographic) => orthographic.near.max(0.0),
-        Projection::Custom(_) => 0.0,
-    };
-    let projection = projection.clone();
-    CascadeCamera {
-        world_from_view: transform.to_matrix(),
-        slice_corners: Box::new(move |near, far| {
-            projection.get_frustum_corners(-near, -far).map(Vec3::from)
-        }),
-        near,
-    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,9 @@ use bytemuck::{Pod, Zeroable};
 ///
 /// A light's views are consecutive; a light record's `shadow` field holds the index of its
 /// first view plus one (`0` for a light without shadows), and that first view holds the
-/// count and the settings the light's views share. Depth is reversed (near 1, far 0).
+/// count and the settings the light's views share. A directional light has one set of
+/// cascades per camera, set after set, each fitted to its camera's view and marked with that
+/// view's key; every set's first view holds the counts. Depth is reversed (near 1, far 0).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuShadowView {
@@ -20,7 +22,8 @@ pub struct GpuShadowView {
     pub projection: u32,
     /// Layer of the shadow map array that holds this view.
     pub layer: u32,
-    /// In a light's first view: how many views it has (cascades, or 6 cube faces).
+    /// In the first view of a light's set: how many views the set has (cascades, or 6 cube
+    /// faces).
     pub view_count: u32,
     /// The map's resolution over the array's: the part of the layer the view covers.
     pub uv_scale: f32,
@@ -45,8 +48,13 @@ pub struct GpuShadowView {
     pub diffuse_in_shadow: f32,
     /// Fraction of the highlight left in full shadow.
     pub specular_in_shadow: f32,
-    /// Unused; keeps the record a multiple of 16 bytes.
-    pub padding: [u32; 2],
+    /// Directional cascades: the key of the camera's view they were fitted to (the view key
+    /// of `render::view_key`, by which the shader finds the set of the view it draws). Zero
+    /// otherwise.
+    pub camera_key: u32,
+    /// In the first view of a light's set: how many sets the light has, one per camera for
+    /// directional cascades (each of `view_count` views), 1 otherwise.
+    pub camera_count: u32,
 }
 
 /// The fixed part at the start of the shadow view buffer (`PhongShadowViews` in WGSL,

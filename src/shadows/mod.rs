@@ -6,7 +6,7 @@
 //!  ──────────────────────────────────────────────────
 //!  lights with shadows on ──request──▶ ShadowRequests
 //!  (built-in kinds, extension kinds)        │
-//!  camera, casters (Mesh3d + Aabb,          ▼
+//!  cameras, casters (Mesh3d + Aabb,         ▼
 //!  no NotShadowCaster) ─────────────▶ gather_shadows ──▶ ShadowSlots: first view per light
 //!                                           │               │ (into the light records)
 //!                                           │               ▼
@@ -24,8 +24,12 @@
 //! ```
 //!
 //! Only visible lights with [`PhongShadows::enabled`](crate::PhongShadows) get maps, and of
-//! point and spot lights only those whose range meets the camera's view. A frame has at most
-//! [`MAX_SHADOW_VIEWS`] maps: directional lights first, then the others nearest to the camera
+//! point and spot lights only those whose range meets some active 3D camera's view. A
+//! directional light gets one set of cascades per camera (per distinct frustum), fitted to
+//! that camera's view; each set's views carry the camera's view key, by which the fragment
+//! shader finds the set of the view it draws (as it finds its light clusters), falling back
+//! to the first set for a view that appeared after the gather. A frame has at most
+//! [`MAX_SHADOW_VIEWS`] maps: directional lights first, then the others nearest to a camera
 //! first; past it the rest cast nothing, with one warning.
 //!
 //! Casters are the visible meshes without `NotShadowCaster`, culled per map by their
@@ -37,6 +41,7 @@
 //! matrices are still loading casts once they are. A mesh without bounds (`Aabb`, absent
 //! under `NoFrustumCulling`) casts only if it is skinned or morphed.
 
+mod cameras;
 mod deformed;
 mod gather;
 mod gpu_types;
@@ -45,6 +50,7 @@ mod request;
 mod sources;
 mod views;
 
+pub use cameras::PhongLit;
 pub(crate) use gather::{PHONG_SHADOW_VIEW_BUFFER, ShadowFrame, gather_shadows};
 pub use gather::{PhongShadowViews, ShadowSlots};
 pub use gpu_types::{GpuShadowView, GpuShadowViewsHeader};
@@ -56,21 +62,6 @@ pub(crate) use request::ShadowRequests;
 pub use request::{PhongShadowProjection, PhongShadowRequest};
 pub(crate) use sources::request_shadows;
 
-/// Whether any light casts shadows this frame. Phong materials compile the shadow code only
-/// in the variant for scenes where one does (shader def `PHONG_SHADOWS`): on some devices
-/// (lavapipe) the mere presence of that code makes every fragment several times slower.
-/// [`gather_shadows`] sets it in the main world and, when it flips, marks every Phong
-/// material modified in the same frame, so that each is prepared again with the new key.
-pub(crate) static SCENE_CASTS_SHADOWS: core::sync::atomic::AtomicBool =
-    core::sync::atomic::AtomicBool::new(false);
-
-/// Whether some shadow-casting light has a size (`softness > 0`) this frame: only then is
-/// the soft-shadow filter compiled in (shader def `PHONG_SOFT_SHADOWS`), as
-/// [`SCENE_CASTS_SHADOWS`] and set beside it. Hard shadows are one bilinear comparison per
-/// light.
-pub(crate) static SCENE_HAS_SOFT_SHADOWS: core::sync::atomic::AtomicBool =
-    core::sync::atomic::AtomicBool::new(false);
-
 /// Most shadow maps a frame holds (layers of the shadow map array, which WebGL2 caps at
 /// 256): a directional light takes one per cascade, a point light six, a spot light one
 /// (six past a 60° cone).
@@ -78,7 +69,7 @@ pub const MAX_SHADOW_VIEWS: usize = 256;
 
 use crate::{
     lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight},
-    plugin::PhongSystems,
+    schedule::PhongSystems,
 };
 use bevy::{
     app::{App, PostUpdate},

@@ -11,11 +11,11 @@ use bevy::{
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PhongShadowProjection {
     /// Parallel rays along the unit `direction` everywhere, as the sun's: cascaded
-    /// orthographic maps fitted to the camera.
+    /// orthographic maps fitted to each camera's view.
     Directional {
         /// Unit vector the rays travel along.
         direction: Vec3,
-        /// How the maps split the camera's view.
+        /// How the maps split each camera's view.
         cascades: PhongCascades,
     },
     /// A beam of parallel rays along the unit `direction`, through the rectangle centred on

@@ -1,8 +1,9 @@
 //! The shadow requests of the built-in lights.
 
 use super::request::{PhongShadowProjection, PhongShadowRequest, ShadowRequests};
-use crate::lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
-use crate::render::{LightQuery, light_direction, lit_lights};
+use crate::lights::{
+    LightQuery, PhongDirectionalLight, PhongPointLight, PhongSpotLight, light_direction, lit_lights,
+};
 use bevy::{
     ecs::{component::Component, system::ResMut},
     transform::components::GlobalTransform,

@@ -108,7 +108,7 @@ fn any_perpendicular(direction: Vec3) -> Vec3 {
     }
 }
 
-/// The camera a directional light's cascades are fitted to.
+/// A camera that a directional light's cascades are fitted to (each camera gets its own).
 pub(crate) struct CascadeCamera {
     /// The camera's world transform.
     pub world_from_view: Mat4,

@@ -97,7 +97,7 @@ fn lights_around_the_frustum_light_every_pixel_as_the_model_says() {
 }
 
 /// A second camera, rendering into an image of its own, at `position` looking at `target`.
-fn spawn_second_camera(harness: &mut Harness, position: Vec3, target: Vec3) -> Entity {
+pub(crate) fn spawn_second_camera(harness: &mut Harness, position: Vec3, target: Vec3) -> Entity {
     let image = Image::new_target_texture(SIZE, SIZE, TextureFormat::Rgba32Float, None);
     let world = harness.world_mut();
     let image = world.resource_mut::<Assets<Image>>().add(image);

@@ -24,7 +24,7 @@
 //! comes with it (as many texels along the normal): 32 texels; 0 for hard shadows. Outside the band
 //! every pixel is within [`TOLERANCE`].
 
-use crate::frames::TOLERANCE;
+use crate::{clusters::spawn_second_camera, frames::TOLERANCE};
 use bevy::{
     light::{NotShadowCaster, NotShadowReceiver},
     prelude::*,
@@ -34,7 +34,7 @@ use bevy_phong::{
     reference::{self, Shadowing, SurfacePoint},
     shadows::{GpuShadowView, PhongShadowViews},
 };
-use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
+use bevy_phong_headless::{CAMERA_POSITION, FloatImage, Harness, HarnessCamera, SurfaceInputs};
 use glam::{DMat3, DVec3};
 
 /// Render size.
@@ -679,6 +679,92 @@ fn a_directional_light_holds_across_its_cascade_splits() {
     harness.settle();
     let inputs = harness.capture_inputs();
     judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("cascades");
+}
+
+#[test]
+fn split_screen_cameras_each_get_cascades_fitted_to_their_own_view() {
+    let (mut harness, scene) = harness();
+    // Two cascades ending 12 units from their camera: those fitted to a camera looking
+    // elsewhere do not cover what the harness camera sees.
+    let cascades = PhongCascades {
+        count: 2,
+        first_far_bound: 5.0,
+        max_distance: 12.0,
+        overlap: 0.2,
+    };
+    let lights = vec![directional(&mut harness, SUN, on(), cascades)];
+    // A camera drawn first (lower order), looking away from the scene at nothing.
+    let away = Vec3::new(0.0, 2.5, 40.0);
+    let second = spawn_second_camera(&mut harness, Vec3::new(0.0, 2.5, 7.0), away);
+    harness.world_mut().get_mut::<Camera>(second).unwrap().order = -1;
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs)
+        .assert_holds("beside a camera seeing nothing");
+    assert_eq!(
+        camera_sets(&mut harness),
+        1,
+        "a camera that sees no Phong-lit mesh gets no cascades"
+    );
+
+    // Now it sees a Phong mesh of its own (casting no shadow on the scene, out of the
+    // harness camera's view): it gets cascades fitted to its view, which the harness
+    // camera's fragments must not read.
+    let world = harness.world_mut();
+    let mesh = world.resource_mut::<Assets<Mesh>>().add(Cuboid::default());
+    let material = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(PhongMaterial::default());
+    world.spawn((
+        Mesh3d(mesh),
+        MeshMaterial3d(material),
+        Transform::from_translation(away - Vec3::Y * 2.0),
+        NotShadowCaster,
+    ));
+    harness.settle();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs)
+        .assert_holds("beside a camera looking away");
+    assert_eq!(
+        camera_sets(&mut harness),
+        2,
+        "one set of cascades per camera"
+    );
+
+    // Split screen: both cameras see the scene, from two sides; then they trade places.
+    let pose =
+        |position: Vec3| Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y);
+    let (first_pose, second_pose) = (pose(CAMERA_POSITION), pose(Vec3::new(5.5, 3.0, -5.0)));
+    for (case, harness_pose, other_pose) in [
+        (
+            "split screen, the harness camera in front",
+            first_pose,
+            second_pose,
+        ),
+        (
+            "split screen, the harness camera behind",
+            second_pose,
+            first_pose,
+        ),
+    ] {
+        let world = harness.world_mut();
+        *world.get_mut::<Transform>(second).unwrap() = other_pose;
+        let mut camera = world.query_filtered::<&mut Transform, With<HarnessCamera>>();
+        *camera.single_mut(world).unwrap() = harness_pose;
+        harness.settle();
+        let inputs = harness.capture_inputs();
+        judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds(case);
+        assert_eq!(
+            camera_sets(&mut harness),
+            2,
+            "{case}: one set of cascades per camera"
+        );
+    }
+}
+
+/// How many sets of views the first shadow-casting light has: one per camera for a
+/// directional light.
+fn camera_sets(harness: &mut Harness) -> u32 {
+    harness.world_mut().resource::<PhongShadowViews>().views()[0].camera_count
 }
 
 #[test]

@@ -145,7 +145,8 @@ fn shadow_view_matches_wgsl_phong_shadow_view() {
             "specular_in_shadow",
             offset_of!(GpuShadowView, specular_in_shadow),
         ),
-        ("padding", offset_of!(GpuShadowView, padding)),
+        ("camera_key", offset_of!(GpuShadowView, camera_key)),
+        ("camera_count", offset_of!(GpuShadowView, camera_count)),
     ];
     assert_eq!(members, rust_members(&rust));
     let (_, views) = wgsl_struct(&types_module(), "PhongShadowViews");

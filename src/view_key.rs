@@ -1,12 +1,13 @@
 //! Which view a fragment is drawn for: the key by which the shader finds its view's light
-//! clusters.
+//! clusters ([`crate::render`]) and shadow cascades ([`crate::shadows`]). Both use it, so it
+//! sits below both.
 //!
 //! Every Phong material binds the same cluster data for every camera (the material bind
 //! group is not per view), so the data holds each view's clusters side by side and the
 //! fragment shader looks its own up by a key that it can compute from Bevy's view uniform:
 //! a hash of the bits of the view's six frustum half-spaces (`view.frustum`). Bevy copies
 //! those from the camera's [`Frustum`] component unchanged, so the key computed here from
-//! the same component is bit for bit the shader's (`view_key` in `bevy_phong::shading`).
+//! the same component is bit for bit the shader's (`view_key` in `bevy_phong::view_key`).
 //!
 //! Two views with the same frustum see the same volume and get the same clusters. Two
 //! different frusta whose keys collide (about one chance in four billion per pair) are

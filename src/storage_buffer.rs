@@ -1,5 +1,8 @@
 //! A growable GPU storage buffer made of a fixed header and an array of records, kept in a
-//! [`ShaderBuffer`] asset that materials bind.
+//! [`ShaderBuffer`] asset that materials bind: the built-in lights and their clusters
+//! ([`crate::render`]), the shadow views ([`crate::shadows`]) and each extension's lights
+//! ([`crate::extension`]) are written through one. It knows nothing of what the records
+//! mean, so that all of them can use it.
 
 use bevy::{
     app::App,
@@ -19,6 +22,11 @@ pub(crate) fn init_shader_buffers(app: &mut App) {
 
 /// Sent when a light buffer's byte size changed, so that the render world made a new GPU
 /// buffer for it: every material bind group that holds the old one must be rebuilt.
+///
+/// Crate-internal: the crate's own systems send and read it. It is `pub` only because the
+/// public gather systems ([`gather_lights`](crate::render::gather_lights),
+/// [`assign_lights_to_clusters`](crate::render::assign_lights_to_clusters)) name it in
+/// their parameters; no public path leads to it.
 #[derive(Message, Clone, Debug)]
 pub struct LightBufferResized {
     /// The buffer that was resized.
@@ -27,7 +35,7 @@ pub struct LightBufferResized {
 
 /// Smallest number of records a buffer holds room for. A runtime-sized WGSL array needs at
 /// least one element to bind; a few more spare the first resizes.
-pub const MIN_CAPACITY: usize = 16;
+pub(crate) const MIN_CAPACITY: usize = 16;
 
 /// A [`ShaderBuffer`] asset laid out as `header, records[capacity]`.
 ///
@@ -36,7 +44,7 @@ pub const MIN_CAPACITY: usize = 16;
 /// reallocate every frame. Writing reuses the asset's byte vector: no allocation once the
 /// capacity is reached.
 #[derive(Debug)]
-pub struct LightBuffer {
+pub(crate) struct LightBuffer {
     handle: Handle<ShaderBuffer>,
     capacity: usize,
     /// Bytes of records last written; past them the asset holds zeros.

@@ -1,0 +1,47 @@
+//! Which light entities give light this frame, and which way they point: the rules every
+//! reader of lights shares (the gather of the built-in lights, the shadow requests, the
+//! extensions' gathers, the reference model).
+
+use bevy::{
+    camera::visibility::InheritedVisibility,
+    ecs::{component::Component, entity::Entity, system::Query},
+    math::Vec3,
+    transform::components::GlobalTransform,
+};
+
+/// The lights of kind `L` with the entity, transform and visibility their record is made
+/// from.
+pub(crate) type LightQuery<'w, 's, L> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        &'static L,
+        &'static GlobalTransform,
+        &'static InheritedVisibility,
+    ),
+>;
+
+/// The lights in `lights` that give light: visible, with a finite transform (a light whose
+/// transform is not finite is skipped while it is; see [`crate::validation`]).
+pub(crate) fn lit_lights<'a, L: Component>(
+    lights: &'a LightQuery<L>,
+) -> impl Iterator<Item = (Entity, &'a L, &'a GlobalTransform)> {
+    lights
+        .iter()
+        .filter(|(_, _, transform, visibility)| visibility.get() && is_finite_transform(transform))
+        .map(|(entity, light, transform, _)| (entity, light, transform))
+}
+
+/// Whether a light at `transform` can be gathered: a finite translation and basis.
+pub fn is_finite_transform(transform: &GlobalTransform) -> bool {
+    let affine = transform.affine();
+    affine.translation.is_finite() && affine.matrix3.is_finite()
+}
+
+/// The unit vector a light travels along: the entity's world -Z, or zero for a transform
+/// that has collapsed it (zero scale). Normalized at any scale: a scale of 1e38 or 1e-30
+/// keeps the direction.
+pub fn light_direction(transform: &GlobalTransform) -> Vec3 {
+    crate::direction::normalize_or_zero(transform.affine().matrix3 * Vec3::NEG_Z)
+}
