@@ -426,21 +426,27 @@ fn one_row(options: &Options) {
     println!("{:.3}", ms(time));
 }
 
-/// The cost of shadows: the showcase on a floor with its lights casting shadows or not,
-/// Phong beside `StandardMaterial`, all measured in this run.
+/// The cost of shadows: the showcase on a floor with its lights casting shadows or not, and
+/// casting them into a split screen (two cameras side by side, each with cascades of its
+/// own), Phong beside `StandardMaterial`, all measured in this run.
 fn shadow_costs(options: &Options, directory: &Path) {
     let size = options.shadow_size;
     let phong = Shading::Phong(Some(SpecularModel::Phong));
-    let mut csv = String::from("size,shading,shadows,round,median_ms\n");
+    let mut csv = String::from("size,shading,shadows,split_screen,round,median_ms\n");
     let rows = [
-        ("Phong", phong, false),
-        ("Phong", phong, true),
-        ("Standard", Shading::Standard, false),
-        ("Standard", Shading::Standard, true),
+        ("Phong", phong, false, false),
+        ("Phong", phong, true, false),
+        ("Phong", phong, true, true),
+        ("Standard", Shading::Standard, false, false),
+        ("Standard", Shading::Standard, true, false),
+        ("Standard", Shading::Standard, true, true),
     ];
-    let times: [f64; 4] = alternating_medians(options.rounds, |row, round| {
-        let (name, shading, shadows) = rows[row];
-        let scene = Scene::ShowcaseOnFloor { shadows };
+    let times: [f64; 6] = alternating_medians(options.rounds, |row, round| {
+        let (name, shading, shadows, split_screen) = rows[row];
+        let scene = Scene::ShowcaseOnFloor {
+            shadows,
+            split_screen,
+        };
         let median = ms(median_frame_time(
             scene,
             size,
@@ -448,24 +454,41 @@ fn shadow_costs(options: &Options, directory: &Path) {
             options.culling,
             options.frames,
         ));
-        let _ = writeln!(csv, "{size},{name},{shadows},{round},{median:.3}");
+        let _ = writeln!(
+            csv,
+            "{size},{name},{shadows},{split_screen},{round},{median:.3}"
+        );
         eprintln!(
             "{} {size}² {name}, round {round}: {median:.1} ms",
             scene.name()
         );
         median
     });
-    let [phong_off, phong_on, standard_off, standard_on] = times;
+    let [
+        phong_off,
+        phong_on,
+        phong_split,
+        standard_off,
+        standard_on,
+        standard_split,
+    ] = times;
     let table = format!(
-        "| size | Phong | Phong, shadows | Standard | Standard, shadows | Phong shadows / Standard shadows | Phong shadows / Phong |\n\
-         |---|---|---|---|---|---|---|\n\
-         | {size}² | {phong_off:.1} | {phong_on:.1} | {standard_off:.1} | {standard_on:.1} | {:.2} | {:.2} |\n",
+        "| size | cameras | Phong | Phong, shadows | Standard | Standard, shadows | Phong shadows / Standard shadows | Phong shadows / Phong |\n\
+         |---|---|---|---|---|---|---|---|\n\
+         | {size}² | one | {phong_off:.1} | {phong_on:.1} | {standard_off:.1} | {standard_on:.1} | {:.2} | {:.2} |\n\
+         | {size}² | two side by side | | {phong_split:.1} | | {standard_split:.1} | {:.2} | |\n\
+         \n\
+         Split screen over one camera, shadows on: Phong {:.2}, Standard {:.2}.\n",
         phong_on / standard_on,
         phong_on / phong_off,
+        phong_split / standard_split,
+        phong_split / phong_on,
+        standard_split / standard_on,
     );
     println!(
         "\nShadows, median ms (the median of {} rounds): the showcase on a floor, a cascaded directional light and two \
-         point lights casting shadows or not (1024² maps):\n\n{table}",
+         point lights casting shadows or not (1024² maps), seen by one camera or by two side by side (each drawing half \
+         the picture, each with cascades of its own):\n\n{table}",
         options.rounds
     );
     write(&directory.join("shadows.csv"), &csv);

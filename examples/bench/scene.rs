@@ -1,5 +1,6 @@
 //! The benchmark's scenes, drawn with `PhongMaterial`, `StandardMaterial` or a constant color.
 
+use bevy::camera::Viewport;
 use bevy::{
     light::{DirectionalLightShadowMap, PointLightShadowMap},
     prelude::*,
@@ -27,8 +28,9 @@ pub enum Scene {
     Showcase,
     /// The showcase's shapes on a floor, under a directional light aimed down at it (four
     /// cascades) and the two point lights, all casting shadows or none; the shadow maps
-    /// 1024² for both materials.
-    ShowcaseOnFloor { shadows: bool },
+    /// 1024² for both materials. With `split_screen`, two cameras side by side draw half of
+    /// the picture each, from either side of the usual camera: each gets cascades of its own.
+    ShowcaseOnFloor { shadows: bool, split_screen: bool },
     /// `lights` point lights that fade as `1 / (1 + 0.2 d²)` and are cut off at 4 units.
     Field { lights: usize },
     /// `lights` point lights that fade as `1 / (1 + 4 d²)`, with no range: only ε culling
@@ -44,9 +46,13 @@ impl Scene {
     pub fn name(self) -> String {
         match self {
             Scene::Showcase => "showcase (3 lights)".into(),
-            Scene::ShowcaseOnFloor { shadows } => format!(
-                "showcase on a floor, shadows {}",
-                if shadows { "on" } else { "off" }
+            Scene::ShowcaseOnFloor {
+                shadows,
+                split_screen,
+            } => format!(
+                "showcase on a floor, shadows {}{}",
+                if shadows { "on" } else { "off" },
+                if split_screen { ", split screen" } else { "" }
             ),
             Scene::Field { lights } => {
                 format!("field, {} with range", counted_point_lights(lights))
@@ -67,6 +73,27 @@ impl Scene {
             Scene::Showcase | Scene::ShowcaseOnFloor { .. } => Vec3::new(0.0, 1.0, 8.5),
             _ => Vec3::new(0.0, 14.0, 16.0),
         }
+    }
+
+    /// Where each camera stands (looking at the origin), and the part of the picture it
+    /// draws: `None` for the whole, else the left or right half of a `size`² picture.
+    pub fn cameras(self, size: u32) -> Vec<(Vec3, Option<Viewport>)> {
+        let Scene::ShowcaseOnFloor {
+            split_screen: true, ..
+        } = self
+        else {
+            return vec![(self.camera_position(), None)];
+        };
+        let half = |left: bool| Viewport {
+            physical_position: UVec2::new(if left { 0 } else { size / 2 }, 0),
+            physical_size: UVec2::new(size / 2, size),
+            ..default()
+        };
+        let side = Vec3::new(3.0, 0.0, 0.0);
+        vec![
+            (self.camera_position() - side, Some(half(true))),
+            (self.camera_position() + side, Some(half(false))),
+        ]
     }
 }
 
@@ -260,7 +287,7 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
             true,
             false,
         ),
-        Scene::ShowcaseOnFloor { shadows } => (
+        Scene::ShowcaseOnFloor { shadows, .. } => (
             Transform::default().looking_to(Vec3::new(-1.0, -1.2, -0.6), Vec3::Y),
             true,
             shadows,

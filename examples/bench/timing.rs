@@ -174,18 +174,26 @@ fn replace_with_ablation_shader(
     handle
 }
 
-/// A camera that renders `scene` into a `size`² sRGB image; returns the image.
+/// The cameras that render `scene` into a `size`² sRGB image (one, or two side by side for
+/// split screen); returns the image.
 fn spawn_camera(world: &mut World, scene: Scene, size: u32) -> Handle<Image> {
     let mut target = Image::new_target_texture(size, size, TextureFormat::Rgba8UnormSrgb, None);
     target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
     let target = world.resource_mut::<Assets<Image>>().add(target);
-    world.spawn((
-        Camera3d::default(),
-        RenderTarget::Image(target.clone().into()),
-        Msaa::Off,
-        Tonemapping::None,
-        Transform::from_translation(scene.camera_position()).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
+    for (order, (position, viewport)) in scene.cameras(size).into_iter().enumerate() {
+        world.spawn((
+            Camera3d::default(),
+            Camera {
+                viewport,
+                order: order as isize,
+                ..default()
+            },
+            RenderTarget::Image(target.clone().into()),
+            Msaa::Off,
+            Tonemapping::None,
+            Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
+    }
     target
 }
 

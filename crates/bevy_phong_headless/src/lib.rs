@@ -42,8 +42,8 @@ pub use comparison::{Comparison, Expected};
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
 pub use harness::{CAMERA_POSITION, CapturedMaterial, Harness, HarnessCamera, SurfaceInputs};
-#[cfg(not(target_arch = "wasm32"))]
-pub use readback::{MAX_READBACK_FRAMES, read_back_frame, without_row_padding};
 pub use pipelines::{
     assert_no_failed_pipelines, failed_pipelines, pipelines_compiling, run_until_settled,
 };
+#[cfg(not(target_arch = "wasm32"))]
+pub use readback::{MAX_READBACK_FRAMES, read_back_frame, without_row_padding};
