@@ -1,13 +1,122 @@
 // Draws a shadow caster into a shadow map: depth only, from the mesh's positions placed by
 // the draw's `clip_from_local` matrix (an instance attribute, one column per location).
+//
+// A skinned or morphed caster (POSED) is first posed as Bevy's mesh vertex stage poses it
+// (`bevy_pbr::morph`, `bevy_pbr::skinning`), from the joint matrices and morph weights
+// Bevy prepared for it this frame (src/shadows/posed.rs): p' = p + Σ_t w_t · Δ_t, then for a
+// skinned one P = Σ_k ω_k · J_k · p' with `clip_from_local` being the map's clip-from-world
+// (the joint matrices J_k place it in the world).
 
 struct Caster {
+    @builtin(vertex_index) vertex_index: u32,
     @location(0) position: vec3<f32>,
     @location(1) clip_from_local_0: vec4<f32>,
     @location(2) clip_from_local_1: vec4<f32>,
     @location(3) clip_from_local_2: vec4<f32>,
     @location(4) clip_from_local_3: vec4<f32>,
+#ifdef POSED
+    // (first joint, morph descriptor, first vertex of the mesh in its buffer, 0).
+    @location(5) deform: vec4<u32>,
+#endif
+#ifdef SKINNED
+    @location(6) joint_indices: vec4<u32>,
+    @location(7) joint_weights: vec4<f32>,
+#endif
 }
+
+#ifdef POSED
+#ifdef DEFORMATION_IN_UNIFORMS
+// The draw's window of 256 joint matrices (Bevy's `MAX_JOINTS`), bound at its offset.
+struct JointWindow {
+    matrices: array<mat4x4<f32>, 256u>,
+}
+@group(0) @binding(0) var<uniform> joints: JointWindow;
+
+fn joint(first: u32, index: u32) -> mat4x4<f32> {
+    return joints.matrices[min(index, 255u)];
+}
+#else
+@group(0) @binding(0) var<storage> joints: array<mat4x4<f32>>;
+
+fn joint(first: u32, index: u32) -> mat4x4<f32> {
+    return joints[first + index];
+}
+#endif
+#endif
+
+#ifdef MORPHED
+#ifdef DEFORMATION_IN_UNIFORMS
+// The draw's window of 256 weights (Bevy's `MAX_MORPH_WEIGHTS`), bound at its offset, and
+// its mesh's targets: texel (9 · vertex + component) of row-major layers, one per morph_target
+// (position first), as Bevy writes them.
+struct WeightWindow {
+    weights: array<vec4<f32>, 64u>,
+}
+@group(1) @binding(0) var<uniform> weights: WeightWindow;
+@group(1) @binding(1) var targets: texture_3d<f32>;
+
+fn target_count(descriptor: u32) -> u32 {
+    return min(u32(textureDimensions(targets).z), 256u);
+}
+
+fn weight(descriptor: u32, morph_target: u32) -> f32 {
+    return weights.weights[morph_target / 4u][morph_target % 4u];
+}
+
+fn displacement(descriptor: u32, vertex: u32, morph_target: u32) -> vec3<f32> {
+    let width = u32(textureDimensions(targets).x);
+    var moved = vec3<f32>(0.0);
+    for (var component = 0u; component < 3u; component += 1u) {
+        let texel = 9u * vertex + component;
+        moved[component] = textureLoad(targets, vec3<u32>(texel % width, texel / width, morph_target), 0).r;
+    }
+    return moved;
+}
+#else
+// Bevy's `MorphAttributes` (position, normal, tangent) and `GpuMorphDescriptor`.
+struct MorphTarget {
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    tangent: vec3<f32>,
+}
+struct MorphDescriptor {
+    current_weights_offset: u32,
+    prev_weights_offset: u32,
+    targets_offset: u32,
+    vertex_count: u32,
+    weight_count: u32,
+}
+@group(1) @binding(0) var<storage> weights: array<f32>;
+@group(1) @binding(1) var<storage> targets: array<MorphTarget>;
+@group(1) @binding(2) var<storage> descriptors: array<MorphDescriptor>;
+
+fn target_count(descriptor: u32) -> u32 {
+    return descriptors[descriptor].weight_count;
+}
+
+fn weight(descriptor: u32, morph_target: u32) -> f32 {
+    return weights[descriptors[descriptor].current_weights_offset + morph_target];
+}
+
+fn displacement(descriptor: u32, vertex: u32, morph_target: u32) -> vec3<f32> {
+    let d = descriptors[descriptor];
+    return targets[d.targets_offset + morph_target * d.vertex_count + vertex].position;
+}
+#endif
+
+// p + Σ_t w_t · Δ_t for the mesh's `vertex`.
+fn morphed(position: vec3<f32>, descriptor: u32, vertex: u32) -> vec3<f32> {
+    var moved = position;
+    let count = target_count(descriptor);
+    for (var morph_target = 0u; morph_target < count; morph_target += 1u) {
+        let w = weight(descriptor, morph_target);
+        if w != 0.0 {
+            moved += w * displacement(descriptor, vertex, morph_target);
+        }
+    }
+    return moved;
+}
+#endif
 
 @vertex
 fn vertex(caster: Caster) -> @builtin(position) vec4<f32> {
@@ -17,5 +126,17 @@ fn vertex(caster: Caster) -> @builtin(position) vec4<f32> {
         caster.clip_from_local_2,
         caster.clip_from_local_3,
     );
-    return clip_from_local * vec4<f32>(caster.position, 1.0);
+    var position = vec4<f32>(caster.position, 1.0);
+#ifdef MORPHED
+    position = vec4<f32>(morphed(caster.position, caster.deform.y, caster.vertex_index - caster.deform.z), 1.0);
+#endif
+#ifdef SKINNED
+    let first = caster.deform.x;
+    let w = caster.joint_weights;
+    let k = caster.joint_indices;
+    let world_from_local = w.x * joint(first, k.x) + w.y * joint(first, k.y)
+        + w.z * joint(first, k.z) + w.w * joint(first, k.w);
+    position = world_from_local * position;
+#endif
+    return clip_from_local * position;
 }

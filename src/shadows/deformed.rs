@@ -1,6 +1,9 @@
-//! Skinned and morphed shadow casters: their triangles in the pose of this frame, computed on
-//! the CPU as Bevy's vertex stage computes them on the GPU, so that a shadow map draws what
-//! the camera sees.
+//! Skinned and morphed shadow casters in the main world: what the shadow gather needs of
+//! them before the render world poses them on the GPU (`shadows::posed`), as Bevy's vertex
+//! stage poses them to draw them: whether they are skinned, and a sphere that holds them in
+//! this frame's pose, which places them in the maps that can see them. No vertex is posed
+//! or copied on the CPU: the cost is `O(joints)` per skinned caster, plus
+//! `O(vertices × targets)` per morphed one (the reach of its weighted targets).
 //!
 //! A vertex `p` of the stored mesh is first moved by the morph targets,
 //! `p' = p + Σ_t w_t · Δ_t` (`w_t` the entity's morph weights, `Δ_t` target `t`'s position
@@ -9,35 +12,36 @@
 //! global transform, `B_k` its inverse bind matrix: glTF's skinning, and Bevy's), or else by
 //! the entity's own transform, `P = world_from_local · p'`.
 
+use super::views::Bounds;
 use bevy::{
     asset::{AssetId, Assets},
+    camera::primitives::{Aabb, MeshAabb},
     ecs::{entity::Entity, system::Query, system::Res, system::SystemParam},
-    math::{Mat4, Vec3},
+    math::{Mat4, Vec3, Vec3A, bounding::Aabb3d},
     mesh::{
-        Indices, Mesh, MeshAccessError, PrimitiveTopology, VertexAttributeValues,
+        Mesh, MeshAccessError,
         morph::{MeshMorphWeights, MorphWeights},
-        skinning::{SkinnedMesh, SkinnedMeshInverseBindposes},
+        skinning::{
+            SkinnedMesh, SkinnedMeshInverseBindposes, entity_aabb_from_skinned_mesh_bounds,
+        },
     },
     transform::components::GlobalTransform,
 };
 use thiserror::Error;
 
-/// Why a skinned or morphed mesh cannot be posed on the CPU (it then casts no shadow).
+/// Why a skinned or morphed mesh cannot be placed in the shadow maps (it then casts no
+/// shadow).
 #[derive(Debug, Error, PartialEq)]
 pub(crate) enum DeformError {
     #[error(
         "its mesh keeps no vertex data in the main world (its `RenderAssetUsages` lacks \
-         `MAIN_WORLD`)"
+         `MAIN_WORLD`), which bounding its pose needs"
     )]
     NoMainWorldData,
-    #[error("its mesh is not a triangle list or strip")]
-    NotTriangles,
     #[error("its mesh lacks {0}")]
     Missing(&'static str),
     #[error("its mesh asset is not loaded yet")]
     MeshNotLoaded,
-    #[error("its joint indices or weights are not one per vertex")]
-    JointDataLength,
     #[error("its skin names joint {0}, which has no transform")]
     MissingJoint(usize),
     #[error("its skin's inverse bind matrices are not loaded, or fewer than its joints")]
@@ -61,7 +65,17 @@ impl From<MeshAccessError> for DeformError {
     }
 }
 
-/// What posing a skinned or morphed caster reads. The asset collections are optional so
+/// A skinned or morphed caster as the gather places it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pose {
+    /// Whether its joints place it (its skin's joint matrices are world-from-local, so the
+    /// map draws it with `clip_from_world`); otherwise its transform does.
+    pub skinned: bool,
+    /// A sphere holding every vertex in this frame's pose, world space.
+    pub bounds: Bounds,
+}
+
+/// What placing a skinned or morphed caster reads. The asset collections are optional so
 /// that an app without a mesh or skin asset type (a test app, say) still gathers shadows.
 #[derive(SystemParam)]
 pub(crate) struct Poses<'w, 's> {
@@ -74,58 +88,82 @@ pub(crate) struct Poses<'w, 's> {
 }
 
 impl Poses<'_, '_> {
-    /// The triangles of `entity`'s `mesh` in this frame's pose, world space, three vertices
-    /// each, appended to `vertices`.
-    pub fn append_triangles(
+    /// How `entity`, drawn with `mesh`, is placed this frame. `aabb` is its local box where
+    /// it has one (Bevy keeps it with the mesh's); without one the mesh's box is computed.
+    pub fn pose(
         &self,
         entity: Entity,
         mesh: AssetId<Mesh>,
         world_from_local: Mat4,
-        vertices: &mut Vec<Vec3>,
-    ) -> Result<(), DeformError> {
+        aabb: Option<&Aabb>,
+    ) -> Result<Pose, DeformError> {
         let mesh = self
             .meshes
             .as_ref()
             .and_then(|meshes| meshes.get(mesh))
             .ok_or(DeformError::MeshNotLoaded)?;
-        let mut positions = local_positions(mesh)?;
-        if let Ok(morph) = self.morphs.get(entity) {
-            let weights = match morph {
-                MeshMorphWeights::Reference(source) => self
-                    .weights
-                    .get(*source)
-                    .map(MorphWeights::weights)
-                    .unwrap_or(&[]),
-                MeshMorphWeights::Value { weights } => weights.as_slice(),
-            };
-            apply_morph_targets(mesh, weights, &mut positions)?;
-        }
+        let local = || match aabb {
+            Some(aabb) => Ok(*aabb),
+            None => mesh.compute_aabb().ok_or(DeformError::Missing("positions")),
+        };
+        let morph_reach = match self.morphs.get(entity) {
+            Ok(morph) => morph_reach(mesh, self.morph_weights(morph))?,
+            Err(_) => 0.0,
+        };
         // Bevy skins a mesh only where its vertices have joints; otherwise it draws the mesh
         // with the entity's transform, skin or not.
         let has_joints = mesh.try_contains_attribute(Mesh::ATTRIBUTE_JOINT_INDEX)?
             && mesh.try_contains_attribute(Mesh::ATTRIBUTE_JOINT_WEIGHT)?;
-        match self.skins.get(entity).ok().filter(|_| has_joints) {
-            Some(skin) => {
-                let joint_matrices = self.joint_matrices(skin)?;
-                skin_positions(mesh, &joint_matrices, &mut positions)?;
-            }
-            None => {
-                for position in &mut positions {
-                    *position = world_from_local.transform_point3(*position);
-                }
-            }
-        }
-        append_triangle_list(mesh, &positions, vertices)
-    }
-
-    /// `G_k · B_k` for each joint `k` of `skin`.
-    fn joint_matrices(&self, skin: &SkinnedMesh) -> Result<Vec<Mat4>, DeformError> {
+        let Some(skin) = self.skins.get(entity).ok().filter(|_| has_joints) else {
+            return Ok(Pose {
+                skinned: false,
+                bounds: placed_bounds(&[world_from_local], &local()?, morph_reach),
+            });
+        };
         let bind_poses = self
             .bind_poses
             .as_ref()
             .and_then(|poses| poses.get(&skin.inverse_bindposes))
             .filter(|poses| poses.len() >= skin.joints.len())
             .ok_or(DeformError::BindPosesNotReady)?;
+        let joint_matrices = self.joint_matrices(skin, bind_poses)?;
+        // Bevy's own bound from the mesh's per-joint boxes where it has them (glTF meshes
+        // do), else every joint's placement of the whole mesh's box; both widened by the
+        // morph targets' reach, as far as a joint stretches it.
+        let bounds = match entity_aabb_from_skinned_mesh_bounds(
+            &self.joints,
+            mesh,
+            skin,
+            bind_poses,
+            None,
+        ) {
+            Ok(aabb) if morph_reach == 0.0 => sphere_around(&aabb),
+            _ => placed_bounds(&joint_matrices, &local()?, morph_reach),
+        };
+        Ok(Pose {
+            skinned: true,
+            bounds,
+        })
+    }
+
+    /// The weights of a morphed entity (none where its source has no `MorphWeights`).
+    fn morph_weights<'a>(&'a self, morph: &'a MeshMorphWeights) -> &'a [f32] {
+        match morph {
+            MeshMorphWeights::Reference(source) => self
+                .weights
+                .get(*source)
+                .map(MorphWeights::weights)
+                .unwrap_or(&[]),
+            MeshMorphWeights::Value { weights } => weights.as_slice(),
+        }
+    }
+
+    /// `G_k · B_k` for each joint `k` of `skin`.
+    fn joint_matrices(
+        &self,
+        skin: &SkinnedMesh,
+        bind_poses: &SkinnedMeshInverseBindposes,
+    ) -> Result<Vec<Mat4>, DeformError> {
         skin.joints
             .iter()
             .zip(bind_poses.iter())
@@ -141,119 +179,65 @@ impl Poses<'_, '_> {
     }
 }
 
-/// The stored positions of `mesh`.
-fn local_positions(mesh: &Mesh) -> Result<Vec<Vec3>, DeformError> {
-    match mesh.try_attribute(Mesh::ATTRIBUTE_POSITION)? {
-        VertexAttributeValues::Float32x3(positions) => {
-            Ok(positions.iter().map(|p| Vec3::from_array(*p)).collect())
-        }
-        _ => Err(DeformError::Missing("Float32x3 positions")),
+/// How far `Σ_t w_t · Δ_t` can move a vertex: `Σ_t |w_t| · max_v |Δ_t(v)|` (targets stored
+/// target by target, each holding every vertex, as Bevy stores them).
+fn morph_reach(mesh: &Mesh, weights: &[f32]) -> Result<f32, DeformError> {
+    if !mesh.try_has_morph_targets()? {
+        return Ok(0.0);
     }
+    let targets = mesh.try_morph_targets()?;
+    let count = mesh.try_attribute(Mesh::ATTRIBUTE_POSITION)?.len().max(1);
+    Ok(targets
+        .chunks(count)
+        .zip(weights)
+        .filter(|(_, weight)| **weight != 0.0)
+        .map(|(target, weight)| {
+            let longest = target
+                .iter()
+                .map(|displacement| displacement.position.length())
+                .fold(0.0, f32::max);
+            weight.abs() * longest
+        })
+        .sum())
 }
 
-/// Adds `Σ_t w_t · Δ_t` to each position (targets stored target by target, each holding
-/// every vertex, as Bevy stores them).
-fn apply_morph_targets(
-    mesh: &Mesh,
-    weights: &[f32],
-    positions: &mut [Vec3],
-) -> Result<(), DeformError> {
-    let Some(targets) = mesh.get_morph_targets() else {
-        return Ok(());
+/// A sphere holding `local` (a local-space box) placed by each of `placements`, widened by
+/// `reach` local units in every direction (scaled by the placement that stretches most).
+fn placed_bounds(placements: &[Mat4], local: &Aabb, reach: f32) -> Bounds {
+    let half = Vec3::from(local.half_extents) + Vec3::splat(reach);
+    let mut world = Aabb3d {
+        min: Vec3A::INFINITY,
+        max: Vec3A::NEG_INFINITY,
     };
-    let count = positions.len();
-    for (target, weight) in weights.iter().enumerate() {
-        if *weight == 0.0 {
-            continue;
-        }
-        let Some(displacements) = targets.get(target * count..(target + 1) * count) else {
-            break;
-        };
-        for (position, displacement) in positions.iter_mut().zip(displacements) {
-            *position += *weight * displacement.position;
-        }
+    for placement in placements {
+        let center = Vec3A::from(placement.transform_point3(Vec3::from(local.center)));
+        // The box's half extents along the world axes: |M| · half.
+        let extent = Vec3A::new(
+            placement.row(0).truncate().abs().dot(half),
+            placement.row(1).truncate().abs().dot(half),
+            placement.row(2).truncate().abs().dot(half),
+        );
+        world.min = world.min.min(center - extent);
+        world.max = world.max.max(center + extent);
     }
-    Ok(())
+    sphere_around(&world)
 }
 
-/// Places each position in the world by its joints: `Σ_k ω_k · joint_matrices[j_k] · p`.
-fn skin_positions(
-    mesh: &Mesh,
-    joint_matrices: &[Mat4],
-    positions: &mut [Vec3],
-) -> Result<(), DeformError> {
-    let indices: Vec<[u16; 4]> = match mesh.try_attribute(Mesh::ATTRIBUTE_JOINT_INDEX)? {
-        VertexAttributeValues::Uint16x4(indices) => indices.clone(),
-        VertexAttributeValues::Uint8x4(indices) => {
-            indices.iter().map(|i| i.map(u16::from)).collect()
-        }
-        _ => return Err(DeformError::Missing("joint indices")),
-    };
-    let VertexAttributeValues::Float32x4(weights) =
-        mesh.try_attribute(Mesh::ATTRIBUTE_JOINT_WEIGHT)?
-    else {
-        return Err(DeformError::Missing("Float32x4 joint weights"));
-    };
-    if indices.len() != positions.len() || weights.len() != positions.len() {
-        return Err(DeformError::JointDataLength);
+/// The sphere around a box.
+fn sphere_around(aabb: &Aabb3d) -> Bounds {
+    Bounds {
+        center: Vec3::from((aabb.min + aabb.max) / 2.0),
+        radius: Vec3::from(aabb.max - aabb.min).length() / 2.0,
     }
-    for ((position, joints), weights) in positions.iter_mut().zip(&indices).zip(weights) {
-        let mut skinned = Vec3::ZERO;
-        // A joint of weight 0 is padding: its index need not name a joint.
-        for (joint, weight) in joints.iter().zip(weights).filter(|(_, w)| **w != 0.0) {
-            let matrix = joint_matrices
-                .get(usize::from(*joint))
-                .ok_or(DeformError::MissingJoint(usize::from(*joint)))?;
-            skinned += *weight * matrix.transform_point3(*position);
-        }
-        *position = skinned;
-    }
-    Ok(())
-}
-
-/// Appends `mesh`'s triangles, with `positions` for its vertices, three vertices each.
-fn append_triangle_list(
-    mesh: &Mesh,
-    positions: &[Vec3],
-    vertices: &mut Vec<Vec3>,
-) -> Result<(), DeformError> {
-    let order: Vec<usize> = match mesh.try_indices_option()? {
-        Some(Indices::U16(indices)) => indices.iter().map(|i| usize::from(*i)).collect(),
-        Some(Indices::U32(indices)) => indices.iter().map(|i| *i as usize).collect(),
-        None => (0..positions.len()).collect(),
-    };
-    let vertex = |index: usize| positions.get(index).copied();
-    let start = vertices.len();
-    let appended = match mesh.primitive_topology() {
-        PrimitiveTopology::TriangleList => {
-            order
-                .chunks_exact(3)
-                .try_for_each(|triangle| -> Option<()> {
-                    for index in triangle {
-                        vertices.push(vertex(*index)?);
-                    }
-                    Some(())
-                })
-        }
-        PrimitiveTopology::TriangleStrip => order.windows(3).try_for_each(|window| -> Option<()> {
-            for index in window {
-                vertices.push(vertex(*index)?);
-            }
-            Some(())
-        }),
-        _ => return Err(DeformError::NotTriangles),
-    };
-    if appended.is_none() {
-        vertices.truncate(start);
-        return Err(DeformError::Missing("vertices its indices name"));
-    }
-    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bevy::{asset::RenderAssetUsages, mesh::morph::MorphAttributes};
+    use bevy::{
+        asset::RenderAssetUsages,
+        mesh::{PrimitiveTopology, morph::MorphAttributes},
+    };
 
     fn triangle() -> Mesh {
         Mesh::new(
@@ -267,88 +251,44 @@ mod tests {
     }
 
     #[test]
-    fn morph_targets_add_their_weighted_displacements() {
+    fn morph_targets_reach_as_far_as_their_weighted_longest_displacement() {
         let displacement = |y: f32| MorphAttributes {
             position: Vec3::new(0.0, y, 0.0),
             ..Default::default()
         };
-        // Two targets: the first lifts every vertex by 1, the second by 10.
+        // Two targets: the first lifts vertices by up to 1, the second by up to 10.
         let mesh = triangle()
-            .with_morph_targets([1.0, 1.0, 1.0, 10.0, 10.0, 10.0].map(displacement).to_vec());
-        let mut positions = local_positions(&mesh).unwrap();
-        apply_morph_targets(&mesh, &[0.5, 0.25], &mut positions).unwrap();
-        assert_eq!(positions[1], Vec3::new(1.0, 3.0, 0.0));
+            .with_morph_targets([0.5, 1.0, 0.0, 10.0, 2.0, 0.0].map(displacement).to_vec());
+        assert_eq!(morph_reach(&mesh, &[0.5, -0.25]).unwrap(), 0.5 + 2.5);
+        assert_eq!(morph_reach(&triangle(), &[1.0]).unwrap(), 0.0);
     }
 
     #[test]
-    fn joints_blend_by_weight() {
-        let mesh = triangle()
-            .with_inserted_attribute(
-                Mesh::ATTRIBUTE_JOINT_INDEX,
-                VertexAttributeValues::Uint16x4(vec![[0, 1, 0, 0]; 3]),
-            )
-            .with_inserted_attribute(
-                Mesh::ATTRIBUTE_JOINT_WEIGHT,
-                vec![[0.25f32, 0.75, 0.0, 0.0]; 3],
-            );
-        let joints = [
+    fn a_placed_box_is_held_by_the_sphere_of_every_placement() {
+        let local = Aabb::from_min_max(Vec3::ZERO, Vec3::ONE);
+        let placements = [
             Mat4::from_translation(Vec3::new(0.0, 0.0, 4.0)),
-            Mat4::from_translation(Vec3::new(0.0, 0.0, 8.0)),
+            Mat4::from_scale_rotation_translation(
+                Vec3::splat(2.0),
+                bevy::math::Quat::from_rotation_y(0.7),
+                Vec3::new(0.0, 0.0, 8.0),
+            ),
         ];
-        let mut positions = local_positions(&mesh).unwrap();
-        skin_positions(&mesh, &joints, &mut positions).unwrap();
-        // 0.25 · (p + 4z) + 0.75 · (p + 8z) = p + 7z.
-        assert_eq!(positions[1], Vec3::new(1.0, 0.0, 7.0));
-    }
-
-    #[test]
-    fn padding_joints_of_weight_zero_need_not_exist_and_joint_data_must_cover_every_vertex() {
-        let skinned = |weights: Vec<[f32; 4]>| {
-            triangle()
-                .with_inserted_attribute(
-                    Mesh::ATTRIBUTE_JOINT_INDEX,
-                    VertexAttributeValues::Uint16x4(vec![[0, 9, 9, 9]; 3]),
-                )
-                .with_inserted_attribute(Mesh::ATTRIBUTE_JOINT_WEIGHT, weights)
-        };
-        let joints = [Mat4::from_translation(Vec3::Z)];
-        let mesh = skinned(vec![[1.0, 0.0, 0.0, 0.0]; 3]);
-        let mut positions = local_positions(&mesh).unwrap();
-        skin_positions(&mesh, &joints, &mut positions).unwrap();
-        assert_eq!(positions[1], Vec3::new(1.0, 0.0, 1.0));
-
-        let short = skinned(vec![[1.0, 0.0, 0.0, 0.0]; 2]);
-        let mut positions = local_positions(&short).unwrap();
-        assert_eq!(
-            skin_positions(&short, &joints, &mut positions),
-            Err(DeformError::JointDataLength)
-        );
-        let named = skinned(vec![[0.5, 0.5, 0.0, 0.0]; 3]);
-        assert_eq!(
-            skin_positions(&named, &joints, &mut positions),
-            Err(DeformError::MissingJoint(9))
-        );
-    }
-
-    #[test]
-    fn strips_become_lists_and_bad_indices_are_an_error() {
-        let mut vertices = Vec::new();
-        let strip = Mesh::new(
-            PrimitiveTopology::TriangleStrip,
-            RenderAssetUsages::default(),
-        )
-        .with_inserted_attribute(
-            Mesh::ATTRIBUTE_POSITION,
-            vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-        )
-        .with_inserted_indices(Indices::U16(vec![0, 1, 2, 0]));
-        let positions = local_positions(&strip).unwrap();
-        append_triangle_list(&strip, &positions, &mut vertices).unwrap();
-        assert_eq!(vertices.len(), 6, "two triangles");
-
-        let broken = triangle().with_inserted_indices(Indices::U16(vec![0, 1, 7]));
-        assert!(append_triangle_list(&broken, &positions, &mut vertices).is_err());
-        assert_eq!(vertices.len(), 6, "nothing appended");
+        let bounds = placed_bounds(&placements, &local, 0.25);
+        for placement in &placements {
+            for corner in 0..8 {
+                let point = Vec3::new(
+                    if corner & 1 == 0 { -0.25 } else { 1.25 },
+                    if corner & 2 == 0 { -0.25 } else { 1.25 },
+                    if corner & 4 == 0 { -0.25 } else { 1.25 },
+                );
+                let placed = placement.transform_point3(point);
+                assert!(
+                    placed.distance(bounds.center) <= bounds.radius * (1.0 + 1e-6),
+                    "{placed} outside {bounds:?}"
+                );
+            }
+        }
     }
 
     #[test]
@@ -357,7 +297,7 @@ mod tests {
         mesh.asset_usage = RenderAssetUsages::RENDER_WORLD;
         let _ = mesh.take_gpu_data();
         assert_eq!(
-            local_positions(&mesh).unwrap_err(),
+            morph_reach(&mesh, &[1.0]).unwrap_err(),
             DeformError::NoMainWorldData
         );
     }

@@ -80,9 +80,15 @@ pub(crate) struct ShadowPass {
 pub(crate) enum CasterSource {
     /// A mesh as stored (in its local space).
     Mesh(AssetId<Mesh>),
-    /// A skinned or morphed mesh posed for this frame: these vertices of
-    /// [`ShadowFrame::deformed_vertices`], three per triangle, in world space.
-    Deformed(Range<u32>),
+    /// A skinned or morphed mesh, posed on the GPU as Bevy poses it to draw it: by the
+    /// joint matrices and morph weights Bevy prepared for `entity` this frame
+    /// (`shadows::posed`).
+    Posed {
+        entity: Entity,
+        mesh: AssetId<Mesh>,
+        /// Whether its joints place it (in world space); otherwise it is in its local space.
+        skinned: bool,
+    },
 }
 
 /// A caster drawn into one map.
@@ -90,8 +96,8 @@ pub(crate) enum CasterSource {
 pub(crate) struct ShadowInstance {
     /// Its triangles.
     pub source: CasterSource,
-    /// The triangles' space (the mesh's local space, or world space for posed ones) to the
-    /// map's clip space.
+    /// The triangles' space (the mesh's local space, or world space for skinned ones) to
+    /// the map's clip space.
     pub clip_from_local: Mat4,
 }
 
@@ -104,8 +110,6 @@ pub(crate) struct ShadowFrame {
     pub passes: Vec<ShadowPass>,
     /// The casters of every map.
     pub instances: Vec<ShadowInstance>,
-    /// The triangles of this frame's skinned and morphed casters, world space.
-    pub deformed_vertices: Vec<Vec3>,
 }
 
 /// A visible mesh that casts shadows.
@@ -188,7 +192,6 @@ pub(crate) fn gather_shadows(
     let state = &mut *state;
     state.records.clear();
     state.casters.clear();
-    let mut deformed_vertices = Vec::new();
     if !requests.is_empty() {
         for (entity, mesh, transform, aabb, visibility, skinned, morphed) in &casters {
             if !visibility.get() {
@@ -206,24 +209,23 @@ pub(crate) fn gather_shadows(
                 });
                 continue;
             }
-            let start = deformed_vertices.len();
-            match poses.append_triangles(
-                entity,
-                mesh.id(),
-                transform.to_matrix(),
-                &mut deformed_vertices,
-            ) {
-                Ok(()) if deformed_vertices.len() > start => {
+            match poses.pose(entity, mesh.id(), transform.to_matrix(), aabb) {
+                Ok(pose) => {
                     state.unposed.remove(&entity);
                     state.casters.push(Caster {
-                        source: CasterSource::Deformed(
-                            start as u32..deformed_vertices.len() as u32,
-                        ),
-                        world_from_local: Mat4::IDENTITY,
-                        bounds: bounds_of(&deformed_vertices[start..]),
+                        source: CasterSource::Posed {
+                            entity,
+                            mesh: mesh.id(),
+                            skinned: pose.skinned,
+                        },
+                        world_from_local: if pose.skinned {
+                            Mat4::IDENTITY
+                        } else {
+                            transform.to_matrix()
+                        },
+                        bounds: pose.bounds,
                     });
                 }
-                Ok(()) => {}
                 // Still loading: it casts once its assets are loaded.
                 Err(error) if error.is_loading() => {}
                 Err(error) => {
@@ -299,7 +301,6 @@ pub(crate) fn gather_shadows(
         record.uv_scale /= size as f32;
     }
     next.layout = atlas_layout(frame.layout, size, state.records.len() as u32);
-    next.deformed_vertices = deformed_vertices;
     let header = GpuShadowViewsHeader {
         count: state.records.len() as u32,
         padding: [0; 3],
@@ -488,20 +489,6 @@ fn bounds(transform: &GlobalTransform, aabb: &Aabb) -> Bounds {
     }
 }
 
-/// The bounding sphere of world-space `vertices` (around the centre of their box).
-fn bounds_of(vertices: &[Vec3]) -> Bounds {
-    let (min, max) = vertices.iter().fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(min, max), vertex| (min.min(*vertex), max.max(*vertex)),
-    );
-    let center = (min + max) / 2.0;
-    let radius = vertices
-        .iter()
-        .map(|vertex| vertex.distance(center))
-        .fold(0.0, f32::max);
-    Bounds { center, radius }
-}
-
 /// Whether a sphere meets the view volume of `clip_from_world` (reversed depth: the near
 /// plane at depth 1, the far plane at 0).
 fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
@@ -527,36 +514,34 @@ mod tests {
 
     #[test]
     fn posed_meshes_cast_a_loading_skin_waits_and_a_broken_one_is_reported() {
-        // A cuboid (24 vertices) whose vertices all follow joint 0 with weight 1, with one
-        // weight fewer than vertices if `broken`.
-        let jointed = |broken: bool| {
-            let vertices = if broken { 23 } else { 24 };
-            Cuboid::default()
-                .mesh()
-                .build()
-                .with_inserted_attribute(
-                    Mesh::ATTRIBUTE_JOINT_INDEX,
-                    bevy::mesh::VertexAttributeValues::Uint16x4(vec![[0; 4]; 24]),
-                )
-                .with_inserted_attribute(
-                    Mesh::ATTRIBUTE_JOINT_WEIGHT,
-                    vec![[1.0f32, 0.0, 0.0, 0.0]; vertices],
-                )
-        };
+        // A cuboid (24 vertices) whose vertices all follow joint 0 with weight 1.
+        let jointed = Cuboid::default()
+            .mesh()
+            .build()
+            .with_inserted_attribute(
+                Mesh::ATTRIBUTE_JOINT_INDEX,
+                bevy::mesh::VertexAttributeValues::Uint16x4(vec![[0; 4]; 24]),
+            )
+            .with_inserted_attribute(
+                Mesh::ATTRIBUTE_JOINT_WEIGHT,
+                vec![[1.0f32, 0.0, 0.0, 0.0]; 24],
+            );
         let mut app = test_app(|app| {
             app.init_asset::<Mesh>()
                 .init_asset::<SkinnedMeshInverseBindposes>();
             let world = app.world_mut();
             let mut meshes = world.resource_mut::<Assets<Mesh>>();
-            let [plain, loading, broken] = [
+            let [plain, jointed] = [
                 meshes.add(Cuboid::default().mesh().build()),
-                meshes.add(jointed(false)),
-                meshes.add(jointed(true)),
+                meshes.add(jointed),
             ];
             let bind_poses = world
                 .resource_mut::<Assets<SkinnedMeshInverseBindposes>>()
                 .add(SkinnedMeshInverseBindposes::from(vec![Mat4::IDENTITY]));
-            let joint = world.spawn(Transform::default()).id();
+            let joint = world.spawn(Transform::from_xyz(0.0, 1.0, 0.0)).id();
+            // A joint that is no longer there.
+            let gone = world.spawn_empty().id();
+            world.despawn(gone);
             let caster = |mesh: Handle<Mesh>| {
                 (
                     Mesh3d(mesh),
@@ -567,16 +552,24 @@ mod tests {
             };
             world.spawn(caster(plain.clone()));
             // Its inverse bind matrices are not loaded: it waits, without a warning.
-            world.spawn((caster(loading), SkinnedMesh::default()));
-            // Its joint weights are not one per vertex: reported once.
+            world.spawn((caster(jointed.clone()), SkinnedMesh::default()));
+            // Its joint has no transform: reported once.
             world.spawn((
-                caster(broken),
+                caster(jointed.clone()),
+                SkinnedMesh {
+                    inverse_bindposes: bind_poses.clone(),
+                    joints: vec![gone],
+                },
+            ));
+            // Placed by its joint, a unit up.
+            world.spawn((
+                caster(jointed),
                 SkinnedMesh {
                     inverse_bindposes: bind_poses,
                     joints: vec![joint],
                 },
             ));
-            // No morph targets: posed as stored, its 12 triangles in world space.
+            // No morph targets: placed as stored, by its transform.
             world.spawn((
                 caster(plain),
                 MeshMorphWeights::Value { weights: vec![0.5] },
@@ -593,17 +586,34 @@ mod tests {
         app.update();
         let views = app.world().resource::<PhongShadowViews>();
         assert!(!views.views().is_empty(), "the light has shadow maps");
-        let sources: Vec<_> = views.casters.iter().map(|c| c.source.clone()).collect();
-        assert_eq!(sources.len(), 2, "the plain and the morphed mesh cast");
-        assert!(matches!(sources[0], CasterSource::Mesh(_)));
-        assert_eq!(sources[1], CasterSource::Deformed(0..36));
+        let casters: Vec<_> = views
+            .casters
+            .iter()
+            .map(|c| (c.source.clone(), c.bounds))
+            .collect();
+        assert_eq!(
+            casters.len(),
+            3,
+            "the plain, the skinned and the morphed mesh cast"
+        );
+        assert!(matches!(casters[0].0, CasterSource::Mesh(_)));
+        assert!(matches!(
+            casters[1].0,
+            CasterSource::Posed { skinned: true, .. }
+        ));
+        assert!(
+            casters[1].1.center.distance(Vec3::Y) < 1e-6,
+            "the skinned cube's bounds follow its joint"
+        );
+        assert!(matches!(
+            casters[2].0,
+            CasterSource::Posed { skinned: false, .. }
+        ));
         assert_eq!(
             views.unposed.len(),
             1,
-            "one entity reported, the broken skin"
+            "one entity reported, the skin without its joint"
         );
-        let frame = app.world().resource::<ShadowFrame>();
-        assert_eq!(frame.deformed_vertices.len(), 36);
     }
 
     #[test]

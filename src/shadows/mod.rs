@@ -34,17 +34,20 @@
 //!
 //! Casters are the visible meshes without `NotShadowCaster`, culled per map by their
 //! bounding spheres. They are drawn from their vertex positions as stored, except skinned
-//! and morphed meshes (`SkinnedMesh`, `MeshMorphWeights`): the gather poses their triangles
-//! on the CPU as Bevy's vertex stage does (`deformed`), and the maps draw those. A deformed
-//! mesh whose vertex data is not in the main world, or whose joint data does not cover its
-//! vertices, casts nothing, with one warning naming it; one whose mesh or inverse bind
-//! matrices are still loading casts once they are. A mesh without bounds (`Aabb`, absent
-//! under `NoFrustumCulling`) casts only if it is skinned or morphed.
+//! and morphed meshes (`SkinnedMesh`, `MeshMorphWeights`), which the maps pose on the GPU
+//! with the joint matrices and morph weights Bevy prepared to draw them this frame
+//! (`posed`); the gather only bounds their pose, in `O(joints)` (`deformed`). A deformed
+//! mesh whose vertex data is not in the main world (its bounds need it), or whose skin
+//! names a joint without a transform, casts nothing, with one warning naming it; one whose
+//! mesh or inverse bind matrices are still loading casts once they are, and one Bevy has not
+//! prepared this frame casts from the next. A mesh without bounds (`Aabb`, absent under
+//! `NoFrustumCulling`) casts only if it is skinned or morphed.
 
 mod cameras;
 mod deformed;
 mod gather;
 mod gpu_types;
+mod posed;
 mod render;
 mod request;
 mod sources;
@@ -70,17 +73,28 @@ pub const MAX_SHADOW_VIEWS: usize = 256;
 use crate::{
     lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight},
     schedule::PhongSystems,
+    shadow_presence::SCENE_CASTS_SHADOWS,
 };
 use bevy::{
     app::{App, PostUpdate},
+    camera::visibility::{
+        InheritedVisibility, SetViewVisibility, ViewVisibility, VisibilitySystems,
+    },
     core_pipeline::schedule::camera_driver,
-    ecs::schedule::IntoScheduleConfigs,
+    ecs::{
+        query::{Or, With, Without},
+        schedule::IntoScheduleConfigs,
+        system::Query,
+    },
+    light::NotShadowCaster,
+    mesh::{Mesh3d, morph::MeshMorphWeights, skinning::SkinnedMesh},
     render::{
         ExtractSchedule, GpuResourceAppExt, Render, RenderApp, RenderSystems,
         render_resource::SpecializedMeshPipelines,
         renderer::{RenderGraph, RenderGraphSystems},
     },
 };
+use core::sync::atomic::Ordering;
 
 /// The main world's part: the requests of the built-in lights and the gather.
 pub(crate) fn add_shadow_gather(app: &mut App) {
@@ -98,8 +112,33 @@ pub(crate) fn add_shadow_gather(app: &mut App) {
                 )
                     .in_set(PhongSystems::RequestShadows),
                 gather_shadows.in_set(PhongSystems::GatherShadows),
+                keep_posed_casters_prepared
+                    .run_if(|| SCENE_CASTS_SHADOWS.load(Ordering::Relaxed))
+                    .after(VisibilitySystems::CheckVisibility)
+                    .before(VisibilitySystems::MarkNewlyHiddenEntitiesInvisible),
             ),
         );
+}
+
+/// The skinned and morphed meshes that cast shadows.
+type PosedCaster = (
+    With<Mesh3d>,
+    Or<(With<SkinnedMesh>, With<MeshMorphWeights>)>,
+    Without<NotShadowCaster>,
+);
+
+/// Marks the visible skinned and morphed meshes that cast shadows as seen, as Bevy's own
+/// lights do for their shadow casters: Bevy then prepares their joints and weights this
+/// frame, which the shadow maps pose them with, even where no camera sees them (no camera
+/// draws them for it: cameras draw what they list as visible).
+fn keep_posed_casters_prepared(
+    mut casters: Query<(&InheritedVisibility, &mut ViewVisibility), PosedCaster>,
+) {
+    for (inherited, mut seen) in &mut casters {
+        if inherited.get() {
+            seen.set_visible();
+        }
+    }
 }
 
 /// The render world's part: the shadow map array, the caster pipeline and the pass.
@@ -111,6 +150,7 @@ pub(crate) fn add_shadow_rendering(app: &mut App) {
         .init_gpu_resource::<ShadowAtlas>()
         .init_gpu_resource::<ShadowCasterPipeline>()
         .init_resource::<ShadowDraws>()
+        .init_resource::<posed::PosedBindGroups>()
         .init_resource::<SpecializedMeshPipelines<ShadowCasterPipeline>>()
         .add_systems(ExtractSchedule, extract_shadow_frame)
         .add_systems(
@@ -118,6 +158,7 @@ pub(crate) fn add_shadow_rendering(app: &mut App) {
             (
                 prepare_shadow_atlas.in_set(RenderSystems::PrepareAssets),
                 prepare_shadow_draws.in_set(RenderSystems::PrepareResources),
+                posed::prepare_posed_bind_groups.in_set(RenderSystems::PrepareBindGroups),
             ),
         )
         .add_systems(

@@ -2,7 +2,10 @@
 //! that draws casters into it, and the pass that draws every map of the frame before the
 //! cameras render.
 
-use super::gather::{AtlasLayout, CasterSource, ShadowFrame};
+use super::{
+    gather::{AtlasLayout, CasterSource, ShadowFrame},
+    posed::{BevyDeformation, PosedBindGroups, PosedDraw, PosedLayouts},
+};
 use bevy::{
     asset::{AssetServer, Handle},
     ecs::{
@@ -11,10 +14,7 @@ use bevy::{
         world::{FromWorld, World},
     },
     log::error,
-    mesh::{
-        Mesh, MeshVertexBufferLayout, MeshVertexBufferLayoutRef, MeshVertexBufferLayouts,
-        PrimitiveTopology, VertexBufferLayout,
-    },
+    mesh::{Mesh, MeshVertexBufferLayoutRef, PrimitiveTopology, VertexBufferLayout},
     prelude::default,
     render::{
         Extract,
@@ -32,9 +32,11 @@ use bevy::{
             VertexState, VertexStepMode,
         },
         renderer::{RenderContext, RenderDevice, RenderQueue},
+        sync_world::MainEntity,
     },
     shader::Shader,
 };
+use bytemuck::{Pod, Zeroable};
 
 /// How far each caster's depth is pushed away from the light as it is drawn, in multiples
 /// of its own depth change across one texel (the rasterizer's slope-scaled depth bias): a
@@ -141,10 +143,13 @@ pub(crate) fn prepare_shadow_atlas(
 }
 
 /// The depth-only pipeline that draws a caster into a shadow map: its positions, placed by
-/// a per-draw `clip_from_local` matrix read as an instance attribute.
+/// a per-draw `clip_from_local` matrix read as an instance attribute; for a skinned or
+/// morphed caster, posed first by Bevy's joints and weights ([`super::posed`]).
 #[derive(Resource)]
 pub(crate) struct ShadowCasterPipeline {
     shader: Handle<Shader>,
+    /// The bind group layouts of posed casters' data.
+    pub posed_layouts: PosedLayouts,
 }
 
 impl FromWorld for ShadowCasterPipeline {
@@ -153,42 +158,81 @@ impl FromWorld for ShadowCasterPipeline {
             shader: world
                 .resource::<AssetServer>()
                 .load("embedded://bevy_phong/shaders/shadow_caster.wgsl"),
+            posed_layouts: PosedLayouts::new(&world.resource::<RenderDevice>().limits()),
         }
     }
 }
 
+/// A caster pipeline's variant: the mesh's topology and, for a posed caster, whether its
+/// joints and its morph targets pose it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct ShadowCasterKey {
+    topology: PrimitiveTopology,
+    posed: Option<(bool, bool)>,
+}
+
+/// One draw's instance data (`Caster` in `shadow_caster.wgsl`): the matrix to the map's
+/// clip space by columns, then where a posed caster's deformation is (see
+/// [`PosedDraw::deform`]).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+pub(crate) struct CasterInstance {
+    clip_from_local: [f32; 16],
+    deform: [u32; 4],
+}
+
+/// Bytes of a [`CasterInstance`].
+const INSTANCE_SIZE: u64 = size_of::<CasterInstance>() as u64;
+
 impl SpecializedMeshPipeline for ShadowCasterPipeline {
-    type Key = PrimitiveTopology;
+    type Key = ShadowCasterKey;
 
     fn specialize(
         &self,
-        topology: PrimitiveTopology,
+        key: ShadowCasterKey,
         layout: &MeshVertexBufferLayoutRef,
     ) -> Result<RenderPipelineDescriptor, SpecializedMeshPipelineError> {
-        let positions = layout
-            .0
-            .get_layout(&[Mesh::ATTRIBUTE_POSITION.at_shader_location(0)])?;
-        let clip_from_local = VertexBufferLayout {
-            array_stride: 64,
+        let (skinned, morphed) = key.posed.unwrap_or_default();
+        let mut attributes = vec![Mesh::ATTRIBUTE_POSITION.at_shader_location(0)];
+        if skinned {
+            attributes.push(Mesh::ATTRIBUTE_JOINT_INDEX.at_shader_location(6));
+            attributes.push(Mesh::ATTRIBUTE_JOINT_WEIGHT.at_shader_location(7));
+        }
+        let vertices = layout.0.get_layout(&attributes)?;
+        let mut instance_attributes: Vec<VertexAttribute> = (0..4)
+            .map(|column| VertexAttribute {
+                format: VertexFormat::Float32x4,
+                offset: 16 * column as u64,
+                shader_location: 1 + column,
+            })
+            .collect();
+        let (bind_group_layouts, shader_defs) = match key.posed {
+            Some(_) => {
+                instance_attributes.push(VertexAttribute {
+                    format: VertexFormat::Uint32x4,
+                    offset: 64,
+                    shader_location: 5,
+                });
+                self.posed_layouts.pipeline_parts(skinned, morphed)
+            }
+            None => (Vec::new(), Vec::new()),
+        };
+        let instance = VertexBufferLayout {
+            array_stride: INSTANCE_SIZE,
             step_mode: VertexStepMode::Instance,
-            attributes: (0..4)
-                .map(|column| VertexAttribute {
-                    format: VertexFormat::Float32x4,
-                    offset: 16 * column as u64,
-                    shader_location: 1 + column,
-                })
-                .collect(),
+            attributes: instance_attributes,
         };
         Ok(RenderPipelineDescriptor {
             label: Some("phong_shadow_caster".into()),
+            layout: bind_group_layouts,
             vertex: VertexState {
                 shader: self.shader.clone(),
+                shader_defs,
                 entry_point: Some("vertex".into()),
-                buffers: vec![positions, clip_from_local],
-                ..default()
+                buffers: vec![vertices, instance],
             },
             primitive: PrimitiveState {
-                topology,
+                topology: key.topology,
                 // Both faces: open meshes (a plane) cast too.
                 cull_mode: None,
                 ..default()
@@ -211,54 +255,43 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
 }
 
 /// The pipeline of each caster of the frame's maps, in [`ShadowFrame::instances`] order
-/// (`None` for a mesh that is not loaded or not made of triangles), the instance buffer
-/// of their `clip_from_local` matrices, and the vertex buffer of the posed (skinned and
-/// morphed) casters' triangles.
+/// (`None` for a mesh that is not loaded or not made of triangles, or a posed caster whose
+/// deformation Bevy has not prepared), where each posed caster's deformation is, and the
+/// instance buffer of their [`CasterInstance`]s.
 #[derive(Resource)]
 pub(crate) struct ShadowDraws {
     pipelines: Vec<Option<CachedRenderPipelineId>>,
-    instances: RawBufferVec<[f32; 16]>,
-    deformed_vertices: RawBufferVec<[f32; 3]>,
-    /// The vertex layout of `deformed_vertices`: positions only.
-    deformed_layout: Option<MeshVertexBufferLayoutRef>,
+    posed: Vec<Option<PosedDraw>>,
+    instances: RawBufferVec<CasterInstance>,
 }
 
 impl Default for ShadowDraws {
     fn default() -> Self {
         Self {
             pipelines: Vec::new(),
+            posed: Vec::new(),
             instances: RawBufferVec::new(BufferUsages::VERTEX),
-            deformed_vertices: RawBufferVec::new(BufferUsages::VERTEX),
-            deformed_layout: None,
         }
     }
 }
 
-/// The vertex layout of posed casters' triangles: world positions, `Float32x3`.
-fn positions_only_layout(layouts: &mut MeshVertexBufferLayouts) -> MeshVertexBufferLayoutRef {
-    layouts.insert(MeshVertexBufferLayout::new(
-        vec![Mesh::ATTRIBUTE_POSITION.id],
-        VertexBufferLayout {
-            array_stride: 12,
-            step_mode: VertexStepMode::Vertex,
-            attributes: vec![VertexAttribute {
-                format: VertexFormat::Float32x3,
-                offset: 0,
-                shader_location: 0,
-            }],
-        },
-    ))
+impl ShadowDraws {
+    /// The posed casters' draws of this frame.
+    pub fn posed(&self) -> impl Iterator<Item = &PosedDraw> {
+        self.posed.iter().flatten()
+    }
 }
 
 /// Finds each caster's pipeline (compiling it the first time its vertex layout is seen) and
-/// uploads the frame's instance matrices and posed triangles.
+/// uploads the frame's instance data.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn prepare_shadow_draws(
     frame: Option<Res<ShadowFrame>>,
     meshes: Res<RenderAssets<RenderMesh>>,
+    allocator: Res<MeshAllocator>,
+    deformation: BevyDeformation,
     pipeline: Res<ShadowCasterPipeline>,
     mut pipelines: ResMut<SpecializedMeshPipelines<ShadowCasterPipeline>>,
-    mut layouts: ResMut<MeshVertexBufferLayouts>,
     cache: Res<PipelineCache>,
     mut draws: ResMut<ShadowDraws>,
     device: Res<RenderDevice>,
@@ -266,15 +299,11 @@ pub(crate) fn prepare_shadow_draws(
 ) {
     let draws = &mut *draws;
     draws.pipelines.clear();
+    draws.posed.clear();
     draws.instances.clear();
-    draws.deformed_vertices.clear();
     let Some(frame) = frame else { return };
-    let deformed_layout = draws
-        .deformed_layout
-        .get_or_insert_with(|| positions_only_layout(&mut layouts))
-        .clone();
-    let mut specialize = |topology, layout: &MeshVertexBufferLayoutRef| match pipelines
-        .specialize(&cache, &pipeline, topology, layout)
+    let mut specialize = |key, layout: &MeshVertexBufferLayoutRef| match pipelines
+        .specialize(&cache, &pipeline, key, layout)
     {
         Ok(id) => Some(id),
         Err(err) => {
@@ -283,45 +312,71 @@ pub(crate) fn prepare_shadow_draws(
         }
     };
     for instance in &frame.instances {
-        draws
-            .instances
-            .push(instance.clip_from_local.to_cols_array());
-        let pipeline_id = match &instance.source {
-            CasterSource::Deformed(_) => {
-                specialize(PrimitiveTopology::TriangleList, &deformed_layout)
-            }
-            CasterSource::Mesh(mesh) => meshes.get(*mesh).and_then(|mesh| {
-                let topology = mesh.primitive_topology();
-                let is_triangles = matches!(
-                    topology,
-                    PrimitiveTopology::TriangleList | PrimitiveTopology::TriangleStrip
-                );
-                is_triangles
-                    .then(|| specialize(topology, &mesh.layout))
-                    .flatten()
-            }),
+        let (mesh_id, posed) = match instance.source {
+            CasterSource::Mesh(mesh) => (mesh, None),
+            CasterSource::Posed {
+                entity,
+                mesh,
+                skinned,
+            } => (mesh, Some((entity, skinned))),
+        };
+        let mesh = meshes.get(mesh_id).filter(|mesh| {
+            matches!(
+                mesh.primitive_topology(),
+                PrimitiveTopology::TriangleList | PrimitiveTopology::TriangleStrip
+            )
+        });
+        let posed_draw = posed.zip(mesh).and_then(|((entity, skinned), mesh)| {
+            let first_vertex = allocator.mesh_vertex_slice(&mesh_id)?.range.start;
+            let morphed = mesh.has_morph_targets();
+            deformation
+                .draw(
+                    MainEntity::from(entity),
+                    mesh_id,
+                    first_vertex,
+                    skinned,
+                    morphed,
+                    &allocator,
+                )
+                .map(|draw| (draw, (skinned, morphed)))
+        });
+        let pipeline_id = match (mesh, posed, posed_draw) {
+            (Some(mesh), None, _) => specialize(
+                ShadowCasterKey {
+                    topology: mesh.primitive_topology(),
+                    posed: None,
+                },
+                &mesh.layout,
+            ),
+            (Some(mesh), Some(_), Some((_, variant))) => specialize(
+                ShadowCasterKey {
+                    topology: mesh.primitive_topology(),
+                    posed: Some(variant),
+                },
+                &mesh.layout,
+            ),
+            _ => None,
         };
         draws.pipelines.push(pipeline_id);
+        draws.posed.push(posed_draw.map(|(draw, _)| draw));
+        draws.instances.push(CasterInstance {
+            clip_from_local: instance.clip_from_local.to_cols_array(),
+            deform: posed_draw.map_or([0; 4], |(draw, _)| draw.deform),
+        });
     }
     if !draws.instances.is_empty() {
         draws.instances.write_buffer(&device, &queue);
     }
-    if !frame.deformed_vertices.is_empty() {
-        draws.deformed_vertices.extend(
-            frame
-                .deformed_vertices
-                .iter()
-                .map(|vertex| vertex.to_array()),
-        );
-        draws.deformed_vertices.write_buffer(&device, &queue);
-    }
 }
 
 /// Draws every shadow map of the frame: each pass clears its layer, then draws its casters.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn render_shadow_maps(
     frame: Option<Res<ShadowFrame>>,
     atlas: Res<ShadowAtlas>,
     draws: Res<ShadowDraws>,
+    posed_groups: Res<PosedBindGroups>,
+    pipeline_layouts: Res<ShadowCasterPipeline>,
     cache: Res<PipelineCache>,
     meshes: Res<RenderAssets<RenderMesh>>,
     allocator: Res<MeshAllocator>,
@@ -346,19 +401,9 @@ pub(crate) fn render_shadow_maps(
             else {
                 continue;
             };
-            let offset = index as u64 * 64;
-            let mesh_id = match &frame.instances[index].source {
-                CasterSource::Deformed(vertices) => {
-                    let Some(buffer) = draws.deformed_vertices.buffer() else {
-                        continue;
-                    };
-                    render_pass.set_render_pipeline(pipeline);
-                    render_pass.set_vertex_buffer(0, buffer.slice(..));
-                    render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + 64));
-                    render_pass.draw(vertices.clone(), 0..1);
-                    continue;
-                }
-                CasterSource::Mesh(mesh_id) => *mesh_id,
+            let offset = index as u64 * INSTANCE_SIZE;
+            let mesh_id = match frame.instances[index].source {
+                CasterSource::Mesh(mesh) | CasterSource::Posed { mesh, .. } => mesh,
             };
             let (Some(mesh), Some(vertices)) =
                 (meshes.get(mesh_id), allocator.mesh_vertex_slice(&mesh_id))
@@ -366,8 +411,22 @@ pub(crate) fn render_shadow_maps(
                 continue;
             };
             render_pass.set_render_pipeline(pipeline);
+            if let Some(draw) = &draws.posed[index] {
+                let Some(joints) = &posed_groups.joints else {
+                    continue;
+                };
+                let uniform = pipeline_layouts.posed_layouts.uniform;
+                let dynamic = |offset: u32| if uniform { vec![offset] } else { Vec::new() };
+                render_pass.set_bind_group(0, joints, &dynamic(draw.joints_offset));
+                if let Some((key, weights_offset)) = draw.morph {
+                    let Some(morphs) = posed_groups.morphs.get(&key) else {
+                        continue;
+                    };
+                    render_pass.set_bind_group(1, morphs, &dynamic(weights_offset));
+                }
+            }
             render_pass.set_vertex_buffer(0, vertices.buffer.slice(..));
-            render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + 64));
+            render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + INSTANCE_SIZE));
             match &mesh.buffer_info {
                 RenderMeshBufferInfo::Indexed {
                     count,

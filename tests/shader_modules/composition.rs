@@ -112,6 +112,6 @@ fn every_surface_inputs_and_constant_color_variant_validates() {
 
 #[test]
 fn the_shadow_caster_and_the_contract_kernel_validate() {
-    assert_every_variant_validates(SHADOW_CASTER, &variants::without_defs());
+    assert_every_variant_validates(SHADOW_CASTER, &variants::shadow_caster());
     assert_every_variant_validates(CONTRACT_KERNEL, &variants::without_defs());
 }

@@ -269,6 +269,26 @@ pub fn without_defs() -> Vec<Variant> {
     }]
 }
 
+/// The shadow caster's variants (`ShadowCasterKey` in `src/shadows/render.rs`): a mesh as
+/// stored, and a posed one skinned, morphed or both, its deformation in storage buffers or
+/// (under WebGL2's limits) in uniform buffers and a texture.
+pub fn shadow_caster() -> Vec<Variant> {
+    let mut variants = without_defs();
+    for (skinned, morphed) in [(true, false), (false, true), (true, true)] {
+        for uniforms in [false, true] {
+            let mut defs: Vec<&str> = vec!["POSED"];
+            defs.extend(skinned.then_some("SKINNED"));
+            defs.extend(morphed.then_some("MORPHED"));
+            defs.extend(uniforms.then_some("DEFORMATION_IN_UNIFORMS"));
+            variants.push(Variant {
+                name: defs.join(" "),
+                defs: defs.into_iter().map(ShaderDefVal::from).collect(),
+            });
+        }
+    }
+    variants
+}
+
 /// The prepass fragment variants of a material that specializes as `PhongMaterial` does:
 /// every distinct set of the crate's defs on every mesh, in the prepasses Bevy runs a
 /// fragment stage for (an alpha-masked depth prepass, the normal prepass, the normal and
