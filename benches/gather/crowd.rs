@@ -11,14 +11,12 @@
 //!   against: `Σ_k ω_k · J_k · p` per vertex, then the triangle list).
 
 use bevy::{
-    asset::AssetPlugin,
     camera::{primitives::MeshAabb, visibility::InheritedVisibility},
     mesh::{
         Indices, VertexAttributeValues,
         skinning::{SkinnedMesh, SkinnedMeshInverseBindposes},
     },
     prelude::*,
-    transform::TransformPlugin,
 };
 use bevy_phong::prelude::*;
 use criterion::Criterion;
@@ -62,15 +60,9 @@ fn member_mesh() -> Mesh {
 /// The crowd in a main-world app with the plugin, the light casting shadows or not, and
 /// the joints that bend.
 fn crowd_app(shadows: bool) -> (App, Vec<Entity>) {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        TransformPlugin,
-        PhongPlugin,
-    ))
-    .init_asset::<Mesh>()
-    .init_asset::<SkinnedMeshInverseBindposes>();
+    let mut app = super::main_world_app();
+    app.init_asset::<Mesh>()
+        .init_asset::<SkinnedMeshInverseBindposes>();
     app.update();
     let world = app.world_mut();
     let mesh = member_mesh();

@@ -24,9 +24,8 @@ use bevy_phong::{
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::time::{Duration, Instant};
 
-/// A world with `count` visible point and spot lights, a camera that sees them all, and the
-/// plugin's resources, and a schedule that runs the gather and cluster systems alone.
-fn world_with_lights(count: usize) -> (App, Schedule) {
+/// An app with the plugin's main-world systems and no renderer.
+fn main_world_app() -> App {
     let mut app = App::new();
     app.add_plugins((
         MinimalPlugins,
@@ -34,6 +33,13 @@ fn world_with_lights(count: usize) -> (App, Schedule) {
         TransformPlugin,
         PhongPlugin,
     ));
+    app
+}
+
+/// A world with `count` visible point and spot lights, a camera that sees them all, and the
+/// plugin's resources, and a schedule that runs the gather and cluster systems alone.
+fn world_with_lights(count: usize) -> (App, Schedule) {
+    let mut app = main_world_app();
     app.update();
     let world = app.world_mut();
     for i in 0..count {

@@ -18,12 +18,11 @@
 // Without defs it computes what `phong_material.wgsl` computes for a scene without shadows
 // (the ablation's scene, the showcase, casts none): the same loops over the same functions.
 #import bevy_pbr::forward_io::VertexOutput
-#import bevy_pbr::mesh_view_bindings::view
 #import bevy_phong::bindings::material
-#import bevy_phong::camera_effects::{ambient_occlusion, camera_effects}
-#import bevy_phong::lighting::{Incidence, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, normalize_or_zero, phong_light, phong_surface}
-#import bevy_phong::scene::{cluster_word, clustered_point_count, clustered_spot_count, directional_count, light_at, point_count, spot_count}
-#import bevy_phong::shading::{NO_VIEW_RECORD, ambient_light, cluster_record, receives_shadows, view_record}
+#import bevy_phong::camera_effects::camera_effects
+#import bevy_phong::lighting::{Incidence, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, normalize_or_zero, phong_light}
+#import bevy_phong::scene::{directional_count, light_at, point_count, spot_count}
+#import bevy_phong::shading::{ambient_light, clustered_light, clustered_list, fragment_surface}
 #import bevy_phong::texture_maps::mapped_material
 #import bevy_phong::types::{PhongLight, PhongSurface}
 
@@ -35,17 +34,7 @@ fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @locatio
         discard;
     }
 #endif
-    var surface = phong_surface(
-        in.world_position.xyz,
-        mapped.normal,
-        view.world_position,
-        mapped.base_color.rgb,
-        mapped.specular,
-        material.shininess,
-        material.flags & 3u,
-    );
-    surface.receives_shadows = receives_shadows(in.instance_index);
-    surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb);
+    let surface = fragment_surface(in, mapped);
     let lit = vec4<f32>(stage_color(surface, mapped.emissive), mapped.base_color.a);
     return camera_effects(lit, in.world_position.xyz, in.position.xy);
 }
@@ -83,22 +72,10 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
 
 // The crate's `clustered_lights`, each light lit by `light_term`.
 fn clustered_lights(surface: PhongSurface, start: u32) -> vec3<f32> {
-    let record = view_record();
+    let list = clustered_list(start, surface.position);
     var color = vec3<f32>(0.0);
-    if record == NO_VIEW_RECORD {
-        let spot_start = start + clustered_point_count();
-        let end = spot_start + clustered_spot_count();
-        for (var index = start; index < end; index += 1u) {
-            color += light_term(surface, light_at(index), select(LIGHT_POINT, LIGHT_SPOT, index >= spot_start));
-        }
-        return color;
-    }
-    let cluster = cluster_record(record, surface.position);
-    let first = cluster_word(cluster);
-    let spot_slot = first + cluster_word(cluster + 1u);
-    let end = spot_slot + cluster_word(cluster + 2u);
-    for (var slot = first; slot < end; slot += 1u) {
-        color += light_term(surface, light_at(cluster_word(slot)), select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_slot));
+    for (var entry = list.first; entry < list.end; entry += 1u) {
+        color += light_term(surface, clustered_light(list, entry), select(LIGHT_POINT, LIGHT_SPOT, entry >= list.spot));
     }
     return color;
 }

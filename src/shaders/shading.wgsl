@@ -8,7 +8,10 @@
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_view_bindings::view
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
-#import bevy_phong::types::{CLUSTER_VIEW_WORDS, CLUSTER_WORDS, PhongSurface}
+#import bevy_phong::types::{CLUSTER_VIEW_WORDS, CLUSTER_WORDS, PhongLight, PhongSurface}
+#import bevy_phong::texture_maps::MappedMaterial
+#import bevy_phong::camera_effects::ambient_occlusion
+#import bevy_pbr::forward_io::VertexOutput
 #import bevy_phong::view_key::view_key
 
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
@@ -98,31 +101,66 @@ fn cluster_record(record: u32, position: vec3<f32>) -> u32 {
     return first + CLUSTER_WORDS * (tile.x + tiles.x * (tile.y + tiles.y * slice));
 }
 
-// Σ over the point and spot lights of finite reach that may reach the surface point: those
-// listed in its cluster of the view being drawn, or every one where the view has no
-// clusters (a camera that appeared after the lights were listed, a key collision). The
-// clustered lights start at index `start` of the light buffer.
-fn clustered_lights(surface: PhongSurface, start: u32) -> vec3<f32> {
+// The lights of finite reach that may reach a point, as a list of entries: those listed in
+// its cluster of the view being drawn, or, where the view has no clusters (a camera that
+// appeared after the lights were listed, a key collision), every one. Entries
+// [first, spot) are point lights, [spot, end) spot lights; `clustered_light` gives an
+// entry's light.
+struct ClusteredList {
+    first: u32,
+    spot: u32,
+    end: u32,
+    // Whether the entries are slots of a cluster's list (else light indices).
+    listed: bool,
+}
+
+// The clustered lights that may reach `position`; the clustered lights start at index
+// `start` of the light buffer.
+fn clustered_list(start: u32, position: vec3<f32>) -> ClusteredList {
     let record = view_record();
-    var color = vec3<f32>(0.0);
     if record == NO_VIEW_RECORD {
-        let spot_start = start + clustered_point_count();
-        let end = spot_start + clustered_spot_count();
-        for (var index = start; index < end; index += 1u) {
-            let kind = select(LIGHT_POINT, LIGHT_SPOT, index >= spot_start);
-            color += unshadowed_light(surface, light_at(index), kind);
-        }
-        return color;
+        let spot = start + clustered_point_count();
+        return ClusteredList(start, spot, spot + clustered_spot_count(), false);
     }
-    let cluster = cluster_record(record, surface.position);
+    let cluster = cluster_record(record, position);
     let first = cluster_word(cluster);
-    let spot_slot = first + cluster_word(cluster + 1u);
-    let end = spot_slot + cluster_word(cluster + 2u);
-    for (var slot = first; slot < end; slot += 1u) {
-        let kind = select(LIGHT_POINT, LIGHT_SPOT, slot >= spot_slot);
-        color += unshadowed_light(surface, light_at(cluster_word(slot)), kind);
+    let spot = first + cluster_word(cluster + 1u);
+    return ClusteredList(first, spot, spot + cluster_word(cluster + 2u), true);
+}
+
+// The light of entry `entry` of `list`.
+fn clustered_light(list: ClusteredList, entry: u32) -> PhongLight {
+    return light_at(select(entry, cluster_word(entry), list.listed));
+}
+
+// Σ over the point and spot lights of finite reach that may reach the surface point
+// (`clustered_list`); the clustered lights start at index `start` of the light buffer.
+fn clustered_lights(surface: PhongSurface, start: u32) -> vec3<f32> {
+    let list = clustered_list(start, surface.position);
+    var color = vec3<f32>(0.0);
+    for (var entry = list.first; entry < list.end; entry += 1u) {
+        let kind = select(LIGHT_POINT, LIGHT_SPOT, entry >= list.spot);
+        color += unshadowed_light(surface, clustered_light(list, entry), kind);
     }
     return color;
+}
+
+// The surface point a `PhongMaterial` fragment lights: the material as its maps give it at
+// the fragment (`mapped`), seen from the view's camera, with the mesh's shadow receiving and
+// the view's ambient occlusion.
+fn fragment_surface(in: VertexOutput, mapped: MappedMaterial) -> PhongSurface {
+    var surface = phong_surface(
+        in.world_position.xyz,
+        mapped.normal,
+        view.world_position,
+        mapped.base_color.rgb,
+        mapped.specular,
+        material.shininess,
+        material.flags & 3u,
+    );
+    surface.receives_shadows = receives_shadows(in.instance_index);
+    surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb);
+    return surface;
 }
 
 // SPEC.md's whole equation: emissive + ambient + Σ lights, with the given emissive color.
