@@ -143,7 +143,9 @@ pub(crate) struct BevyDeformation<'w> {
 
 impl BevyDeformation<'_> {
     /// Where `entity`'s deformation is this frame, drawn with `mesh` whose vertices start at
-    /// `first_vertex` of its vertex buffer; `None` where Bevy has not prepared what it needs.
+    /// `first_vertex` of its vertex buffer, in the pipeline whose bind groups are `layouts`;
+    /// `None` where Bevy has not prepared what it needs.
+    #[allow(clippy::too_many_arguments)]
     pub fn draw(
         &self,
         entity: MainEntity,
@@ -151,6 +153,7 @@ impl BevyDeformation<'_> {
         first_vertex: u32,
         skinned: bool,
         morphed: bool,
+        layouts: &PosedLayouts,
         allocator: &MeshAllocator,
     ) -> Option<PosedDraw> {
         let mut draw = PosedDraw {
@@ -158,10 +161,7 @@ impl BevyDeformation<'_> {
             joints_offset: 0,
             morph: None,
         };
-        let uniform = matches!(
-            self.morph_indices.as_deref(),
-            Some(MorphIndices::Uniform { .. })
-        );
+        let uniform = layouts.uniform;
         if skinned {
             let first_joint = self.skins.as_ref()?.skin_index(entity)?;
             if uniform {

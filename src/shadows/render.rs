@@ -336,6 +336,7 @@ pub(crate) fn prepare_shadow_draws(
                     first_vertex,
                     skinned,
                     morphed,
+                    &pipeline.posed_layouts,
                     &allocator,
                 )
                 .map(|draw| (draw, (skinned, morphed)))
