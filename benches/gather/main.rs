@@ -1,21 +1,28 @@
 //! The CPU cost of the gather and cluster systems: writing 10, 1,000 and 10,000 lights into
 //! the light buffer and listing them in a camera's clusters when all of them moved, when all
 //! of them changed color, and when all of them were marked changed with nothing different;
-//! and checking them when none changed. Then the crowd (`crowd.rs`): the main-world CPU time
+//! and checking them when none changed; the 10,000 moved lights system by system. Then the crowd (`crowd.rs`): the main-world CPU time
 //! that 100 animated skinned casters cost a cascaded directional light's shadows, beside
 //! posing them on the CPU.
 //!
 //! ```sh
-//! cargo bench --bench gather             # both
-//! cargo bench --bench gather -- crowd    # the crowd alone
+//! cargo bench --bench gather                    # all
+//! cargo bench --bench gather -- gather_split    # 10,000 moved lights, system by system
+//! cargo bench --bench gather -- crowd           # the crowd alone
 //! ```
 
 mod crowd;
 
 use bevy::camera::primitives::Frustum;
 use bevy::{
-    asset::AssetPlugin, camera::visibility::InheritedVisibility,
-    ecs::schedule::SingleThreadedExecutor, prelude::*, transform::TransformPlugin,
+    asset::AssetPlugin,
+    camera::visibility::InheritedVisibility,
+    ecs::{
+        schedule::{IntoScheduleConfigs, SingleThreadedExecutor},
+        system::ScheduleSystem,
+    },
+    prelude::*,
+    transform::TransformPlugin,
 };
 use bevy_phong::{
     prelude::*,
@@ -34,6 +41,15 @@ fn main_world_app() -> App {
         PhongPlugin,
     ));
     app
+}
+
+/// A schedule that runs `systems` alone, single-threaded, so that the timing is the
+/// systems' and not the executor's.
+fn schedule_of<M>(systems: impl IntoScheduleConfigs<ScheduleSystem, M>) -> Schedule {
+    let mut schedule = Schedule::default();
+    schedule.set_executor(SingleThreadedExecutor::new());
+    schedule.add_systems(systems);
+    schedule
 }
 
 /// A world with `count` visible point and spot lights, a camera that sees them all, and the
@@ -76,10 +92,7 @@ fn world_with_lights(count: usize) -> (App, Schedule) {
         transform,
         GlobalTransform::from(transform),
     ));
-    // Single-threaded, so that the timing is the systems' and not the executor's.
-    let mut schedule = Schedule::default();
-    schedule.set_executor(SingleThreadedExecutor::new());
-    schedule.add_systems((gather_lights, assign_lights_to_clusters).chain());
+    let mut schedule = schedule_of((gather_lights, assign_lights_to_clusters).chain());
     schedule.run(app.world_mut());
     (app, schedule)
 }
@@ -164,5 +177,39 @@ fn gather(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, gather, crowd::crowd);
+/// The 10,000 moved lights of [`gather`] split between its two systems: the gather (the
+/// records written) and the clusters (the records listed in the camera's clusters), each
+/// timed alone in the same iterations.
+fn gather_split(c: &mut Criterion) {
+    let (mut app, _) = world_with_lights(10_000);
+    let mut gather = schedule_of(gather_lights);
+    let mut clusters = schedule_of(assign_lights_to_clusters);
+    let mut group = c.benchmark_group("gather_split");
+    for (name, timed_clusters) in [
+        ("gather_lights", false),
+        ("assign_lights_to_clusters", true),
+    ] {
+        group.bench_function(BenchmarkId::new(name, "10000_moved"), |b| {
+            b.iter_custom(|iterations| {
+                let mut total = Duration::ZERO;
+                for iteration in 0..iterations {
+                    Change::Moved.apply(app.world_mut(), iteration % 2 == 1);
+                    let start = Instant::now();
+                    gather.run(app.world_mut());
+                    let gathered = Instant::now();
+                    clusters.run(app.world_mut());
+                    total += if timed_clusters {
+                        gathered.elapsed()
+                    } else {
+                        gathered - start
+                    };
+                }
+                total
+            });
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, gather, gather_split, crowd::crowd);
 criterion_main!(benches);

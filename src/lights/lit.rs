@@ -4,7 +4,7 @@
 
 use bevy::{
     camera::visibility::InheritedVisibility,
-    ecs::{component::Component, entity::Entity, system::Query},
+    ecs::{change_detection::Ref, component::Component, entity::Entity, system::Query},
     math::Vec3,
     transform::components::GlobalTransform,
 };
@@ -22,14 +22,42 @@ pub(crate) type LightQuery<'w, 's, L> = Query<
     ),
 >;
 
-/// The lights in `lights` that give light: visible, with a finite transform (a light whose
-/// transform is not finite is skipped while it is; see [`crate::validation`]).
+/// [`LightQuery`] with each light's change ticks, for readers that keep what they made
+/// from a light until it changes.
+pub(crate) type TrackedLightQuery<'w, 's, L> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        Ref<'static, L>,
+        &'static GlobalTransform,
+        &'static InheritedVisibility,
+    ),
+>;
+
+/// Whether a light gives light: visible, with a finite transform (a light whose transform
+/// is not finite is skipped while it is; see [`crate::validation`]).
+fn gives_light(visibility: &InheritedVisibility, transform: &GlobalTransform) -> bool {
+    visibility.get() && is_finite_transform(transform)
+}
+
+/// The lights in `lights` that give light ([`gives_light`]).
 pub(crate) fn lit_lights<'a, L: Component>(
     lights: &'a LightQuery<L>,
 ) -> impl Iterator<Item = (Entity, &'a L, &'a GlobalTransform)> {
     lights
         .iter()
-        .filter(|(_, _, transform, visibility)| visibility.get() && is_finite_transform(transform))
+        .filter(|(_, _, transform, visibility)| gives_light(visibility, transform))
+        .map(|(entity, light, transform, _)| (entity, light, transform))
+}
+
+/// The lights in `lights` that give light ([`gives_light`]), with their change ticks.
+pub(crate) fn lit_tracked_lights<'a, L: Component>(
+    lights: &'a TrackedLightQuery<L>,
+) -> impl Iterator<Item = (Entity, Ref<'a, L>, &'a GlobalTransform)> {
+    lights
+        .iter()
+        .filter(|(_, _, transform, visibility)| gives_light(visibility, transform))
         .map(|(entity, light, transform, _)| (entity, light, transform))
 }
 

@@ -196,11 +196,15 @@ impl ViewBounds {
         let reach = radius
             + 1e-4 * (center.length() + radius)
             + 1e-6 * (world_center.length() + self.camera_distance);
-        if self.front.truncate().dot(center) + self.front.w < -reach {
+        let front = self.front.truncate().dot(center) + self.front.w;
+        if front < -reach {
             return None;
         }
-        let columns = tiles_met(&self.columns, center, reach)?;
-        let rows = tiles_met(&self.rows, center, reach)?;
+        // Wholly in front of the camera (everywhere, for an orthographic view), the sphere
+        // is beyond the tile planes in their order: see `tiles_met`.
+        let in_front = self.front == DVec4::ZERO || front > reach;
+        let columns = tiles_met(&self.columns, center, reach, in_front)?;
+        let rows = tiles_met(&self.rows, center, reach, in_front)?;
         let depth = -center.z;
         let slices = self.slices.slice_of(depth - reach)..=self.slices.slice_of(depth + reach);
         Some([columns, rows, slices])
@@ -231,15 +235,32 @@ fn normalized(plane: DVec4) -> DVec4 {
 }
 
 /// The tiles between consecutive `planes` that a sphere at `center` reaching `reach` meets:
-/// tile `i` lies on the inner side of plane `i` and the outer side of plane `i + 1`.
-fn tiles_met(planes: &[DVec4], center: DVec3, reach: f64) -> Option<RangeInclusive<u32>> {
+/// tile `i` lies on the inner side of plane `i` and the outer side of plane `i + 1`. Each
+/// plane's distance is computed once, and compared as the boundary of both its tiles.
+///
+/// With the sphere wholly `in_front` of the camera, the planes' inner sides are nested (the
+/// points in front of the camera with `ndc ≥ x` for a larger `x` are fewer), so once the
+/// sphere is wholly outside one plane it is outside every later one: the scan stops there.
+fn tiles_met(
+    planes: &[DVec4],
+    center: DVec3,
+    reach: f64,
+    in_front: bool,
+) -> Option<RangeInclusive<u32>> {
     let distance = |plane: &DVec4| plane.truncate().dot(center) + plane.w;
+    let (first_plane, rest) = planes.split_first()?;
+    let mut inside_left = distance(first_plane) >= -reach;
     let mut met = None::<(u32, u32)>;
-    for (tile, pair) in planes.windows(2).enumerate() {
-        if distance(&pair[0]) >= -reach && distance(&pair[1]) <= reach {
+    for (tile, right) in rest.iter().enumerate() {
+        if in_front && !inside_left {
+            break;
+        }
+        let right = distance(right);
+        if inside_left && right <= reach {
             let tile = tile as u32;
             met = Some(met.map_or((tile, tile), |(first, _)| (first, tile)));
         }
+        inside_left = right >= -reach;
     }
     met.map(|(first, last)| first..=last)
 }
@@ -252,6 +273,8 @@ pub struct LightClusters {
     data: Vec<u32>,
     pairs: Vec<(u32, u32)>,
     built_from: BuiltFrom,
+    /// The spheres of the lights a build is asked for, compared with `built_from`'s.
+    spheres: Vec<[u32; 4]>,
 }
 
 /// The input of a build, compared with the next one: the same input gives the same
@@ -259,7 +282,7 @@ pub struct LightClusters {
 #[derive(Debug, Default)]
 struct BuiltFrom {
     views: Vec<ClusterView>,
-    /// Each light's position and range, as bits.
+    /// Each light's position and range, as bits ([`sphere_bits`]).
     spheres: Vec<[u32; 4]>,
     points: Range<usize>,
     spots: Range<usize>,
@@ -269,34 +292,14 @@ impl BuiltFrom {
     fn is(
         &self,
         views: &[ClusterView],
-        lights: &[GpuLight],
+        spheres: &[[u32; 4]],
         points: &Range<usize>,
         spots: &Range<usize>,
     ) -> bool {
         self.views == views
             && self.points == *points
             && self.spots == *spots
-            && self.spheres.len() == spots.end - points.start
-            && self
-                .spheres
-                .iter()
-                .zip(&lights[points.start..spots.end])
-                .all(|(sphere, light)| *sphere == sphere_bits(light))
-    }
-
-    fn set(
-        &mut self,
-        views: &[ClusterView],
-        lights: &[GpuLight],
-        points: Range<usize>,
-        spots: Range<usize>,
-    ) {
-        self.views.clear();
-        self.views.extend_from_slice(views);
-        self.spheres.clear();
-        self.spheres
-            .extend(lights[points.start..spots.end].iter().map(sphere_bits));
-        (self.points, self.spots) = (points, spots);
+            && self.spheres == spheres
     }
 }
 
@@ -304,6 +307,12 @@ impl BuiltFrom {
 fn sphere_bits(light: &GpuLight) -> [u32; 4] {
     let [x, y, z] = light.position;
     [x, y, z, light.range].map(f32::to_bits)
+}
+
+/// The center and radius of a sphere from [`sphere_bits`].
+fn sphere(bits: &[u32; 4]) -> (Vec3, f32) {
+    let [x, y, z, range] = bits.map(f32::from_bits);
+    (Vec3::new(x, y, z), range)
 }
 
 /// Whether `light` (a point or spot light) has a finite sphere of reach that clusters can
@@ -344,14 +353,20 @@ impl LightClusters {
         spots: Range<usize>,
     ) -> bool {
         debug_assert_eq!(points.end, spots.start);
-        if self.built_from.is(views, lights, &points, &spots) {
+        // One pass over the records: the rest of the build reads these 16 bytes per light.
+        self.spheres.clear();
+        self.spheres
+            .extend(lights[points.start..spots.end].iter().map(sphere_bits));
+        if self.built_from.is(views, &self.spheres, &points, &spots) {
             return false;
         }
-        self.built_from
-            .set(views, lights, points.clone(), spots.clone());
+        std::mem::swap(&mut self.built_from.spheres, &mut self.spheres);
+        self.built_from.views.clear();
+        self.built_from.views.extend_from_slice(views);
+        (self.built_from.points, self.built_from.spots) = (points.clone(), spots.clone());
         self.data.clear();
         self.pairs.clear();
-        let bounded = &lights[points.start..spots.end];
+        let bounded = &self.built_from.spheres;
         if bounded.is_empty() || views.is_empty() {
             self.header = GpuClustersHeader::EMPTY;
             return true;
@@ -377,12 +392,11 @@ impl LightClusters {
             let bounds = ViewBounds::new(view);
             let view_first = data[view_index * VIEW_WORDS + 1] as usize;
             let (columns, rows) = (view.tiles.x as usize, view.tiles.y as usize);
-            for (index, light) in bounded.iter().enumerate() {
+            for (index, bits) in bounded.iter().enumerate() {
                 let light_index = points.start + index;
                 let word = if light_index < points.end { 1 } else { 2 };
-                let Some([xs, ys, slices]) =
-                    bounds.clusters_met(Vec3::from(light.position), light.range)
-                else {
+                let (center, radius) = sphere(bits);
+                let Some([xs, ys, slices]) = bounds.clusters_met(center, radius) else {
                     continue;
                 };
                 for slice in slices {

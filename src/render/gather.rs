@@ -11,7 +11,7 @@ use super::{
 use crate::culling::PhongLightCulling;
 use crate::lights::{
     LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
-    lit_lights,
+    TrackedLightQuery, lit_lights, lit_tracked_lights,
 };
 use crate::shadows::ShadowSlots;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
@@ -38,8 +38,10 @@ pub struct PhongLightBuffer {
     buffer: LightBuffer,
     records: Vec<GpuLight>,
     header: GpuLightsHeader,
-    points: Vec<GpuLight>,
-    spots: Vec<GpuLight>,
+    /// The point and spot lights, while they are put in order (see [`order_by_reach`]).
+    scratch: Vec<GpuLight>,
+    /// The per-light ε of the last gather (`NaN` before the first).
+    per_light_epsilon: f32,
     point_cache: RecordCache<PhongPointLight>,
     spot_cache: RecordCache<PhongSpotLight>,
 }
@@ -50,8 +52,8 @@ impl Default for PhongLightBuffer {
             buffer: LightBuffer::new(PHONG_LIGHT_BUFFER),
             records: Vec::new(),
             header: GpuLightsHeader::default(),
-            points: Vec::new(),
-            spots: Vec::new(),
+            scratch: Vec::new(),
+            per_light_epsilon: f32::NAN,
             point_cache: RecordCache::default(),
             spot_cache: RecordCache::default(),
         }
@@ -128,21 +130,80 @@ fn with_shadow<L>(
     }
 }
 
-/// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
-/// `records`, its constants from `cache` (the ranges not yet limited: see
-/// [`RecordCache::limit_reach`]).
+/// What [`push_cached`] found of one kind of light.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Pushed {
+    /// The lights that give light ([`lit_tracked_lights`]).
+    lit: usize,
+    /// Those written: the ones that reach somewhere for the per-light ε.
+    kept: usize,
+    /// Those of the kept ones that go into the clusters.
+    clustered: usize,
+}
+
+/// Appends the record of every light in `lights` that gives light
+/// ([`lit_tracked_lights`]) and reaches somewhere for the per-light `epsilon` to `records`,
+/// its constants and limited range from `cache` ([`RecordCache::record`]), and counts
+/// those that are `clustered`.
 fn push_cached<L: BuiltInLight>(
-    lights: &LightQuery<L>,
+    lights: &TrackedLightQuery<L>,
     slots: &ShadowSlots,
     cache: &mut RecordCache<L>,
     records: &mut Vec<GpuLight>,
-) {
-    for (index, (entity, light, transform)) in lit_lights(lights).enumerate() {
-        let mut record = cache.constants(index, entity, light);
-        L::place(&mut record, transform);
-        record.shadow = slots.get(entity);
-        records.push(record);
+    epsilon: f32,
+    clustered: &impl Fn(&GpuLight) -> bool,
+) -> Pushed {
+    let mut pushed = Pushed::default();
+    for (index, (entity, light, transform)) in lit_tracked_lights(lights).enumerate() {
+        pushed.lit += 1;
+        let mut record = cache.record(index, entity, &light, light.is_changed(), epsilon);
+        // A light that reaches nowhere for ε (range 0) is left out.
+        if record.range > 0.0 {
+            L::place(&mut record, transform);
+            record.shadow = slots.get(entity);
+            pushed.kept += 1;
+            pushed.clustered += usize::from(clustered(&record));
+            records.push(record);
+        }
     }
+    cache.truncate(pushed.lit);
+    pushed
+}
+
+/// Puts the point lights (`points.kept` records from `records[first]`) and the spot lights
+/// after them (to the end) in the order the shader reads them: the unlimited point lights,
+/// the unlimited spot lights, then the `clustered` point lights and spot lights, each in
+/// their order. Returns those four counts. A scene whose lights are all of one sort (the
+/// usual case) is already in order; a mixed one is sorted through `scratch`.
+fn order_by_reach(
+    records: &mut Vec<GpuLight>,
+    first: usize,
+    [points, spots]: [Pushed; 2],
+    scratch: &mut Vec<GpuLight>,
+    clustered: impl Fn(&GpuLight) -> bool,
+) -> [u32; 4] {
+    let counts = [
+        points.kept - points.clustered,
+        spots.kept - spots.clustered,
+        points.clustered,
+        spots.clustered,
+    ]
+    .map(|count| count as u32);
+    let all_clustered = points.clustered == points.kept && spots.clustered == spots.kept;
+    let none_clustered = points.clustered == 0 && spots.clustered == 0;
+    if all_clustered || none_clustered {
+        return counts;
+    }
+    scratch.clear();
+    scratch.extend(records.drain(first..));
+    let (point_lights, spot_lights) = scratch.split_at(points.kept);
+    for lights in [point_lights, spot_lights] {
+        records.extend(lights.iter().filter(|light| !clustered(light)));
+    }
+    for lights in [point_lights, spot_lights] {
+        records.extend(lights.iter().filter(|light| clustered(light)));
+    }
+    counts
 }
 
 /// Writes every visible built-in light into [`PhongLightBuffer`], those of finite reach
@@ -154,8 +215,8 @@ pub fn gather_lights(
     ambient: Res<PhongAmbientLight>,
     culling: Res<PhongLightCulling>,
     directional: LightQuery<PhongDirectionalLight>,
-    point: LightQuery<PhongPointLight>,
-    spot: LightQuery<PhongSpotLight>,
+    point: TrackedLightQuery<PhongPointLight>,
+    spot: TrackedLightQuery<PhongSpotLight>,
     slots: Res<ShadowSlots>,
     mut directional_changes: LightChanges<PhongDirectionalLight>,
     mut point_changes: LightChanges<PhongPointLight>,
@@ -179,43 +240,58 @@ pub fn gather_lights(
     }
 
     let state = &mut *state;
-    state.records.clear();
-    state.points.clear();
-    state.spots.clear();
+    let records = &mut state.records;
+    records.clear();
     let directional_count = push_visible(
         &directional,
         &slots,
-        &mut state.records,
+        records,
         with_shadow(PhongDirectionalLight::to_gpu),
     );
-    push_cached(&point, &slots, &mut state.point_cache, &mut state.points);
-    push_cached(&spot, &slots, &mut state.spot_cache, &mut state.spots);
-    // ε bounds the sum of what every skipped light leaves out: each gets ε / count.
-    let count = state.points.len() + state.spots.len();
-    let per_light_epsilon = culling.epsilon / count.max(1) as f32;
-    state
-        .point_cache
-        .limit_reach(&mut state.points, per_light_epsilon);
-    state
-        .spot_cache
-        .limit_reach(&mut state.spots, per_light_epsilon);
-
     // Unlimited reach first (every fragment loops over them), then the clustered lights (the
     // clusters' loop applies no shadows, so shadow-casting lights stay out of it).
     let clustered =
         |light: &GpuLight| culling.clusters && has_finite_reach(light) && light.shadow == 0;
-    let unlimited = |light: &GpuLight| !clustered(light);
-    let mut append = |lights: &[GpuLight], include: &dyn Fn(&GpuLight) -> bool| {
-        let start = state.records.len();
-        state
-            .records
-            .extend(lights.iter().filter(|light| include(light)));
-        (state.records.len() - start) as u32
+    // The point lights, then the spot lights, written once in place. ε bounds the sum of
+    // what every skipped light leaves out: each of the `count` lit point and spot lights
+    // gets ε / count. The count is known once they are read, so they are written with the
+    // last gather's per-light ε, and written again in a frame where the count changed.
+    let first_point = records.len();
+    let mut epsilon = state.per_light_epsilon;
+    let pushed = loop {
+        records.truncate(first_point);
+        let pushed = [
+            push_cached(
+                &point,
+                &slots,
+                &mut state.point_cache,
+                records,
+                epsilon,
+                &clustered,
+            ),
+            push_cached(
+                &spot,
+                &slots,
+                &mut state.spot_cache,
+                records,
+                epsilon,
+                &clustered,
+            ),
+        ];
+        let count = pushed[0].lit + pushed[1].lit;
+        let per_light_epsilon = culling.epsilon / count.max(1) as f32;
+        if per_light_epsilon.to_bits() == epsilon.to_bits() {
+            break pushed;
+        }
+        epsilon = per_light_epsilon;
     };
-    let point_count = append(&state.points, &unlimited);
-    let spot_count = append(&state.spots, &unlimited);
-    let clustered_point_count = append(&state.points, &clustered);
-    let clustered_spot_count = append(&state.spots, &clustered);
+    state.per_light_epsilon = epsilon;
+    let [
+        point_count,
+        spot_count,
+        clustered_point_count,
+        clustered_spot_count,
+    ] = order_by_reach(records, first_point, pushed, &mut state.scratch, clustered);
 
     state.header = GpuLightsHeader {
         ambient: linear_rgb(ambient.color),
@@ -486,6 +562,48 @@ mod tests {
         assert_eq!(state.records()[0].position, [2.0, 1.0, 0.0]);
         assert_eq!(state.records()[0].shadow, 1, "its first view, plus one");
         assert_eq!(state.records()[1].shadow, 0);
+    }
+
+    #[test]
+    fn mixed_lights_are_ordered_unlimited_then_clustered_each_kind_in_its_order() {
+        // Points 1 and 3 then spots 4 and 5 after one directional light (0); `shadow` marks
+        // the unlimited ones.
+        let light = |id: f32, shadow: u32| GpuLight {
+            position: [id, 0.0, 0.0],
+            shadow,
+            ..Default::default()
+        };
+        let mut records = vec![light(0.0, 0), light(1.0, 0), light(3.0, 1), light(4.0, 1)];
+        records.push(light(5.0, 0));
+        let clustered = |light: &GpuLight| light.shadow == 0;
+        let pushed = |kept: usize, clustered: usize| Pushed {
+            lit: kept,
+            kept,
+            clustered,
+        };
+        let mut scratch = Vec::new();
+        let counts = order_by_reach(
+            &mut records,
+            1,
+            [pushed(2, 1), pushed(2, 1)],
+            &mut scratch,
+            clustered,
+        );
+        assert_eq!(counts, [1, 1, 1, 1]);
+        let order: Vec<f32> = records.iter().map(|light| light.position[0]).collect();
+        assert_eq!(order, [0.0, 3.0, 4.0, 1.0, 5.0]);
+
+        // All of one sort: left where they are.
+        let counts = order_by_reach(
+            &mut records,
+            1,
+            [pushed(2, 2), pushed(2, 2)],
+            &mut scratch,
+            |_| true,
+        );
+        assert_eq!(counts, [0, 0, 2, 2]);
+        let again: Vec<f32> = records.iter().map(|light| light.position[0]).collect();
+        assert_eq!(again, order);
     }
 
     #[test]

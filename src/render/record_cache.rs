@@ -3,8 +3,9 @@
 //!
 //! A record's constants (linear colors, the spot cone's terms in `f64`, the ε-limited reach)
 //! depend on the light's component alone, so they are reused while the component is equal
-//! to the one they were made from, however often it was marked changed; a moved light costs
-//! its placement only. Entries are kept in the order the light query yields its entities,
+//! to the one they were made from, however often it was marked changed; a component Bevy
+//! has not marked changed since the last gather is not even compared, so a moved light
+//! costs its placement only. Entries are kept in the order the light query yields its entities,
 //! which holds from frame to frame until entities are spawned, despawned or change
 //! archetype: an entry whose entity is not the one at its place is simply made again.
 
@@ -14,82 +15,100 @@ use super::{
 };
 use bevy::ecs::entity::Entity;
 
-/// One light's constants and what they were made from.
-#[derive(Debug)]
-struct CachedRecord<L> {
-    entity: Entity,
-    /// The component the constants were made from.
-    source: L,
-    /// The record's constants, with the component's own range.
-    constants: GpuLight,
-    /// The per-light ε that `limited_range` was computed for (`NaN`: none yet).
-    limited_for: f32,
-    /// The range shortened to the light's influence radius for `limited_for`.
-    limited_range: f32,
-}
-
-/// The cached records of the lights of kind `L`, in query order.
+/// The cached records of the lights of kind `L`, in query order: entry `i` of each vector
+/// belongs to the same light (kept apart so that a frame of moved lights reads only the
+/// entities and constants).
 #[derive(Debug)]
 pub(crate) struct RecordCache<L> {
-    entries: Vec<CachedRecord<L>>,
+    /// The entity each entry was made for.
+    entities: Vec<Entity>,
+    /// The component each entry's constants were made from.
+    sources: Vec<L>,
+    /// The record's constants, with the component's own range.
+    constants: Vec<GpuLight>,
+    /// The range limited for a per-light ε.
+    reaches: Vec<LimitedReach>,
+}
+
+/// A light's range shortened to its influence radius for one per-light ε.
+#[derive(Clone, Copy, Debug)]
+struct LimitedReach {
+    /// The per-light ε that `range` was computed for (`NaN`: none yet).
+    epsilon: f32,
+    range: f32,
+}
+
+impl LimitedReach {
+    const NONE: Self = Self {
+        epsilon: f32::NAN,
+        range: 0.0,
+    };
 }
 
 impl<L> Default for RecordCache<L> {
     fn default() -> Self {
         Self {
-            entries: Vec::new(),
+            entities: Vec::new(),
+            sources: Vec::new(),
+            constants: Vec::new(),
+            reaches: Vec::new(),
         }
     }
 }
 
 impl<L: BuiltInLight> RecordCache<L> {
-    /// The constants of the `index`-th visible light (see [`BuiltInLight::constants`]),
-    /// made again when `entity` or `light` differ from what the entry was made from.
-    pub(crate) fn constants(&mut self, index: usize, entity: Entity, light: &L) -> GpuLight {
+    /// The record of the `index`-th visible light without its placement: its constants
+    /// (see [`BuiltInLight::constants`]) with the range shortened to its influence radius
+    /// for the per-light `epsilon`, as [`limit_reach`] does (0 where it reaches nowhere).
+    ///
+    /// The constants are made again when `entity` differs from the entry's, or when `light`
+    /// was `changed` (Bevy's change ticks since the last gather) and differs from what the
+    /// entry was made from: a light not changed since the last gather, where it had this
+    /// entry, is the one the entry was made from or checked against. The limited range is
+    /// computed again when they are, or when `epsilon` differs.
+    pub(crate) fn record(
+        &mut self,
+        index: usize,
+        entity: Entity,
+        light: &L,
+        changed: bool,
+        epsilon: f32,
+    ) -> GpuLight {
         debug_assert!(
-            index <= self.entries.len(),
+            index <= self.entities.len(),
             "entries are asked for in order"
         );
-        if index == self.entries.len() {
-            self.entries.push(CachedRecord::new(entity, light));
-        } else if self.entries[index].entity != entity || self.entries[index].source != *light {
-            self.entries[index] = CachedRecord::new(entity, light);
+        if index == self.entities.len() {
+            self.entities.push(entity);
+            self.sources.push(light.clone());
+            self.constants.push(light.constants());
+            self.reaches.push(LimitedReach::NONE);
+        } else if self.entities[index] != entity || (changed && self.sources[index] != *light) {
+            self.entities[index] = entity;
+            self.sources[index] = light.clone();
+            self.constants[index] = light.constants();
+            self.reaches[index] = LimitedReach::NONE;
         }
-        self.entries[index].constants
-    }
-
-    /// Shortens the range of each record in `records` (made from [`Self::constants`] in the
-    /// same order, and no others since) to its influence radius for the per-light
-    /// `epsilon`, as [`limit_reach`] does, and removes those that reach nowhere. Entries past
-    /// the records are dropped: those lights are gone.
-    pub(crate) fn limit_reach(&mut self, records: &mut Vec<GpuLight>, epsilon: f32) {
-        self.entries.truncate(records.len());
-        for (record, entry) in records.iter_mut().zip(&mut self.entries) {
-            record.range = entry.limited_range(epsilon);
-        }
-        records.retain(|record| record.range > 0.0);
-    }
-}
-
-impl<L: BuiltInLight> CachedRecord<L> {
-    fn new(entity: Entity, light: &L) -> Self {
-        Self {
-            entity,
-            source: light.clone(),
-            constants: light.constants(),
-            limited_for: f32::NAN,
-            limited_range: 0.0,
-        }
-    }
-
-    /// The range limited for `epsilon`, computed once per ε.
-    fn limited_range(&mut self, epsilon: f32) -> f32 {
-        if self.limited_for.to_bits() != epsilon.to_bits() {
-            let mut limited = self.constants;
+        let reach = &mut self.reaches[index];
+        if reach.epsilon.to_bits() != epsilon.to_bits() {
+            let mut limited = self.constants[index];
             limit_reach(&mut limited, epsilon);
-            self.limited_for = epsilon;
-            self.limited_range = limited.range;
+            *reach = LimitedReach {
+                epsilon,
+                range: limited.range,
+            };
         }
-        self.limited_range
+        GpuLight {
+            range: reach.range,
+            ..self.constants[index]
+        }
+    }
+
+    /// Keeps the first `count` entries: the lights past them are gone.
+    pub(crate) fn truncate(&mut self, count: usize) {
+        self.entities.truncate(count);
+        self.sources.truncate(count);
+        self.constants.truncate(count);
+        self.reaches.truncate(count);
     }
 }
