@@ -51,6 +51,15 @@ pub(crate) fn lit_lights<'a, L: Component>(
         .map(|(entity, light, transform, _)| (entity, light, transform))
 }
 
+/// The light `entity` of `lights`, if it is one and gives light ([`gives_light`]).
+pub(crate) fn lit_light<'a, L: Component>(
+    lights: &'a LightQuery<L>,
+    entity: Entity,
+) -> Option<(&'a L, &'a GlobalTransform)> {
+    let (_, light, transform, visibility) = lights.get(entity).ok()?;
+    gives_light(visibility, transform).then_some((light, transform))
+}
+
 /// The lights in `lights` that give light ([`gives_light`]), with their change ticks.
 pub(crate) fn lit_tracked_lights<'a, L: Component>(
     lights: &'a TrackedLightQuery<L>,

@@ -17,7 +17,7 @@ mod spot;
 pub use ambient::PhongAmbientLight;
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
-pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_lights, lit_tracked_lights};
+pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights};
 pub use lit::{is_finite_transform, light_direction};
 pub use point::PhongPointLight;
 pub use shadows::{PhongCascades, PhongShadows};

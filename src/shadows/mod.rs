@@ -63,7 +63,7 @@ pub(crate) use render::{
 };
 pub(crate) use request::ShadowRequests;
 pub use request::{PhongShadowProjection, PhongShadowRequest};
-pub(crate) use sources::request_shadows;
+pub(crate) use sources::{ShadowCasters, request_shadows, track_shadow_casters};
 
 /// Most shadow maps a frame holds (layers of the shadow map array, which WebGL2 caps at
 /// 256): a directional light takes one per cascade, a point light six, a spot light one
@@ -99,6 +99,9 @@ use core::sync::atomic::Ordering;
 /// The main world's part: the requests of the built-in lights and the gather.
 pub(crate) fn add_shadow_gather(app: &mut App) {
     app.init_resource::<ShadowRequests>()
+        .init_resource::<ShadowCasters<PhongDirectionalLight>>()
+        .init_resource::<ShadowCasters<PhongPointLight>>()
+        .init_resource::<ShadowCasters<PhongSpotLight>>()
         .init_resource::<ShadowSlots>()
         .init_resource::<ShadowFrame>()
         .init_resource::<PhongShadowViews>()
@@ -106,9 +109,21 @@ pub(crate) fn add_shadow_gather(app: &mut App) {
             PostUpdate,
             (
                 (
-                    request_shadows::<PhongDirectionalLight>,
-                    request_shadows::<PhongPointLight>,
-                    request_shadows::<PhongSpotLight>,
+                    (
+                        track_shadow_casters::<PhongDirectionalLight>,
+                        request_shadows::<PhongDirectionalLight>,
+                    )
+                        .chain(),
+                    (
+                        track_shadow_casters::<PhongPointLight>,
+                        request_shadows::<PhongPointLight>,
+                    )
+                        .chain(),
+                    (
+                        track_shadow_casters::<PhongSpotLight>,
+                        request_shadows::<PhongSpotLight>,
+                    )
+                        .chain(),
                 )
                     .in_set(PhongSystems::RequestShadows),
                 gather_shadows.in_set(PhongSystems::GatherShadows),
