@@ -22,7 +22,10 @@
 //!
 //! [`PhongMaterial`]: crate::PhongMaterial
 
-use bevy::{color::LinearRgba, math::Vec3};
+use bevy::{
+    color::LinearRgba,
+    math::{Affine2, Vec3},
+};
 use core::fmt;
 
 /// The largest light intensity channel and material color channel or factor (see the
@@ -126,6 +129,16 @@ pub fn linear_color(color: LinearRgba) -> LinearRgba {
         INTENSITY.apply(color.blue),
         ALPHA.apply(color.alpha),
     )
+}
+
+/// A material's UV transform as it is drawn: itself where every number of it is finite,
+/// the identity otherwise.
+pub fn uv_transform(transform: Affine2) -> Affine2 {
+    if transform.is_finite() {
+        transform
+    } else {
+        Affine2::IDENTITY
+    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use bevy::{
     color::{Color, ColorToComponents, LinearRgba},
     image::Image,
     log::warn,
-    math::{Vec3, Vec4},
+    math::{Affine2, Mat3, Vec3, Vec4},
     mesh::{Mesh, MeshVertexBufferLayoutRef},
     pbr::{Material, MaterialPipeline, MaterialPipelineKey},
     prelude::{AlphaMode, ReflectDefault},
@@ -58,11 +58,19 @@ impl SpecularModel {
 /// `strength = specular_strength`, and `H` the highlight of [`specular_model`] with exponent
 /// [`shininess`]. All colors are taken in linear RGB.
 ///
+/// # Vertex colors
+///
+/// On a mesh with colors (`Mesh::ATTRIBUTE_COLOR`, glTF's `COLOR_0`), `k_d` is multiplied
+/// by the interpolated vertex color, alpha too, as Bevy's `StandardMaterial` does: the
+/// mesh's vertex layout selects the shader variant (Bevy's `VERTEX_COLORS`), a mesh without
+/// colors pays nothing.
+///
 /// # Texture maps
 ///
 /// Each map is optional and multiplies its color, sampled at the mesh's first UV set
-/// (`Mesh::ATTRIBUTE_UV_0`): `k_d ⊙ base_color_texture` (alpha too), `k_s ⊙
-/// specular_texture`, `emissive ⊙ emissive_texture`. The [`normal_map_texture`] replaces the
+/// (`Mesh::ATTRIBUTE_UV_0`) moved by [`uv_transform`](Self::uv_transform): `k_d ⊙
+/// base_color_texture` (alpha too), `k_s ⊙ specular_texture`, `emissive ⊙
+/// emissive_texture`. The [`normal_map_texture`] replaces the
 /// interpolated normal by one in tangent space (it needs `Mesh::ATTRIBUTE_TANGENT`:
 /// `Mesh::with_generated_tangents`). Values are what the sampler returns: images Bevy loads
 /// as sRGB are decoded to linear first, so load specular and normal maps with
@@ -123,6 +131,12 @@ pub struct PhongMaterial {
     /// back faces, before the normal map), as glTF's `doubleSided` and Bevy's
     /// `StandardMaterial::double_sided`. Default `false`: back faces are culled.
     pub double_sided: bool,
+    /// Moves the mesh's first UV set before every map is sampled: a map is read at
+    /// `uv_transform · uv` (glTF's `KHR_texture_transform`, Bevy's
+    /// `StandardMaterial::uv_transform`). The normal map's tangent frame stays the mesh's,
+    /// as in Bevy and three.js. A transform that is not finite is replaced by the identity,
+    /// with a warning. Default [`Affine2::IDENTITY`] (no shader work).
+    pub uv_transform: Affine2,
 }
 
 impl Default for PhongMaterial {
@@ -142,6 +156,7 @@ impl Default for PhongMaterial {
             normal_map_texture: None,
             flip_normal_map_y: false,
             double_sided: false,
+            uv_transform: Affine2::IDENTITY,
         }
     }
 }
@@ -174,6 +189,8 @@ pub struct PhongMaterialUniform {
     pub flags: u32,
     /// Fragments whose alpha is below this are discarded (with `AlphaMode::Mask`).
     pub alpha_cutoff: f32,
+    /// [`PhongMaterial::uv_transform`] as a matrix of homogeneous UVs.
+    pub uv_transform: Mat3,
 }
 
 impl PhongMaterialUniform {
@@ -212,6 +229,7 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
                 AlphaMode::Mask(cutoff) => limits::ALPHA_CUTOFF.apply(cutoff),
                 _ => 0.0,
             },
+            uv_transform: Mat3::from(limits::uv_transform(material.uv_transform)),
         }
     }
 }
@@ -227,7 +245,8 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
 /// compiled pipelines are kept.
 ///
 /// Each texture map the material has adds its own shader def (`PHONG_BASE_COLOR_TEXTURE`,
-/// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_NORMAL_MAP`), and
+/// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_NORMAL_MAP`), a UV transform
+/// other than the identity on a material with maps adds `PHONG_UV_TRANSFORM`, and
 /// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PhongMaterialKey {
@@ -245,6 +264,8 @@ pub struct PhongMaterialKey {
     pub alpha_mask: bool,
     /// Whether back faces are drawn (no culling).
     pub double_sided: bool,
+    /// Whether the maps are sampled at moved UVs (a UV transform other than the identity).
+    pub uv_transform: bool,
     /// Whether some light of the scene casts shadows: only then is the shadow code compiled
     /// in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last off,
     /// compiles the other variant once, as any new variant. The flag is process-wide: apps
@@ -268,6 +289,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
+            uv_transform: limits::uv_transform(material.uv_transform) != Affine2::IDENTITY,
             shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
             soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
         }
@@ -300,6 +322,14 @@ impl PhongMaterialKey {
             ),
         ];
         let mut defs = Vec::new();
+        let samples_a_map = has_uvs
+            && (self.base_color_texture
+                || self.specular_texture
+                || self.emissive_texture
+                || (self.normal_map && has_tangents));
+        if self.uv_transform && samples_a_map {
+            defs.push("PHONG_UV_TRANSFORM");
+        }
         if !self.specular {
             defs.push("PHONG_NO_SPECULAR");
         }

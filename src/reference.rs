@@ -36,8 +36,10 @@ use bevy::{
 use glam::DVec3;
 
 mod camera_effects;
+mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
+pub use surface_inputs::transformed_uv;
 pub use texture_maps::{Texels, mapped_normal};
 
 /// A point or spot light whose squared distance from the surface point is at or below this

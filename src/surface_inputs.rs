@@ -42,6 +42,9 @@ pub enum SurfaceInput {
     /// The interpolated world-space tangent, before normalization (xyz); zero where the
     /// mesh has none.
     WorldTangent,
+    /// The interpolated vertex color (all four channels, no tag in alpha); white where the
+    /// mesh has none.
+    VertexColor,
 }
 
 /// A material that writes, instead of a lit color, the world position or normal that
@@ -66,13 +69,15 @@ pub struct SurfaceInputsMaterial {
 }
 
 impl SurfaceInputsMaterial {
-    /// A material writing `input` in RGB and `tag` (as a float) in alpha, on front faces.
+    /// A material writing `input` in RGB and `tag` (as a float) in alpha (except
+    /// [`SurfaceInput::VertexColor`], which writes the color's alpha), on front faces.
     pub fn new(input: SurfaceInput, tag: u32) -> Self {
         let output = match input {
             SurfaceInput::WorldPosition => 0,
             SurfaceInput::WorldNormal => 1,
             SurfaceInput::UvAndTangentSign => 2,
             SurfaceInput::WorldTangent => 3,
+            SurfaceInput::VertexColor => 4,
         };
         Self {
             output: SurfaceInputUniform { output, tag },
@@ -107,7 +112,8 @@ impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
 /// The uniform of [`SurfaceInputsMaterial`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, ShaderType)]
 pub struct SurfaceInputUniform {
-    /// `0`: world position; `1`: world normal; `2`: UV and tangent sign; `3`: world tangent.
+    /// `0`: world position; `1`: world normal; `2`: UV and tangent sign; `3`: world tangent;
+    /// `4`: vertex color.
     pub output: u32,
     /// Written to alpha.
     pub tag: u32,

@@ -286,6 +286,15 @@ impl Checker {
         if let AlphaMode::Mask(cutoff) = &mut material.alpha_mode {
             self.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
         }
+        let uv_transform = limits::uv_transform(material.uv_transform);
+        if uv_transform != material.uv_transform {
+            self.replace(
+                "uv_transform",
+                format!("{:?}", material.uv_transform),
+                "the identity".into(),
+            );
+            material.uv_transform = uv_transform;
+        }
     }
 
     /// Logs and sends what was replaced.

@@ -8,7 +8,6 @@ use bevy::{
     color::{Color, LinearRgba},
     gltf::GltfMaterial,
     log::warn,
-    math::Affine2,
     mesh::UvChannel,
 };
 
@@ -36,6 +35,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// | `normal_map_texture` (+Y up, OpenGL's convention) | `normal_map_texture`, `flip_normal_map_y: false` |
 /// | `alpha_mode` OPAQUE / MASK(alphaCutoff) / BLEND | `alpha_mode` unchanged |
 /// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
+/// | `uv_transform` (`KHR_texture_transform`, as Bevy's loader reads it) | `uv_transform` |
 /// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
 /// | | `ambient_factor = 1` |
 ///
@@ -53,8 +53,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// become 0, alpha 1). The result never holds a NaN.
 ///
 /// What has no counterpart is left out (see [`unmapped_gltf_features`]): the
-/// metallic/roughness and occlusion maps, other UV sets than the first, texture
-/// transforms, unlit, transmission, volume, clearcoat and anisotropy. When `label` is
+/// metallic/roughness and occlusion maps, other UV sets than the first, unlit, transmission, volume, clearcoat and anisotropy. When `label` is
 /// `Some`, one warning naming it lists them.
 ///
 /// ```
@@ -108,6 +107,7 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         normal_map_texture: material.normal_map_texture.clone(),
         flip_normal_map_y: false,
         double_sided: material.double_sided,
+        uv_transform: material.uv_transform,
     }
 }
 
@@ -161,10 +161,6 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
         .into_iter()
         .any(|channel| *channel != UvChannel::Uv0),
         "texCoord 1 (PhongMaterial samples the first UV set)",
-    );
-    note(
-        material.uv_transform != Affine2::IDENTITY,
-        "KHR_texture_transform",
     );
     note(material.unlit, "KHR_materials_unlit");
     note(
@@ -375,6 +371,24 @@ mod tests {
                 double_sided
             );
         }
+    }
+
+    #[test]
+    fn the_texture_transform_is_carried() {
+        let uv_transform = bevy::math::Affine2::from_scale_angle_translation(
+            bevy::math::Vec2::new(2.0, 0.5),
+            -0.3,
+            bevy::math::Vec2::new(0.25, 0.5),
+        );
+        let material = GltfMaterial {
+            uv_transform,
+            ..Default::default()
+        };
+        assert_eq!(
+            phong_material_from_gltf(&material, None).uv_transform,
+            uv_transform
+        );
+        assert!(unmapped_gltf_features(&material).is_empty());
     }
 
     #[test]

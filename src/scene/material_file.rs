@@ -5,6 +5,7 @@ use crate::material::{PhongMaterial, SpecularModel};
 use bevy::{
     asset::{AssetLoader, LoadContext, io::Reader},
     image::{Image, ImageLoaderSettings},
+    math::{Affine2, Vec2},
     prelude::{AlphaMode, Handle},
     reflect::TypePath,
 };
@@ -19,6 +20,7 @@ use serde::{Deserialize, Serialize};
 ///     specular_strength: 2.0,
 ///     shininess: 50.0,
 ///     base_color_texture: Some("textures/crate.png"),
+///     uv_transform: (scale: (2.0, 2.0), rotation: 0.5, offset: (0.25, 0.0)),
 /// )
 /// ```
 ///
@@ -55,6 +57,42 @@ pub struct PhongMaterialDescription {
     pub flip_normal_map_y: bool,
     /// Draw back faces too, their normal negated. Default `false`.
     pub double_sided: bool,
+    /// How the UVs move before the maps are sampled. Default none.
+    pub uv_transform: UvTransformDescription,
+}
+
+/// A UV transform as glTF's `KHR_texture_transform` writes it: the UVs are scaled, then
+/// rotated, then offset. Every field is optional.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct UvTransformDescription {
+    /// Added last, in UV units. Default `(0, 0)`.
+    pub offset: (f32, f32),
+    /// Radians, counterclockwise in UV space as glTF defines it. Default `0`.
+    pub rotation: f32,
+    /// Applied first, per axis. Default `(1, 1)`.
+    pub scale: (f32, f32),
+}
+
+impl Default for UvTransformDescription {
+    fn default() -> Self {
+        Self {
+            offset: (0.0, 0.0),
+            rotation: 0.0,
+            scale: (1.0, 1.0),
+        }
+    }
+}
+
+impl UvTransformDescription {
+    /// The transform, as Bevy's glTF loader makes it from the same numbers.
+    pub fn to_affine2(self) -> Affine2 {
+        Affine2::from_scale_angle_translation(
+            Vec2::from(self.scale),
+            -self.rotation,
+            Vec2::from(self.offset),
+        )
+    }
 }
 
 /// The alpha modes a file can name.
@@ -87,6 +125,7 @@ impl Default for PhongMaterialDescription {
             normal_map_texture: None,
             flip_normal_map_y: false,
             double_sided: false,
+            uv_transform: UvTransformDescription::default(),
         }
     }
 }
@@ -130,6 +169,7 @@ impl PhongMaterialDescription {
             normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
             double_sided: self.double_sided,
+            uv_transform: self.uv_transform.to_affine2(),
         })
     }
 }

@@ -36,7 +36,9 @@ pub use description::{
 pub use error::{SceneFileError, parse_ron};
 pub(crate) use error::{read_ron, scene_color};
 pub use loader::{PhongScene, PhongSceneLoader, SceneLight};
-pub use material_file::{AlphaModeDescription, PhongMaterialDescription, PhongMaterialLoader};
+pub use material_file::{
+    AlphaModeDescription, PhongMaterialDescription, PhongMaterialLoader, UvTransformDescription,
+};
 pub(crate) use relative_path::relative_path;
 pub(crate) use spawn::spawn_phong_scenes;
 pub use spawn::{PhongSceneCamera, PhongSceneRoot};

@@ -113,7 +113,7 @@ const GOOD_SCENE: &str = r##"(
     ],
 )"##;
 
-const GOOD_MATERIAL: &str = "(specular_model: BlinnPhong, shininess: 160.0)";
+const GOOD_MATERIAL: &str = "(specular_model: BlinnPhong, shininess: 160.0, uv_transform: (scale: (2.0, 4.0), rotation: 0.5))";
 
 #[test]
 fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
@@ -142,6 +142,13 @@ fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
         materials.iter().any(|(_, material)| {
             material.shininess == 160.0
                 && material.specular_model == crate::SpecularModel::BlinnPhong
+                // As Bevy's glTF loader reads KHR_texture_transform: the angle negated.
+                && material.uv_transform
+                    == bevy::math::Affine2::from_scale_angle_translation(
+                        bevy::math::Vec2::new(2.0, 4.0),
+                        -0.5,
+                        bevy::math::Vec2::ZERO,
+                    )
         })
     }));
     let world = app.world_mut();

@@ -1,7 +1,8 @@
 // The prepass fragment stage of `PhongMaterial` (depth, normal and motion-vector prepasses,
 // and Bevy's shadow maps, which draw with the prepass pipeline). Bevy runs it only where it
 // has something to do: a target to write, or fragments to discard (`AlphaMode::Mask`).
-// - Alpha mask: the fragments the main pass discards are discarded here too, so the depth
+// - Alpha mask: the fragments the main pass discards (by the base color's, the vertex
+//   color's and the base color map's alpha) are discarded here too, so the depth
 //   prepass leaves the holes open and Bevy's shadow maps let light through them.
 // - Normal prepass: the normal the main pass lights the fragment with (double-sided faces
 //   turned toward the viewer, the normal map applied), normalized (zero where degenerate), encoded as `n/2 + 1/2`
@@ -12,6 +13,7 @@
 #import bevy_pbr::prepass_io::FragmentOutput
 #endif
 #import bevy_phong::bindings::material
+#import bevy_phong::uv::map_uv
 #ifdef PHONG_ALPHA_MASK
 #ifdef PHONG_BASE_COLOR_TEXTURE
 #import bevy_phong::bindings::{base_color_texture, base_color_sampler}
@@ -32,8 +34,11 @@
 fn discard_masked(in: VertexOutput) {
 #ifdef PHONG_ALPHA_MASK
     var alpha = material.base_color.a;
+#ifdef VERTEX_COLORS
+    alpha *= in.color.a;
+#endif
 #ifdef PHONG_BASE_COLOR_TEXTURE
-    alpha *= textureSample(base_color_texture, base_color_sampler, in.uv).a;
+    alpha *= textureSample(base_color_texture, base_color_sampler, map_uv(in.uv)).a;
 #endif
     if alpha < material.alpha_cutoff {
         discard;
@@ -48,7 +53,7 @@ fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> Fragment
 #ifdef NORMAL_PREPASS
     var normal = facing_normal(in.world_normal, is_front);
 #ifdef PHONG_NORMAL_MAP
-    normal = with_normal_map(normal, in.world_tangent, in.uv);
+    normal = with_normal_map(normal, in.world_tangent, map_uv(in.uv));
 #endif
     // Sampled before any discard: texture sampling needs uniform control flow.
     out.normal = vec4<f32>(normalize_or_zero(normal) * 0.5 + vec3<f32>(0.5), 1.0);

@@ -4,7 +4,8 @@
 
 struct SurfaceInputsUniform {
     // 0: world position P; 1: interpolated world normal (not normalized); 2: UV and the
-    // tangent's handedness; 3: interpolated world tangent (not normalized).
+    // tangent's handedness; 3: interpolated world tangent (not normalized); 4: vertex color
+    // (its own alpha, no tag).
     output: u32,
     // Written to alpha.
     tag: u32,
@@ -24,11 +25,16 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> @locatio
     uv_and_sign.z = in.world_tangent.w;
     tangent = in.world_tangent.xyz;
 #endif
+    var color = vec4<f32>(1.0);
+#ifdef VERTEX_COLORS
+    color = in.color;
+#endif
     switch inputs.output {
         // Only a double-sided material draws back faces: lit with the normal negated.
         case 1u: { return vec4<f32>(select(-in.world_normal, in.world_normal, is_front), tag); }
         case 2u: { return vec4<f32>(uv_and_sign, tag); }
         case 3u: { return vec4<f32>(tangent, tag); }
+        case 4u: { return color; }
         default: { return vec4<f32>(in.world_position.xyz, tag); }
     }
 }

@@ -145,6 +145,8 @@ struct PhongMaterialUniform {
     flags: u32,
     // With PHONG_ALPHA_MASK, fragments whose alpha is below this are discarded.
     alpha_cutoff: f32,
+    // With PHONG_UV_TRANSFORM, the maps are sampled at (uv_transform · (uv, 1)).xy.
+    uv_transform: mat3x3<f32>,
 }
 
 // A surface point, ready to be lit.

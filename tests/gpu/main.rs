@@ -12,6 +12,7 @@
 //!   prepasses, SSAO and the deferred renderer, each against its own formula;
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
 //!   the reference model given each pixel's texels;
+//! - `surface_inputs`: vertex colors and the material's UV transform, the same way;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
 //!   each primitive covers the pixels `StandardMaterial` covers, and the scene is lit as the
@@ -53,4 +54,5 @@ mod shadows;
 #[path = "../fuzz/shapes.rs"]
 mod shapes;
 mod stress;
+mod surface_inputs;
 mod texture_maps;

@@ -18,7 +18,7 @@ use bevy::{
 };
 use bevy_phong::{prelude::*, reference};
 use bevy_phong_headless::{Harness, SurfaceInputs};
-use glam::{DVec3, DVec4};
+use glam::{DVec2, DVec3, DVec4};
 use std::collections::HashMap;
 
 /// Texels per side of every map this file makes.
@@ -89,11 +89,11 @@ pub(crate) enum SrgbDecoding {
 /// The texel of `image` that nearest filtering gives at `uv` (clamped to the edge), or
 /// `None` within 1/100 texel of a texel's edge. Channels in `[0, 1]`; the color channels
 /// of an sRGB image decoded to linear as `decoding` says.
-fn texel_at(image: &Image, uv: [f32; 2], decoding: SrgbDecoding) -> Option<DVec4> {
+fn texel_at(image: &Image, uv: [f64; 2], decoding: SrgbDecoding) -> Option<DVec4> {
     let size = [image.width() as usize, image.height() as usize];
     let mut texel = [0usize; 2];
     for axis in 0..2 {
-        let scaled = f64::from(uv[axis]) * size[axis] as f64;
+        let scaled = uv[axis] * size[axis] as f64;
         let fraction = scaled - scaled.floor();
         if (0.01..=0.99).contains(&fraction) || scaled <= 0.0 || scaled >= size[axis] as f64 {
             texel[axis] = (scaled.floor().max(0.0) as usize).min(size[axis] - 1);
@@ -137,6 +137,25 @@ fn srgb_to_linear(value: f64) -> f64 {
     }
 }
 
+/// The UVs `material`'s maps are sampled at in pixel `pixel`: the captured first UV set
+/// moved by the material's UV transform, in `f64` (`reference::transformed_uv`).
+pub(crate) fn sampled_uv(
+    material: &PhongMaterial,
+    inputs: &SurfaceInputs,
+    pixel: usize,
+) -> [f64; 2] {
+    let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
+    let uv = DVec2::new(uv_and_sign[0].into(), uv_and_sign[1].into());
+    let transform = bevy_phong::limits::uv_transform(material.uv_transform);
+    reference::transformed_uv(transform, uv).to_array()
+}
+
+/// The interpolated vertex color of pixel `pixel` (white where the mesh has none).
+pub(crate) fn vertex_color(inputs: &SurfaceInputs, pixel: usize) -> DVec4 {
+    let color = inputs.colors.as_ref().unwrap().pixels[pixel];
+    DVec4::from_array(color.map(f64::from))
+}
+
 /// Every image the harness's app holds, by id: the texels the reference reads.
 pub(crate) fn loaded_images(harness: &mut Harness) -> HashMap<AssetId<Image>, Image> {
     harness
@@ -164,7 +183,7 @@ pub(crate) fn lit_normal(
         // Normal maps are linear: nothing to decode.
         Some(handle) => Some(texel_at(
             &images[&handle.id()],
-            [uv_and_sign[0], uv_and_sign[1]],
+            sampled_uv(material, inputs, pixel),
             SrgbDecoding::Exact,
         )?),
     };
@@ -186,11 +205,11 @@ pub(crate) fn lit_normal(
     })
 }
 
-/// The texels each of `material`'s maps gives at `uv`, sRGB maps decoded as `decoding`
-/// says; `None` on a texel edge.
+/// The texels each of `material`'s maps gives at `uv` (see [`sampled_uv`]), sRGB maps
+/// decoded as `decoding` says; `None` on a texel edge.
 pub(crate) fn texels_at(
     material: &PhongMaterial,
-    uv: [f32; 2],
+    uv: [f64; 2],
     images: &HashMap<AssetId<Image>, Image>,
     decoding: SrgbDecoding,
 ) -> Option<reference::Texels> {
@@ -216,13 +235,28 @@ pub(crate) fn texels_at(
     })
 }
 
-/// Whether `material`'s alpha mask discards a fragment whose maps gave `texels`; `None`
-/// within 10⁻⁶ of the cutoff, too close to say.
-pub(crate) fn masked_out(material: &PhongMaterial, texels: &reference::Texels) -> Option<bool> {
+/// The output alpha of a fragment of `material` whose maps gave `texels` and whose vertex
+/// color has alpha `vertex_alpha`.
+pub(crate) fn output_alpha(
+    material: &PhongMaterial,
+    texels: &reference::Texels,
+    vertex_alpha: f64,
+) -> f64 {
+    texels.base_color.map_or(1.0, |t| t.w) * f64::from(material.base_color.alpha()) * vertex_alpha
+}
+
+/// Whether `material`'s alpha mask discards a fragment whose maps gave `texels` and whose
+/// vertex color has alpha `vertex_alpha`; `None` within 10⁻⁶ of the cutoff, too close to
+/// say.
+pub(crate) fn masked_out(
+    material: &PhongMaterial,
+    texels: &reference::Texels,
+    vertex_alpha: f64,
+) -> Option<bool> {
     let AlphaMode::Mask(cutoff) = material.alpha_mode else {
         return Some(false);
     };
-    let alpha = texels.base_color.map_or(1.0, |t| t.w) * f64::from(material.base_color.alpha());
+    let alpha = output_alpha(material, texels, vertex_alpha);
     if (alpha - f64::from(cutoff)).abs() < 1e-6 {
         return None;
     }
@@ -242,13 +276,15 @@ pub(crate) fn lit_color(
 ) -> Option<DVec3> {
     let normal = lit_normal(material, surface, pixel, inputs, images)?;
     let surface = reference::SurfacePoint { normal, ..*surface };
-    let mapped = reference::Material::from(material).mapped(texels);
+    let mapped = reference::Material::from(material)
+        .with_vertex_color(vertex_color(inputs, pixel))
+        .mapped(texels);
     Some(reference::shade(&surface, &mapped, lights))
 }
 
 /// The reference color of a pixel of `material`, given its captured inputs; `None` on a
 /// texel edge. Where the mask discards, the clear color (nothing is behind these meshes).
-fn expected_color(
+pub(crate) fn expected_color(
     material: &PhongMaterial,
     surface: &reference::SurfacePoint,
     pixel: usize,
@@ -256,15 +292,10 @@ fn expected_color(
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
 ) -> Option<DVec3> {
-    let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
     // The maps here are linear (`Rgba8Unorm`): nothing to decode.
-    let texels = texels_at(
-        material,
-        [uv_and_sign[0], uv_and_sign[1]],
-        images,
-        SrgbDecoding::Exact,
-    )?;
-    if masked_out(material, &texels)? {
+    let uv = sampled_uv(material, inputs, pixel);
+    let texels = texels_at(material, uv, images, SrgbDecoding::Exact)?;
+    if masked_out(material, &texels, vertex_color(inputs, pixel).w)? {
         return Some(DVec3::ZERO);
     }
     lit_color(material, surface, pixel, inputs, &texels, images, lights)

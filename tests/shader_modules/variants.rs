@@ -23,18 +23,24 @@ pub struct Variant {
 
 /// The vertex attributes of the meshes a material may be drawn on: without UVs, with UVs
 /// (Bevy's primitive shapes), with UVs and tangents (`Mesh::with_generated_tangents`), with
-/// tangents but no UVs.
+/// tangents but no UVs, and with vertex colors beside UVs and tangents (glTF's `COLOR_0`).
 fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
     let mut layouts = MeshVertexBufferLayouts::default();
-    let kinds: [(&str, bool, bool); 4] = [
-        ("positions, normals", false, false),
-        ("positions, normals, UVs", true, false),
-        ("positions, normals, UVs, tangents", true, true),
-        ("positions, normals, tangents", false, true),
+    let kinds: [(&str, bool, bool, bool); 5] = [
+        ("positions, normals", false, false, false),
+        ("positions, normals, UVs", true, false, false),
+        ("positions, normals, UVs, tangents", true, true, false),
+        ("positions, normals, tangents", false, true, false),
+        (
+            "positions, normals, UVs, tangents, colors",
+            true,
+            true,
+            true,
+        ),
     ];
     kinds
         .into_iter()
-        .map(|(name, uvs, tangents)| {
+        .map(|(name, uvs, tangents, colors)| {
             let mut mesh = Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::all())
                 .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, vec![[0.0f32; 3]; 3])
                 .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 0.0, 1.0]; 3]);
@@ -43,6 +49,9 @@ fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
             }
             if tangents {
                 mesh.insert_attribute(Mesh::ATTRIBUTE_TANGENT, vec![[1.0f32, 0.0, 0.0, 1.0]; 3]);
+            }
+            if colors {
+                mesh.insert_attribute(Mesh::ATTRIBUTE_COLOR, vec![[1.0f32; 4]; 3]);
             }
             (name, mesh.get_mesh_vertex_buffer_layout(&mut layouts))
         })
@@ -158,7 +167,7 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
-    (0..1u32 << 9)
+    (0..1u32 << 10)
         .map(|bits| {
             let bit = |index: u32| bits & (1 << index) != 0;
             PhongMaterialKey {
@@ -171,6 +180,7 @@ fn material_keys() -> Vec<PhongMaterialKey> {
                 shadows: bit(6),
                 soft_shadows: bit(7),
                 double_sided: bit(8),
+                uv_transform: bit(9),
             }
         })
         .collect()
@@ -341,6 +351,9 @@ pub fn phong_prepass() -> Vec<Variant> {
             }
             if layout.0.contains(Mesh::ATTRIBUTE_UV_0) {
                 prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_A".into()]);
+            }
+            if layout.0.contains(Mesh::ATTRIBUTE_COLOR) {
+                prepass.push("VERTEX_COLORS".into());
             }
             if normals {
                 prepass.push("VERTEX_NORMALS".into());

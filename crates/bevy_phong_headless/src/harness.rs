@@ -59,7 +59,7 @@ impl<E: MaterialExtension> CapturedMaterial for ExtendedMaterial<PhongMaterial, 
 }
 
 /// Per-pixel inputs of the lighting equation: world position and normal (with texture maps
-/// also UV and tangent), and in alpha the tag of the material that covers the pixel (0 for
+/// also UV, tangent and vertex color), and in alpha the tag of the material that covers the pixel (0 for
 /// background).
 pub struct SurfaceInputs<M: Material = PhongMaterial> {
     /// World position in xyz, material tag in alpha.
@@ -70,6 +70,8 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub uvs: Option<FloatImage>,
     /// The interpolated tangent's xyz.
     pub tangents: Option<FloatImage>,
+    /// The interpolated vertex color, RGBA (white where the mesh has none).
+    pub colors: Option<FloatImage>,
     /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
 }
@@ -271,7 +273,8 @@ impl Harness {
         self.capture::<M>(false)
     }
 
-    /// As [`Self::capture_inputs`], with the UVs and tangents that texture maps need.
+    /// As [`Self::capture_inputs`], with the UVs and tangents that texture maps need and the
+    /// vertex colors.
     pub fn capture_inputs_with_maps(&mut self) -> SurfaceInputs {
         self.capture::<PhongMaterial>(true)
     }
@@ -291,7 +294,11 @@ impl Harness {
 
         let mut passes = vec![SurfaceInput::WorldPosition, SurfaceInput::WorldNormal];
         if with_maps {
-            passes.extend([SurfaceInput::UvAndTangentSign, SurfaceInput::WorldTangent]);
+            passes.extend([
+                SurfaceInput::UvAndTangentSign,
+                SurfaceInput::WorldTangent,
+                SurfaceInput::VertexColor,
+            ]);
         }
         let assets = world.resource::<Assets<M>>();
         let double_sided: HashMap<Handle<M>, bool> = tags
@@ -331,6 +338,7 @@ impl Harness {
             normals: images.next().unwrap(),
             uvs: images.next(),
             tangents: images.next(),
+            colors: images.next(),
             materials: tags
                 .into_iter()
                 .map(|(handle, tag)| (tag, handle))

@@ -13,7 +13,10 @@ use super::{
 };
 use crate::{
     frames::TOLERANCE,
-    texture_maps::{SrgbDecoding, lit_color, loaded_images, masked_out, texels_at},
+    texture_maps::{
+        SrgbDecoding, lit_color, loaded_images, masked_out, output_alpha, sampled_uv, texels_at,
+        vertex_color,
+    },
 };
 use bevy::{
     gltf::GltfMaterialName, image::ImageSamplerDescriptor, math::DVec3, mesh::morph::MorphWeights,
@@ -185,14 +188,14 @@ impl Scene<'_> {
             return Some(DVec3::ZERO);
         };
         let material = &self.materials[&handle.id()];
-        let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
-        let uv = [uv_and_sign[0], uv_and_sign[1]];
+        let uv = sampled_uv(material, inputs, pixel);
         let texels = texels_at(material, uv, self.images, decoding)?;
+        let vertex_alpha = vertex_color(inputs, pixel).w;
         let through = |weight: f64| -> Option<DVec3> {
             let behind = behind.expect("masked and blended primitives are not behind others");
             Some(weight * self.color(behind, None, pixel, decoding)?)
         };
-        if masked_out(material, &texels)? {
+        if masked_out(material, &texels, vertex_alpha)? {
             return through(1.0);
         }
         let lit = lit_color(
@@ -206,8 +209,7 @@ impl Scene<'_> {
         )?;
         match material.alpha_mode {
             AlphaMode::Blend => {
-                let alpha =
-                    f64::from(material.base_color.alpha()) * texels.base_color.map_or(1.0, |t| t.w);
+                let alpha = output_alpha(material, &texels, vertex_alpha);
                 Some(alpha * lit + through(1.0 - alpha)?)
             }
             _ => Some(lit),

@@ -1,0 +1,151 @@
+//! Surface inputs beside the texture maps: a mesh's vertex colors (`Mesh::ATTRIBUTE_COLOR`)
+//! and the material's UV transform, rendered on the render device and compared per pixel
+//! with the reference model given each pixel's captured inputs
+//! (`reference::Material::with_vertex_color`, `reference::transformed_uv`).
+//!
+//! The maps and the texel-edge rule are `texture_maps`'s: the UVs a pixel's maps were
+//! sampled at are computed in `f64` from its captured UV, and pixels within 1/100 texel of
+//! a texel's edge there are left out (the device moves the UV in `f32`, a few units of
+//! rounding away). Tolerance: the frame tests' ([`TOLERANCE`]); the vertex color adds one
+//! `f32` product to `k_d`.
+
+use crate::frames::{SIZE, TOLERANCE};
+use crate::texture_maps::{expected_color, float_map, loaded_images, normal_map};
+use bevy::{math::Affine2, prelude::*};
+use bevy_phong::prelude::*;
+use bevy_phong_headless::Harness;
+
+/// A value in `[0, 1]` that varies smoothly along `x`.
+fn wave(x: f32) -> f32 {
+    0.5 + 0.5 * (3.0 * x).sin()
+}
+
+/// `mesh` with a color at each vertex that varies with its position: RGB in `[0.3, 1]`,
+/// alpha in `[0, 1]`.
+fn with_vertex_colors(mut mesh: Mesh) -> Mesh {
+    let positions = mesh
+        .attribute(Mesh::ATTRIBUTE_POSITION)
+        .and_then(|positions| positions.as_float3())
+        .expect("a mesh with positions")
+        .to_vec();
+    let colors: Vec<[f32; 4]> = positions
+        .iter()
+        .map(|&[x, y, z]| {
+            let channel = |value: f32| 0.3 + 0.7 * wave(value);
+            [
+                channel(x),
+                channel(y + 0.4),
+                channel(z - 0.7),
+                wave(x + y + z),
+            ]
+        })
+        .collect();
+    mesh.insert_attribute(Mesh::ATTRIBUTE_COLOR, colors);
+    mesh
+}
+
+#[test]
+fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::srgb(0.2, 0.2, 0.25),
+    });
+    world.spawn((
+        PhongDirectionalLight {
+            color: Color::srgb(0.7, 0.7, 0.6),
+            ..default()
+        },
+        Transform::from_xyz(1.0, 2.0, 1.5).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    world.spawn((
+        PhongPointLight {
+            color: Color::srgb(0.9, 0.5, 0.3),
+            decay: Decay::new(1.0, 0.09, 0.032),
+            ..default()
+        },
+        Transform::from_xyz(-1.5, 1.5, 2.5),
+    ));
+
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let stripes = |x: u32, y: u32| {
+        let level = 0.2 + 0.2 * ((x + 2 * y) % 5) as f32;
+        [level, 1.2 - level, 0.5, 1.0]
+    };
+    let base_color = images.add(float_map(stripes));
+    let normals = images.add(normal_map());
+
+    // Scaled, turned and moved: most of the sphere samples outside [0, 1], where the maps
+    // clamp to their edge.
+    let moved =
+        Affine2::from_scale_angle_translation(Vec2::new(1.7, 0.6), 0.4, Vec2::new(0.3, -0.2));
+    let colored_and_moved = PhongMaterial {
+        base_color_texture: Some(base_color.clone()),
+        normal_map_texture: Some(normals),
+        uv_transform: moved,
+        shininess: 40.0,
+        ..default()
+    };
+    // The vertex colors' alpha cuts holes; the map is turned a quarter and shrunk.
+    let masked = PhongMaterial {
+        base_color_texture: Some(base_color),
+        alpha_mode: AlphaMode::Mask(0.5),
+        uv_transform: Affine2::from_scale_angle_translation(
+            Vec2::splat(0.5),
+            core::f32::consts::FRAC_PI_2,
+            Vec2::new(0.5, 0.25),
+        ),
+        emissive: LinearRgba::rgb(0.05, 0.1, 0.05),
+        ..default()
+    };
+    // Vertex colors alone, and a UV transform with no map to move.
+    let colored = PhongMaterial {
+        base_color: Color::srgb(0.9, 0.8, 1.0),
+        uv_transform: moved,
+        ..default()
+    };
+    let objects = [
+        (
+            with_vertex_colors(
+                Sphere::new(1.2)
+                    .mesh()
+                    .uv(48, 32)
+                    .with_generated_tangents()
+                    .unwrap(),
+            ),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            colored_and_moved,
+        ),
+        (
+            with_vertex_colors(Cuboid::new(1.2, 1.2, 1.2).into()),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            masked,
+        ),
+        (
+            with_vertex_colors(Cuboid::new(1.2, 1.2, 1.2).into()),
+            Transform::from_xyz(2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(-0.6)),
+            colored,
+        ),
+    ];
+    for (mesh, transform, material) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let lights = harness.reference_lights();
+    let images = loaded_images(&mut harness);
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        expected_color(material, surface, pixel, &inputs, &images, &lights)
+    });
+    comparison.assert_within("vertex colors and the UV transform", TOLERANCE);
+    assert!(
+        comparison.skipped_pixels < comparison.lit_pixels / 5,
+        "too few pixels judged: {} lit, {} on texel edges or the mask's cutoff",
+        comparison.lit_pixels,
+        comparison.skipped_pixels
+    );
+}
