@@ -120,6 +120,9 @@ impl fmt::Display for Limits {
     }
 }
 
+/// A material's depth bias, in the depth buffer's steps: wgpu takes an `i32`. NaN → 0.
+pub const DEPTH_BIAS: Limits = Limits::new(-2_147_483_500.0, 2_147_483_500.0, 0.0);
+
 /// A linear color with its red, green and blue in [`INTENSITY`]'s range and its alpha in
 /// [`ALPHA`]'s.
 pub fn linear_color(color: LinearRgba) -> LinearRgba {

@@ -9,10 +9,12 @@ use bevy::{
     log::warn,
     math::{Affine2, Mat3, Vec3, Vec4},
     mesh::{Mesh, MeshVertexBufferLayoutRef},
-    pbr::{Material, MaterialPipeline, MaterialPipelineKey},
+    pbr::{Material, MaterialPipeline, MaterialPipelineKey, MeshPipelineKey},
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
-    render::render_resource::{RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError},
+    render::render_resource::{
+        Face, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+    },
     shader::ShaderRef,
 };
 use core::sync::atomic::Ordering;
@@ -137,6 +139,30 @@ pub struct PhongMaterial {
     /// as in Bevy and three.js. A transform that is not finite is replaced by the identity,
     /// with a warning. Default [`Affine2::IDENTITY`] (no shader work).
     pub uv_transform: Affine2,
+    /// Draws the surface without light: its color is `emissive + k_d` (both with their
+    /// maps, `k_d` with the vertex colors), alpha as a lit surface's, and no light,
+    /// ambient or shadow changes it (glTF's `KHR_materials_unlit`, Bevy's
+    /// `StandardMaterial::unlit`). The camera's fog and tonemapping still apply. Default
+    /// `false`.
+    pub unlit: bool,
+    /// Whether the camera's `DistanceFog` applies to this surface, as
+    /// `StandardMaterial::fog_enabled` (turn it off for a sky or a far backdrop that
+    /// carries its own haze). Default `true`.
+    pub fog_enabled: bool,
+    /// Which faces are not drawn: `Some(Face::Back)`, `Some(Face::Front)` (the inside of
+    /// a closed mesh shows), or `None` (both; a back face is lit with the mesh's normal,
+    /// which faces away from the viewer: [`double_sided`](Self::double_sided) lights it
+    /// from the side seen). With `double_sided`, no face is culled whatever this says.
+    /// Views that mirror the scene (Bevy's `INVERT_CULLING`) swap the faces, as for
+    /// `StandardMaterial::cull_mode`. Default `Some(Face::Back)`.
+    #[reflect(ignore, clone)]
+    pub cull_mode: Option<Face>,
+    /// Moves the surface's depth toward the camera (positive) or away (negative) by this
+    /// many of the depth buffer's smallest steps (wgpu's constant depth bias, truncated to
+    /// an integer), so that coplanar surfaces such as decals draw in a chosen order; also
+    /// Bevy's sorting bias. As `StandardMaterial::depth_bias`. NaN becomes 0 and values
+    /// beyond ±2.1·10⁹ are clamped ([`limits::DEPTH_BIAS`]), with a warning. Default `0`.
+    pub depth_bias: f32,
 }
 
 impl Default for PhongMaterial {
@@ -157,6 +183,10 @@ impl Default for PhongMaterial {
             flip_normal_map_y: false,
             double_sided: false,
             uv_transform: Affine2::IDENTITY,
+            unlit: false,
+            fog_enabled: true,
+            cull_mode: Some(Face::Back),
+            depth_bias: 0.0,
         }
     }
 }
@@ -247,7 +277,9 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
 /// Each texture map the material has adds its own shader def (`PHONG_BASE_COLOR_TEXTURE`,
 /// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_NORMAL_MAP`), a UV transform
 /// other than the identity on a material with maps adds `PHONG_UV_TRANSFORM`, and
-/// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing.
+/// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. An
+/// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
+/// `PHONG_NO_FOG`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PhongMaterialKey {
     /// Whether the material has a specular term.
@@ -266,6 +298,15 @@ pub struct PhongMaterialKey {
     pub double_sided: bool,
     /// Whether the maps are sampled at moved UVs (a UV transform other than the identity).
     pub uv_transform: bool,
+    /// Whether the surface is drawn without light (shader def `PHONG_UNLIT`).
+    pub unlit: bool,
+    /// Whether the camera's fog is left out (shader def `PHONG_NO_FOG`).
+    pub no_fog: bool,
+    /// The faces culled (before `double_sided` and mirrored views: see
+    /// [`PhongMaterialKey::culled_face`]).
+    pub cull_mode: Option<Face>,
+    /// The constant depth bias, in the depth buffer's steps.
+    pub depth_bias: i32,
     /// Whether some light of the scene casts shadows: only then is the shadow code compiled
     /// in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last off,
     /// compiles the other variant once, as any new variant. The flag is process-wide: apps
@@ -290,6 +331,10 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
             uv_transform: limits::uv_transform(material.uv_transform) != Affine2::IDENTITY,
+            unlit: material.unlit,
+            no_fog: !material.fog_enabled,
+            cull_mode: material.cull_mode,
+            depth_bias: limits::DEPTH_BIAS.apply(material.depth_bias) as i32,
             shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
             soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
         }
@@ -297,6 +342,19 @@ impl From<&PhongMaterial> for PhongMaterialKey {
 }
 
 impl PhongMaterialKey {
+    /// The face a view culls: none for a double-sided material, else `cull_mode`, the
+    /// other face in views that mirror the scene (`mirrored`, Bevy's `INVERT_CULLING`).
+    pub fn culled_face(&self, mirrored: bool) -> Option<Face> {
+        if self.double_sided {
+            return None;
+        }
+        match (self.cull_mode, mirrored) {
+            (Some(Face::Back), false) | (Some(Face::Front), true) => Some(Face::Back),
+            (Some(Face::Front), false) | (Some(Face::Back), true) => Some(Face::Front),
+            (None, _) => None,
+        }
+    }
+
     /// The fragment shader defs of this variant on a mesh with `layout`, beside those Bevy's
     /// mesh pipeline adds: maps need UVs (the normal map tangents too); without them they are
     /// left out, with a warning. A material extending [`PhongMaterial`] is specialized with
@@ -332,6 +390,12 @@ impl PhongMaterialKey {
         }
         if !self.specular {
             defs.push("PHONG_NO_SPECULAR");
+        }
+        if self.unlit {
+            defs.push("PHONG_UNLIT");
+        }
+        if self.no_fog {
+            defs.push("PHONG_NO_FOG");
         }
         if self.alpha_mask {
             defs.push("PHONG_ALPHA_MASK");
@@ -380,8 +444,10 @@ impl Material for PhongMaterial {
         layout: &MeshVertexBufferLayoutRef,
         key: MaterialPipelineKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
-        if key.bind_group_data.double_sided {
-            descriptor.primitive.cull_mode = None;
+        let mirrored = key.mesh_key.contains(MeshPipelineKey::INVERT_CULLING);
+        descriptor.primitive.cull_mode = key.bind_group_data.culled_face(mirrored);
+        if let Some(depth_stencil) = descriptor.depth_stencil.as_mut() {
+            depth_stencil.bias.constant = key.bind_group_data.depth_bias;
         }
         if let Some(fragment) = descriptor.fragment.as_mut() {
             let defs = key.bind_group_data.shader_defs(layout);
@@ -394,5 +460,9 @@ impl Material for PhongMaterial {
 
     fn alpha_mode(&self) -> AlphaMode {
         self.alpha_mode
+    }
+
+    fn depth_bias(&self) -> f32 {
+        limits::DEPTH_BIAS.apply(self.depth_bias)
     }
 }

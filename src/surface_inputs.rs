@@ -7,7 +7,7 @@ use bevy::{
     pbr::{Material, MaterialPipeline, MaterialPipelineKey, MaterialPlugin},
     reflect::Reflect,
     render::render_resource::{
-        AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+        AsBindGroup, Face, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
     },
     shader::ShaderRef,
 };
@@ -56,9 +56,10 @@ pub enum SurfaceInput {
 /// material on every mesh (into an `Rgba32Float` target) to evaluate the reference model
 /// ([`crate::reference`]) on exactly the inputs the shader saw.
 ///
-/// Like the material it stands in for, it draws back faces only when `double_sided`: there
-/// the normal it writes is negated, as `PhongMaterial` negates it to light a back face.
-#[derive(Asset, AsBindGroup, Clone, Debug, Default, Reflect)]
+/// Like the material it stands in for, it culls the faces of its `cull_mode`, and none when
+/// `double_sided`: there the normal it writes on a back face is negated, as `PhongMaterial`
+/// negates it to light a back face.
+#[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
 #[bind_group_data(SurfaceInputsKey)]
 pub struct SurfaceInputsMaterial {
     /// What to write.
@@ -66,6 +67,15 @@ pub struct SurfaceInputsMaterial {
     pub output: SurfaceInputUniform,
     /// Whether back faces are drawn too (no culling). Default `false`.
     pub double_sided: bool,
+    /// The faces culled when not `double_sided`. Default `Some(Face::Back)`.
+    #[reflect(ignore, clone)]
+    pub cull_mode: Option<Face>,
+}
+
+impl Default for SurfaceInputsMaterial {
+    fn default() -> Self {
+        Self::new(SurfaceInput::default(), 0)
+    }
 }
 
 impl SurfaceInputsMaterial {
@@ -80,31 +90,49 @@ impl SurfaceInputsMaterial {
             SurfaceInput::VertexColor => 4,
         };
         Self {
-            output: SurfaceInputUniform { output, tag },
+            output: SurfaceInputUniform {
+                output,
+                tag,
+                double_sided: 0,
+            },
             double_sided: false,
+            cull_mode: Some(Face::Back),
         }
+    }
+
+    /// This material culling `cull_mode`'s faces when not double-sided.
+    pub fn with_cull_mode(self, cull_mode: Option<Face>) -> Self {
+        Self { cull_mode, ..self }
     }
 
     /// This material drawing back faces too (`double_sided`), or not.
     pub fn with_double_sided(self, double_sided: bool) -> Self {
         Self {
             double_sided,
+            output: SurfaceInputUniform {
+                double_sided: u32::from(double_sided),
+                ..self.output
+            },
             ..self
         }
     }
 }
 
-/// The pipeline key of a [`SurfaceInputsMaterial`]: whether it culls back faces.
+/// The pipeline key of a [`SurfaceInputsMaterial`]: the faces it culls.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SurfaceInputsKey {
-    /// Whether back faces are drawn.
-    pub double_sided: bool,
+    /// The faces culled: none when double-sided.
+    pub culled: Option<Face>,
 }
 
 impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
     fn from(material: &SurfaceInputsMaterial) -> Self {
         Self {
-            double_sided: material.double_sided,
+            culled: if material.double_sided {
+                None
+            } else {
+                material.cull_mode
+            },
         }
     }
 }
@@ -117,6 +145,8 @@ pub struct SurfaceInputUniform {
     pub output: u32,
     /// Written to alpha.
     pub tag: u32,
+    /// `1` where back faces are lit with their normal negated (double-sided), else `0`.
+    pub double_sided: u32,
 }
 
 impl Material for SurfaceInputsMaterial {
@@ -130,9 +160,7 @@ impl Material for SurfaceInputsMaterial {
         _layout: &MeshVertexBufferLayoutRef,
         key: MaterialPipelineKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
-        if key.bind_group_data.double_sided {
-            descriptor.primitive.cull_mode = None;
-        }
+        descriptor.primitive.cull_mode = key.bind_group_data.culled;
         Ok(())
     }
 }

@@ -286,6 +286,7 @@ impl Checker {
         if let AlphaMode::Mask(cutoff) = &mut material.alpha_mode {
             self.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
         }
+        self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
         let uv_transform = limits::uv_transform(material.uv_transform);
         if uv_transform != material.uv_transform {
             self.replace(
@@ -619,5 +620,32 @@ mod tests {
             .get(id)
             .unwrap();
         assert_eq!(material.shininess, 0.0);
+    }
+
+    #[test]
+    fn a_material_with_a_broken_uv_transform_or_depth_bias_gets_the_identity_and_zero() {
+        let mut app = test_app(|_| {});
+        let handle = app
+            .world_mut()
+            .resource_mut::<Assets<PhongMaterial>>()
+            .add(PhongMaterial {
+                uv_transform: bevy::math::Affine2::from_scale(bevy::math::Vec2::new(f32::NAN, 1.0)),
+                depth_bias: f32::NAN,
+                ..Default::default()
+            });
+        app.update();
+        app.update();
+        let fields: Vec<&str> = invalid_inputs(&mut app)
+            .iter()
+            .map(|warning| warning.field)
+            .collect();
+        assert_eq!(fields, ["depth_bias", "uv_transform"]);
+        let material = app
+            .world()
+            .resource::<Assets<PhongMaterial>>()
+            .get(handle.id())
+            .unwrap();
+        assert_eq!(material.uv_transform, bevy::math::Affine2::IDENTITY);
+        assert_eq!(material.depth_bias, 0.0);
     }
 }

@@ -36,6 +36,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// | `alpha_mode` OPAQUE / MASK(alphaCutoff) / BLEND | `alpha_mode` unchanged |
 /// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
 /// | `uv_transform` (`KHR_texture_transform`, as Bevy's loader reads it) | `uv_transform` |
+/// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
 /// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
 /// | | `ambient_factor = 1` |
 ///
@@ -53,7 +54,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// become 0, alpha 1). The result never holds a NaN.
 ///
 /// What has no counterpart is left out (see [`unmapped_gltf_features`]): the
-/// metallic/roughness and occlusion maps, other UV sets than the first, unlit, transmission, volume, clearcoat and anisotropy. When `label` is
+/// metallic/roughness and occlusion maps, other UV sets than the first, transmission, volume, clearcoat and anisotropy. When `label` is
 /// `Some`, one warning naming it lists them.
 ///
 /// ```
@@ -84,7 +85,8 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
     let metallic = METALLIC.apply(material.metallic);
     let shininess = shininess_from_roughness(material.perceptual_roughness);
     let base = limits::linear_color(material.base_color.to_linear());
-    let diffuse = 1.0 - metallic;
+    // An unlit material shows its base color as it is (KHR_materials_unlit).
+    let diffuse = if material.unlit { 1.0 } else { 1.0 - metallic };
     // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly.
     let f0 = |channel: f32| DIELECTRIC_F0 * diffuse + channel * metallic;
     PhongMaterial {
@@ -108,6 +110,8 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         flip_normal_map_y: false,
         double_sided: material.double_sided,
         uv_transform: material.uv_transform,
+        unlit: material.unlit,
+        ..PhongMaterial::default()
     }
 }
 
@@ -162,7 +166,6 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
         .any(|channel| *channel != UvChannel::Uv0),
         "texCoord 1 (PhongMaterial samples the first UV set)",
     );
-    note(material.unlit, "KHR_materials_unlit");
     note(
         material.specular_transmission > 0.0,
         "KHR_materials_transmission",
@@ -392,12 +395,25 @@ mod tests {
     }
 
     #[test]
+    fn an_unlit_material_is_unlit_with_its_base_color_as_it_is() {
+        let material = GltfMaterial {
+            base_color: Color::linear_rgba(0.8, 0.4, 0.2, 0.5),
+            metallic: 1.0,
+            unlit: true,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert!(phong.unlit);
+        assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 0.5], "base color");
+        assert!(unmapped_gltf_features(&material).is_empty());
+    }
+
+    #[test]
     fn maps_without_a_counterpart_are_listed() {
         let material = GltfMaterial {
             metallic_roughness_texture: Some(Handle::default()),
             occlusion_texture: Some(Handle::default()),
             normal_map_channel: UvChannel::Uv1,
-            unlit: true,
             ..Default::default()
         };
         assert_eq!(
@@ -406,7 +422,6 @@ mod tests {
                 "metallicRoughnessTexture",
                 "occlusionTexture",
                 "texCoord 1 (PhongMaterial samples the first UV set)",
-                "KHR_materials_unlit",
             ]
         );
         assert!(unmapped_gltf_features(&GltfMaterial::default()).is_empty());

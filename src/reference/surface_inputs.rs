@@ -1,8 +1,8 @@
-//! A mesh's vertex colors and a material's UV transform in the reference model (SPEC.md,
-//! "Vertex colors and UV transform").
+//! A mesh's vertex colors, a material's UV transform and unlit materials in the reference
+//! model (SPEC.md, "Vertex colors and UV transform" and "Unlit").
 
 use super::Material;
-use glam::{Affine2, DVec2, DVec4};
+use glam::{Affine2, DVec2, DVec3, DVec4};
 
 impl Material {
     /// This material on a fragment whose interpolated vertex color is `color`: `k_d` times
@@ -12,6 +12,11 @@ impl Material {
             diffuse: self.diffuse * color.truncate(),
             ..*self
         }
+    }
+
+    /// The color of this material drawn unlit (`PhongMaterial::unlit`): `emissive + k_d`.
+    pub fn unlit_color(&self) -> DVec3 {
+        self.emissive + self.diffuse
     }
 }
 
@@ -25,7 +30,7 @@ pub fn transformed_uv(transform: Affine2, uv: DVec2) -> DVec2 {
 mod tests {
     use super::*;
     use crate::material::SpecularModel;
-    use glam::{DVec3, Vec2};
+    use glam::Vec2;
 
     #[test]
     fn a_vertex_color_multiplies_only_the_diffuse_color() {
@@ -40,6 +45,8 @@ mod tests {
         };
         let colored = material.with_vertex_color(DVec4::new(0.5, 1.0, 0.25, 0.3));
         assert_eq!(colored.diffuse, DVec3::new(0.25, 0.6, 0.2));
+        let unlit = colored.unlit_color() - DVec3::new(0.35, 0.7, 0.3);
+        assert!(unlit.abs().max_element() < 1e-15, "emissive + k_d: {unlit}");
         assert_eq!(
             Material {
                 diffuse: material.diffuse,

@@ -8,6 +8,7 @@ use bevy::{
     math::{Affine2, Vec2},
     prelude::{AlphaMode, Handle},
     reflect::TypePath,
+    render::render_resource::Face,
 };
 use serde::{Deserialize, Serialize};
 
@@ -59,6 +60,37 @@ pub struct PhongMaterialDescription {
     pub double_sided: bool,
     /// How the UVs move before the maps are sampled. Default none.
     pub uv_transform: UvTransformDescription,
+    /// Draw without light: `emissive + base_color`. Default `false`.
+    pub unlit: bool,
+    /// Whether the camera's fog applies. Default `true`.
+    pub fog_enabled: bool,
+    /// The faces not drawn: `Back`, `Front` or `Neither`. Default `Back`.
+    pub cull_mode: CullModeDescription,
+    /// Depth bias, in the depth buffer's steps (positive: toward the camera). Default `0`.
+    pub depth_bias: f32,
+}
+
+/// The faces a material culls, as a file names them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CullModeDescription {
+    /// Back faces are not drawn.
+    #[default]
+    Back,
+    /// Front faces are not drawn.
+    Front,
+    /// Both faces are drawn.
+    Neither,
+}
+
+impl CullModeDescription {
+    /// As [`PhongMaterial::cull_mode`] takes it.
+    pub fn to_face(self) -> Option<Face> {
+        match self {
+            Self::Back => Some(Face::Back),
+            Self::Front => Some(Face::Front),
+            Self::Neither => None,
+        }
+    }
 }
 
 /// A UV transform as glTF's `KHR_texture_transform` writes it: the UVs are scaled, then
@@ -126,6 +158,10 @@ impl Default for PhongMaterialDescription {
             flip_normal_map_y: false,
             double_sided: false,
             uv_transform: UvTransformDescription::default(),
+            unlit: material.unlit,
+            fog_enabled: material.fog_enabled,
+            cull_mode: CullModeDescription::Back,
+            depth_bias: material.depth_bias,
         }
     }
 }
@@ -170,6 +206,10 @@ impl PhongMaterialDescription {
             flip_normal_map_y: self.flip_normal_map_y,
             double_sided: self.double_sided,
             uv_transform: self.uv_transform.to_affine2(),
+            unlit: self.unlit,
+            fog_enabled: self.fog_enabled,
+            cull_mode: self.cull_mode.to_face(),
+            depth_bias: self.depth_bias,
         })
     }
 }

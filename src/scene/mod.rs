@@ -37,7 +37,8 @@ pub use error::{SceneFileError, parse_ron};
 pub(crate) use error::{read_ron, scene_color};
 pub use loader::{PhongScene, PhongSceneLoader, SceneLight};
 pub use material_file::{
-    AlphaModeDescription, PhongMaterialDescription, PhongMaterialLoader, UvTransformDescription,
+    AlphaModeDescription, CullModeDescription, PhongMaterialDescription, PhongMaterialLoader,
+    UvTransformDescription,
 };
 pub(crate) use relative_path::relative_path;
 pub(crate) use spawn::spawn_phong_scenes;

@@ -113,7 +113,9 @@ const GOOD_SCENE: &str = r##"(
     ],
 )"##;
 
-const GOOD_MATERIAL: &str = "(specular_model: BlinnPhong, shininess: 160.0, uv_transform: (scale: (2.0, 4.0), rotation: 0.5))";
+const GOOD_MATERIAL: &str = "(specular_model: BlinnPhong, shininess: 160.0, \
+    uv_transform: (scale: (2.0, 4.0), rotation: 0.5), unlit: true, fog_enabled: false, \
+    cull_mode: Front, depth_bias: 3.0)";
 
 #[test]
 fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
@@ -142,6 +144,10 @@ fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
         materials.iter().any(|(_, material)| {
             material.shininess == 160.0
                 && material.specular_model == crate::SpecularModel::BlinnPhong
+                && material.unlit
+                && !material.fog_enabled
+                && material.cull_mode == Some(bevy::render::render_resource::Face::Front)
+                && material.depth_bias == 3.0
                 // As Bevy's glTF loader reads KHR_texture_transform: the angle negated.
                 && material.uv_transform
                     == bevy::math::Affine2::from_scale_angle_translation(

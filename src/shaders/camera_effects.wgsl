@@ -71,12 +71,14 @@ fn fogged(color: vec4<f32>, position: vec3<f32>) -> vec4<f32> {
 #endif
 
 // The lit `color` of the fragment at `position` (world) and `frag_coord` (pixel), as the
-// camera shows it: fogged, then tonemapped and debanded where the camera does that in the
+// camera shows it: fogged (unless the material turns fog off, `PHONG_NO_FOG`), then tonemapped and debanded where the camera does that in the
 // shader. Bevy's `main_pass_post_lighting_processing`, in the same order.
 fn camera_effects(color: vec4<f32>, position: vec3<f32>, frag_coord: vec2<f32>) -> vec4<f32> {
     var output = color;
 #ifdef DISTANCE_FOG
+#ifndef PHONG_NO_FOG
     output = fogged(output, position);
+#endif
 #endif
 #ifdef TONEMAP_IN_SHADER
     output = tone_mapping(output, view.color_grading);

@@ -13,7 +13,12 @@ fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @locatio
         discard;
     }
 #endif
-    let surface = fragment_surface(in, mapped);
-    let lit = vec4<f32>(lit_color(surface, mapped.emissive), mapped.base_color.a);
+#ifdef PHONG_UNLIT
+    // `PhongMaterial::unlit`: no light, ambient or shadow.
+    let color = mapped.emissive + mapped.base_color.rgb;
+#else
+    let color = lit_color(fragment_surface(in, mapped), mapped.emissive);
+#endif
+    let lit = vec4<f32>(color, mapped.base_color.a);
     return camera_effects(lit, in.world_position.xyz, in.position.xy);
 }

@@ -9,6 +9,8 @@ struct SurfaceInputsUniform {
     output: u32,
     // Written to alpha.
     tag: u32,
+    // 1 where back faces are lit with their normal negated (double-sided).
+    double_sided: u32,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> inputs: SurfaceInputsUniform;
@@ -30,8 +32,11 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> @locatio
     color = in.color;
 #endif
     switch inputs.output {
-        // Only a double-sided material draws back faces: lit with the normal negated.
-        case 1u: { return vec4<f32>(select(-in.world_normal, in.world_normal, is_front), tag); }
+        // A double-sided material lights a back face with its normal negated.
+        case 1u: {
+            let flip = !is_front && inputs.double_sided != 0u;
+            return vec4<f32>(select(in.world_normal, -in.world_normal, flip), tag);
+        }
         case 2u: { return vec4<f32>(uv_and_sign, tag); }
         case 3u: { return vec4<f32>(tangent, tag); }
         case 4u: { return color; }

@@ -1,7 +1,8 @@
-//! Surface inputs beside the texture maps: a mesh's vertex colors (`Mesh::ATTRIBUTE_COLOR`)
-//! and the material's UV transform, rendered on the render device and compared per pixel
-//! with the reference model given each pixel's captured inputs
-//! (`reference::Material::with_vertex_color`, `reference::transformed_uv`).
+//! Surface inputs beside the texture maps: a mesh's vertex colors (`Mesh::ATTRIBUTE_COLOR`),
+//! the material's UV transform and unlit materials, rendered on the render device and
+//! compared per pixel with the reference model given each pixel's captured inputs
+//! (`reference::Material::with_vertex_color`, `reference::transformed_uv`,
+//! `reference::Material::unlit_color`).
 //!
 //! The maps and the texel-edge rule are `texture_maps`'s: the UVs a pixel's maps were
 //! sampled at are computed in `f64` from its captured UV, and pixels within 1/100 texel of
@@ -44,10 +45,8 @@ fn with_vertex_colors(mut mesh: Mesh) -> Mesh {
     mesh
 }
 
-#[test]
-fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
-    let mut harness = Harness::new(SIZE, SIZE);
-    let world = harness.world_mut();
+/// The lights of the texture map test: ambient, directional and point.
+fn spawn_lights(world: &mut World) {
     world.insert_resource(PhongAmbientLight {
         color: Color::srgb(0.2, 0.2, 0.25),
     });
@@ -66,15 +65,53 @@ fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
         },
         Transform::from_xyz(-1.5, 1.5, 2.5),
     ));
+}
 
-    let mut images = world.resource_mut::<Assets<Image>>();
-    let stripes = |x: u32, y: u32| {
+/// A base color map of stripes, every texel opaque.
+fn stripes() -> Image {
+    float_map(|x, y| {
         let level = 0.2 + 0.2 * ((x + 2 * y) % 5) as f32;
         [level, 1.2 - level, 0.5, 1.0]
-    };
-    let base_color = images.add(float_map(stripes));
-    let normals = images.add(normal_map());
+    })
+}
 
+/// Spawns `objects`, renders a frame and compares every pixel with the reference model.
+fn assert_follows_the_reference(
+    mut harness: Harness,
+    objects: impl IntoIterator<Item = (Mesh, Transform, PhongMaterial)>,
+    name: &str,
+) {
+    let world = harness.world_mut();
+    for (mesh, transform, material) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let lights = harness.reference_lights();
+    let images = loaded_images(&mut harness);
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        expected_color(material, surface, pixel, &inputs, &images, &lights)
+    });
+    comparison.assert_within(name, TOLERANCE);
+    assert!(
+        comparison.skipped_pixels < comparison.lit_pixels / 5,
+        "{name}: too few pixels judged: {} lit, {} on texel edges or the mask's cutoff",
+        comparison.lit_pixels,
+        comparison.skipped_pixels
+    );
+}
+
+#[test]
+fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let base_color = images.add(stripes());
+    let normals = images.add(normal_map());
     // Scaled, turned and moved: most of the sphere samples outside [0, 1], where the maps
     // clamp to their edge.
     let moved =
@@ -127,25 +164,44 @@ fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
             colored,
         ),
     ];
-    for (mesh, transform, material) in objects {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
-    }
+    assert_follows_the_reference(harness, objects, "vertex colors and the UV transform");
+}
 
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let lights = harness.reference_lights();
-    let images = loaded_images(&mut harness);
-    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
-        expected_color(material, surface, pixel, &inputs, &images, &lights)
-    });
-    comparison.assert_within("vertex colors and the UV transform", TOLERANCE);
-    assert!(
-        comparison.skipped_pixels < comparison.lit_pixels / 5,
-        "too few pixels judged: {} lit, {} on texel edges or the mask's cutoff",
-        comparison.lit_pixels,
-        comparison.skipped_pixels
-    );
+/// An unlit surface shows `emissive + k_d` (with its vertex colors and maps) whatever the
+/// lights, which are there to be ignored.
+#[test]
+fn unlit_materials_show_their_emissive_and_base_colors_only() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    let base_color = world.resource_mut::<Assets<Image>>().add(stripes());
+    let objects = [
+        (
+            with_vertex_colors(Sphere::new(1.2).mesh().uv(48, 32)),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.9, 0.7, 1.0),
+                base_color_texture: Some(base_color),
+                emissive: LinearRgba::rgb(0.1, 0.05, 0.0),
+                unlit: true,
+                ..default()
+            },
+        ),
+        (
+            Cuboid::new(1.2, 1.2, 1.2).into(),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            PhongMaterial {
+                base_color: Color::srgb(0.3, 0.6, 0.2),
+                unlit: true,
+                ..default()
+            },
+        ),
+        // Lit, beside them.
+        (
+            Cuboid::new(1.2, 1.2, 1.2).into(),
+            Transform::from_xyz(2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(-0.6)),
+            PhongMaterial::from(Color::srgb(0.3, 0.6, 0.2)),
+        ),
+    ];
+    assert_follows_the_reference(harness, objects, "unlit materials");
 }

@@ -264,7 +264,8 @@ pub(crate) fn masked_out(
 }
 
 /// The reference color of a pixel of `material` that is drawn (not masked out), given its
-/// captured inputs and its maps' `texels`; `None` on a texel edge of the normal map.
+/// captured inputs and its maps' `texels` (`emissive + k_d` where it is unlit); `None` on a
+/// texel edge of the normal map.
 pub(crate) fn lit_color(
     material: &PhongMaterial,
     surface: &reference::SurfacePoint,
@@ -274,11 +275,14 @@ pub(crate) fn lit_color(
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
 ) -> Option<DVec3> {
-    let normal = lit_normal(material, surface, pixel, inputs, images)?;
-    let surface = reference::SurfacePoint { normal, ..*surface };
     let mapped = reference::Material::from(material)
         .with_vertex_color(vertex_color(inputs, pixel))
         .mapped(texels);
+    if material.unlit {
+        return Some(mapped.unlit_color());
+    }
+    let normal = lit_normal(material, surface, pixel, inputs, images)?;
+    let surface = reference::SurfacePoint { normal, ..*surface };
     Some(reference::shade(&surface, &mapped, lights))
 }
 

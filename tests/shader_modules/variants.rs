@@ -167,24 +167,44 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
-    (0..1u32 << 10)
-        .map(|bits| {
-            let bit = |index: u32| bits & (1 << index) != 0;
-            PhongMaterialKey {
-                specular: bit(0),
-                base_color_texture: bit(1),
-                specular_texture: bit(2),
-                emissive_texture: bit(3),
-                normal_map: bit(4),
-                alpha_mask: bit(5),
-                shadows: bit(6),
-                soft_shadows: bit(7),
-                double_sided: bit(8),
-                uv_transform: bit(9),
+    let key = |bits: u32, unlit: bool, no_fog: bool| {
+        let bit = |index: u32| bits & (1 << index) != 0;
+        PhongMaterialKey {
+            specular: bit(0),
+            base_color_texture: bit(1),
+            specular_texture: bit(2),
+            emissive_texture: bit(3),
+            normal_map: bit(4),
+            alpha_mask: bit(5),
+            shadows: bit(6),
+            soft_shadows: bit(7),
+            double_sided: bit(8),
+            uv_transform: bit(9),
+            unlit,
+            no_fog,
+            // Neither changes a shader def.
+            cull_mode: Some(bevy::render::render_resource::Face::Back),
+            depth_bias: 0,
+        }
+    };
+    let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10)
+        .map(|bits| key(bits, false, false))
+        .collect();
+    // Unlit and fog off change only the entry's last steps: they are composed with no map
+    // and with every map, under each kind of shadows (`UNLIT_AND_FOG_KEYS`).
+    let every_map = 0b11_0011_1111;
+    for maps in [0, every_map] {
+        for shadows in [0, 1 << 6, 3 << 6] {
+            for (unlit, no_fog) in [(true, false), (false, true), (true, true)] {
+                keys.push(key(maps | shadows, unlit, no_fog));
             }
-        })
-        .collect()
+        }
+    }
+    keys
 }
+
+/// How many keys [`material_keys`] adds for unlit materials and materials without fog.
+pub const UNLIT_AND_FOG_KEYS: usize = 2 * 3 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that

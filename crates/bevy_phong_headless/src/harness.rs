@@ -11,7 +11,7 @@ use bevy::{
     prelude::*,
     render::{
         error_handler::RenderErrorHandler,
-        render_resource::{TextureFormat, TextureUsages},
+        render_resource::{Face, TextureFormat, TextureUsages},
         view::Msaa,
     },
 };
@@ -42,19 +42,29 @@ const MAX_LOAD_FRAMES: u32 = 2_000;
 /// A material whose per-pixel inputs [`Harness`] captures: it says which faces it draws,
 /// so that the capture draws the same ones.
 pub trait CapturedMaterial: Material {
-    /// Whether back faces are drawn too.
+    /// Whether back faces are drawn too, their normal turned toward the viewer.
     fn double_sided(&self) -> bool;
+    /// The faces it culls when not double-sided (`Some(Face::Back)` for most materials).
+    fn cull_mode(&self) -> Option<Face>;
 }
 
 impl CapturedMaterial for PhongMaterial {
     fn double_sided(&self) -> bool {
         self.double_sided
     }
+
+    fn cull_mode(&self) -> Option<Face> {
+        self.cull_mode
+    }
 }
 
 impl<E: MaterialExtension> CapturedMaterial for ExtendedMaterial<PhongMaterial, E> {
     fn double_sided(&self) -> bool {
         self.base.double_sided
+    }
+
+    fn cull_mode(&self) -> Option<Face> {
+        self.base.cull_mode
     }
 }
 
@@ -301,11 +311,15 @@ impl Harness {
             ]);
         }
         let assets = world.resource::<Assets<M>>();
-        let double_sided: HashMap<Handle<M>, bool> = tags
+        let faces: HashMap<Handle<M>, (bool, Option<Face>)> = tags
             .keys()
             .map(|handle| {
-                let drawn = assets.get(handle).is_some_and(M::double_sided);
-                (handle.clone(), drawn)
+                let faces = assets
+                    .get(handle)
+                    .map_or((false, Some(Face::Back)), |material| {
+                        (material.double_sided(), material.cull_mode())
+                    });
+                (handle.clone(), faces)
             })
             .collect();
         let mut images = Vec::new();
@@ -314,7 +328,8 @@ impl Harness {
             for (entity, handle) in &meshes {
                 let material = world.resource_mut::<Assets<SurfaceInputsMaterial>>().add(
                     SurfaceInputsMaterial::new(input, tags[handle])
-                        .with_double_sided(double_sided[handle]),
+                        .with_double_sided(faces[handle].0)
+                        .with_cull_mode(faces[handle].1),
                 );
                 world
                     .entity_mut(*entity)

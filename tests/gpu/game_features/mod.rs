@@ -1,9 +1,11 @@
-//! What a game turns on around its materials: double-sided surfaces, Bevy's fog, HDR, bloom,
-//! tonemapping, MSAA, blending, prepasses, SSAO and the deferred renderer, each rendered
-//! with `PhongMaterial` and checked against what the feature's own formula gives.
+//! What a game turns on around its materials: double-sided surfaces, culled faces and depth
+//! bias, Bevy's fog, HDR, bloom, tonemapping, MSAA, blending, prepasses, SSAO and the
+//! deferred renderer, each rendered with `PhongMaterial` and checked against what the
+//! feature's own formula gives.
 
 mod blend;
 mod double_sided;
+mod faces;
 mod fog;
 mod hdr;
 mod msaa;
