@@ -8,7 +8,7 @@ use bevy::{
     image::Image,
     log::warn,
     math::{Affine2, Mat3, Vec3, Vec4},
-    mesh::{Mesh, MeshVertexBufferLayoutRef},
+    mesh::{Mesh, MeshVertexBufferLayoutRef, UvChannel},
     pbr::{Material, MaterialPipeline, MaterialPipelineKey, MeshPipelineKey},
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
@@ -163,6 +163,29 @@ pub struct PhongMaterial {
     /// Bevy's sorting bias. As `StandardMaterial::depth_bias`. NaN becomes 0 and values
     /// beyond ±2.1·10⁹ are clamped ([`limits::DEPTH_BIAS`]), with a warning. Default `0`.
     pub depth_bias: f32,
+    /// Light baked into a texture (three.js's `lightMap`): its RGB times
+    /// [`light_map_intensity`](Self::light_map_intensity) is added to the ambient light the
+    /// surface receives, before `k_d` (SPEC.md, "Baked light"). Load it as the color data it
+    /// is (sRGB for an 8-bit image). Default none.
+    #[dependency]
+    pub light_map_texture: Option<Handle<Image>>,
+    /// Multiplies the light map, `≥ 0`. Default `1`.
+    pub light_map_intensity: f32,
+    /// The UV set the light map is read at: `Uv1` (`Mesh::ATTRIBUTE_UV_1`, where baked
+    /// light maps are laid out; as read, not moved by `uv_transform`) or `Uv0` (moved by it).
+    /// Default `Uv1`.
+    pub light_map_channel: UvChannel,
+    /// Ambient occlusion baked into a texture (three.js's `aoMap`, glTF's occlusion
+    /// texture): its red channel `r` scales the ambient light and the light map's light by
+    /// `1 + ao_map_intensity · (r − 1)`. Load it as linear data (`is_srgb: false`). Default
+    /// none.
+    #[dependency]
+    pub ao_map_texture: Option<Handle<Image>>,
+    /// How much the AO map occludes: 0 not at all, 1 fully, `≥ 0`. Default `1`.
+    pub ao_map_intensity: f32,
+    /// The UV set the AO map is read at (as [`light_map_channel`](Self::light_map_channel)).
+    /// Default `Uv0`, glTF's.
+    pub ao_map_channel: UvChannel,
 }
 
 impl Default for PhongMaterial {
@@ -187,6 +210,12 @@ impl Default for PhongMaterial {
             fog_enabled: true,
             cull_mode: Some(Face::Back),
             depth_bias: 0.0,
+            light_map_texture: None,
+            light_map_intensity: 1.0,
+            light_map_channel: UvChannel::Uv1,
+            ao_map_texture: None,
+            ao_map_intensity: 1.0,
+            ao_map_channel: UvChannel::Uv0,
         }
     }
 }
@@ -221,6 +250,10 @@ pub struct PhongMaterialUniform {
     pub alpha_cutoff: f32,
     /// [`PhongMaterial::uv_transform`] as a matrix of homogeneous UVs.
     pub uv_transform: Mat3,
+    /// [`PhongMaterial::light_map_intensity`].
+    pub light_map_intensity: f32,
+    /// [`PhongMaterial::ao_map_intensity`].
+    pub ao_map_intensity: f32,
 }
 
 impl PhongMaterialUniform {
@@ -260,6 +293,26 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
                 _ => 0.0,
             },
             uv_transform: Mat3::from(limits::uv_transform(material.uv_transform)),
+            light_map_intensity: limits::INTENSITY.apply(material.light_map_intensity),
+            ao_map_intensity: limits::INTENSITY.apply(material.ao_map_intensity),
+        }
+    }
+}
+
+/// The UV set a map is read at, as [`PhongMaterialKey`] holds Bevy's [`UvChannel`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UvSet {
+    /// `Mesh::ATTRIBUTE_UV_0`, moved by the material's `uv_transform`.
+    First,
+    /// `Mesh::ATTRIBUTE_UV_1`, as the mesh gives it.
+    Second,
+}
+
+impl From<&UvChannel> for UvSet {
+    fn from(channel: &UvChannel) -> Self {
+        match channel {
+            UvChannel::Uv0 => Self::First,
+            UvChannel::Uv1 => Self::Second,
         }
     }
 }
@@ -277,7 +330,9 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
 /// Each texture map the material has adds its own shader def (`PHONG_BASE_COLOR_TEXTURE`,
 /// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_NORMAL_MAP`), a UV transform
 /// other than the identity on a material with maps adds `PHONG_UV_TRANSFORM`, and
-/// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. An
+/// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. A
+/// light map adds `PHONG_LIGHT_MAP`, an AO map `PHONG_AO_MAP` (each with `…_UV_B` on the
+/// second UV set). An
 /// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
 /// `PHONG_NO_FOG`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -307,6 +362,10 @@ pub struct PhongMaterialKey {
     pub cull_mode: Option<Face>,
     /// The constant depth bias, in the depth buffer's steps.
     pub depth_bias: i32,
+    /// The UV set of its light map, if it has one.
+    pub light_map: Option<UvSet>,
+    /// The UV set of its AO map, if it has one.
+    pub ao_map: Option<UvSet>,
     /// Whether some light of the scene casts shadows: only then is the shadow code compiled
     /// in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last off,
     /// compiles the other variant once, as any new variant. The flag is process-wide: apps
@@ -335,6 +394,14 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             no_fog: !material.fog_enabled,
             cull_mode: material.cull_mode,
             depth_bias: limits::DEPTH_BIAS.apply(material.depth_bias) as i32,
+            light_map: material
+                .light_map_texture
+                .as_ref()
+                .map(|_| UvSet::from(&material.light_map_channel)),
+            ao_map: material
+                .ao_map_texture
+                .as_ref()
+                .map(|_| UvSet::from(&material.ao_map_channel)),
             shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
             soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
         }
@@ -384,7 +451,9 @@ impl PhongMaterialKey {
             && (self.base_color_texture
                 || self.specular_texture
                 || self.emissive_texture
-                || (self.normal_map && has_tangents));
+                || (self.normal_map && has_tangents)
+                || self.light_map == Some(UvSet::First)
+                || self.ao_map == Some(UvSet::First));
         if self.uv_transform && samples_a_map {
             defs.push("PHONG_UV_TRANSFORM");
         }
@@ -413,6 +482,37 @@ impl PhongMaterialKey {
                 warn!(
                     "PhongMaterial.{field} is ignored on a mesh without UVs (Mesh::ATTRIBUTE_UV_0)"
                 );
+            }
+        }
+        let baked_maps = [
+            (
+                self.light_map,
+                "PHONG_LIGHT_MAP",
+                "PHONG_LIGHT_MAP_UV_B",
+                "light_map_texture",
+            ),
+            (
+                self.ao_map,
+                "PHONG_AO_MAP",
+                "PHONG_AO_MAP_UV_B",
+                "ao_map_texture",
+            ),
+        ];
+        for (channel, def, uv_b_def, field) in baked_maps {
+            match channel {
+                Some(UvSet::First) if has_uvs => defs.push(def),
+                Some(UvSet::Second) if layout.0.contains(Mesh::ATTRIBUTE_UV_1) => {
+                    defs.extend([def, uv_b_def]);
+                }
+                Some(UvSet::First) => warn!(
+                    "PhongMaterial.{field} is ignored on a mesh without its UV set \
+                     (Mesh::ATTRIBUTE_UV_0)"
+                ),
+                Some(UvSet::Second) => warn!(
+                    "PhongMaterial.{field} is ignored on a mesh without its UV set \
+                     (Mesh::ATTRIBUTE_UV_1)"
+                ),
+                None => {}
             }
         }
         if self.normal_map && has_uvs && has_tangents {

@@ -42,6 +42,9 @@ pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::{Texels, mapped_normal};
 
+#[cfg(test)]
+mod baked_light_tests;
+
 /// A point or spot light whose squared distance from the surface point is at or below this
 /// (closer than 1e-15) lights nothing, here and in the shader.
 pub const MIN_LENGTH_SQUARED: f64 = 1e-30;
@@ -197,7 +200,49 @@ impl Lights {
 /// The color of `surface` made of `material` under `lights` (SPEC.md's equation):
 /// `emissive + ambient ⊙ k_a ⊙ k_d + Σ light_contribution`.
 pub fn shade(surface: &SurfacePoint, material: &Material, lights: &Lights) -> DVec3 {
-    let ambient = lights.ambient * material.ambient_factor * material.diffuse;
+    shade_baked(surface, material, lights, &BakedLight::NONE)
+}
+
+/// What a material's baked maps give a fragment (SPEC.md, "Baked light").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakedLight {
+    /// The light map's light: its texel times its intensity, linear RGB.
+    pub light_map: DVec3,
+    /// The AO map's factor on the indirect light, `1 + intensity · (r − 1)`.
+    pub occlusion: f64,
+}
+
+impl BakedLight {
+    /// No light map and no AO map.
+    pub const NONE: Self = Self {
+        light_map: DVec3::ZERO,
+        occlusion: 1.0,
+    };
+
+    /// The baked light of a fragment whose maps gave `texels`, with the material's
+    /// `light_map_intensity` and `ao_map_intensity`.
+    pub fn from_texels(texels: &Texels, light_map_intensity: f64, ao_map_intensity: f64) -> Self {
+        Self {
+            light_map: texels
+                .light_map
+                .map_or(DVec3::ZERO, |texel| texel * light_map_intensity),
+            occlusion: texels
+                .ao_map
+                .map_or(1.0, |red| 1.0 + ao_map_intensity * (red - 1.0)),
+        }
+    }
+}
+
+/// [`shade`] with the light of a material's baked maps: the indirect light
+/// `(ambient ⊙ k_a + light map) ⊙ k_d` scaled by the AO map's factor.
+pub fn shade_baked(
+    surface: &SurfacePoint,
+    material: &Material,
+    lights: &Lights,
+    baked: &BakedLight,
+) -> DVec3 {
+    let indirect = lights.ambient * material.ambient_factor + baked.light_map;
+    let ambient = indirect * material.diffuse * baked.occlusion;
     lights
         .lights
         .iter()

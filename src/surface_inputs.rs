@@ -45,6 +45,8 @@ pub enum SurfaceInput {
     /// The interpolated vertex color (all four channels, no tag in alpha); white where the
     /// mesh has none.
     VertexColor,
+    /// The mesh's second UV set (xy); zeros where the mesh has none.
+    SecondUv,
 }
 
 /// A material that writes, instead of a lit color, the world position or normal that
@@ -88,6 +90,7 @@ impl SurfaceInputsMaterial {
             SurfaceInput::UvAndTangentSign => 2,
             SurfaceInput::WorldTangent => 3,
             SurfaceInput::VertexColor => 4,
+            SurfaceInput::SecondUv => 5,
         };
         Self {
             output: SurfaceInputUniform {
@@ -141,7 +144,7 @@ impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, ShaderType)]
 pub struct SurfaceInputUniform {
     /// `0`: world position; `1`: world normal; `2`: UV and tangent sign; `3`: world tangent;
-    /// `4`: vertex color.
+    /// `4`: vertex color; `5`: second UV set.
     pub output: u32,
     /// Written to alpha.
     pub tag: u32,

@@ -37,6 +37,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
 /// | `uv_transform` (`KHR_texture_transform`, as Bevy's loader reads it) | `uv_transform` |
 /// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
+/// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` |
 /// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
 /// | | `ambient_factor = 1` |
 ///
@@ -54,7 +55,8 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// become 0, alpha 1). The result never holds a NaN.
 ///
 /// What has no counterpart is left out (see [`unmapped_gltf_features`]): the
-/// metallic/roughness and occlusion maps, other UV sets than the first, transmission, volume, clearcoat and anisotropy. When `label` is
+/// metallic/roughness map, other UV sets than the first for the base color, emissive and
+/// normal maps, transmission, volume, clearcoat and anisotropy. When `label` is
 /// `Some`, one warning naming it lists them.
 ///
 /// ```
@@ -111,6 +113,8 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         double_sided: material.double_sided,
         uv_transform: material.uv_transform,
         unlit: material.unlit,
+        ao_map_texture: material.occlusion_texture.clone(),
+        ao_map_channel: material.occlusion_channel.clone(),
         ..PhongMaterial::default()
     }
 }
@@ -155,7 +159,6 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
         material.metallic_roughness_texture.is_some(),
         "metallicRoughnessTexture",
     );
-    note(material.occlusion_texture.is_some(), "occlusionTexture");
     note(
         [
             &material.base_color_channel,
@@ -409,10 +412,24 @@ mod tests {
     }
 
     #[test]
+    fn the_occlusion_texture_is_the_ao_map_on_its_uv_set() {
+        let occlusion = Handle::<Image>::default();
+        let material = GltfMaterial {
+            occlusion_texture: Some(occlusion.clone()),
+            occlusion_channel: UvChannel::Uv1,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert_eq!(phong.ao_map_texture, Some(occlusion));
+        assert_eq!(phong.ao_map_channel, UvChannel::Uv1);
+        assert_eq!(phong.ao_map_intensity, 1.0);
+        assert!(unmapped_gltf_features(&material).is_empty());
+    }
+
+    #[test]
     fn maps_without_a_counterpart_are_listed() {
         let material = GltfMaterial {
             metallic_roughness_texture: Some(Handle::default()),
-            occlusion_texture: Some(Handle::default()),
             normal_map_channel: UvChannel::Uv1,
             ..Default::default()
         };
@@ -420,7 +437,6 @@ mod tests {
             unmapped_gltf_features(&material),
             [
                 "metallicRoughnessTexture",
-                "occlusionTexture",
                 "texCoord 1 (PhongMaterial samples the first UV set)",
             ]
         );

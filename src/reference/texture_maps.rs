@@ -16,6 +16,10 @@ pub struct Texels {
     pub emissive: Option<DVec3>,
     /// The normal map's RGB, in `[0, 1]`.
     pub normal: Option<DVec3>,
+    /// The light map's RGB; times its intensity, added to the ambient light.
+    pub light_map: Option<DVec3>,
+    /// The AO map's red channel.
+    pub ao_map: Option<f64>,
 }
 
 impl Material {
@@ -75,6 +79,8 @@ mod tests {
             specular: Some(DVec3::new(0.0, 1.0, 0.5)),
             emissive: Some(DVec3::splat(2.0)),
             normal: None,
+            light_map: Some(DVec3::ONE),
+            ao_map: Some(0.5),
         };
         let mapped = material().mapped(&texels);
         assert_eq!(mapped.diffuse, DVec3::new(0.25, 0.3, 0.7));

@@ -23,7 +23,8 @@ use bevy::{
 };
 
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
-/// uniform, 3 to 10 the four texture maps, each followed by its sampler.
+/// uniform, 3 to 10 the four texture maps and 14 to 17 the light and AO maps, each followed
+/// by its sampler.
 #[derive(AsBindGroup)]
 struct SurfaceBindings {
     #[uniform(0)]
@@ -40,6 +41,12 @@ struct SurfaceBindings {
     #[texture(9)]
     #[sampler(10)]
     normal_map_texture: Option<Handle<Image>>,
+    #[texture(14)]
+    #[sampler(15)]
+    light_map_texture: Option<Handle<Image>>,
+    #[texture(16)]
+    #[sampler(17)]
+    ao_map_texture: Option<Handle<Image>>,
 }
 
 impl From<&PhongMaterial> for SurfaceBindings {
@@ -50,6 +57,8 @@ impl From<&PhongMaterial> for SurfaceBindings {
             specular_texture: material.specular_texture.clone(),
             emissive_texture: material.emissive_texture.clone(),
             normal_map_texture: material.normal_map_texture.clone(),
+            light_map_texture: material.light_map_texture.clone(),
+            ao_map_texture: material.ao_map_texture.clone(),
         }
     }
 }

@@ -6,6 +6,7 @@ use bevy::{
     asset::{AssetLoader, LoadContext, io::Reader},
     image::{Image, ImageLoaderSettings},
     math::{Affine2, Vec2},
+    mesh::UvChannel,
     prelude::{AlphaMode, Handle},
     reflect::TypePath,
     render::render_resource::Face,
@@ -25,8 +26,8 @@ use serde::{Deserialize, Serialize};
 /// )
 /// ```
 ///
-/// Texture paths are relative to the file that names them. Specular and normal maps are
-/// loaded as linear data (`is_srgb: false`), base color and emissive maps as sRGB.
+/// Texture paths are relative to the file that names them. Specular, normal and AO maps are
+/// loaded as linear data (`is_srgb: false`), base color, emissive and light maps as sRGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct PhongMaterialDescription {
@@ -68,6 +69,36 @@ pub struct PhongMaterialDescription {
     pub cull_mode: CullModeDescription,
     /// Depth bias, in the depth buffer's steps (positive: toward the camera). Default `0`.
     pub depth_bias: f32,
+    /// Path of the light map (loaded as sRGB). Default none.
+    pub light_map_texture: Option<String>,
+    /// Multiplier on the light map. Default `1`.
+    pub light_map_intensity: f32,
+    /// The light map's UV set: `Uv0` or `Uv1`. Default `Uv1`.
+    pub light_map_channel: UvChannelDescription,
+    /// Path of the ambient occlusion map (red channel, loaded as linear data). Default none.
+    pub ao_map_texture: Option<String>,
+    /// How much the AO map occludes. Default `1`.
+    pub ao_map_intensity: f32,
+    /// The AO map's UV set: `Uv0` or `Uv1`. Default `Uv0`.
+    pub ao_map_channel: UvChannelDescription,
+}
+
+/// A mesh's UV set, as a file names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum UvChannelDescription {
+    /// `Mesh::ATTRIBUTE_UV_0`.
+    Uv0,
+    /// `Mesh::ATTRIBUTE_UV_1`.
+    Uv1,
+}
+
+impl UvChannelDescription {
+    fn to_channel(self) -> UvChannel {
+        match self {
+            Self::Uv0 => UvChannel::Uv0,
+            Self::Uv1 => UvChannel::Uv1,
+        }
+    }
 }
 
 /// The faces a material culls, as a file names them.
@@ -162,6 +193,12 @@ impl Default for PhongMaterialDescription {
             fog_enabled: material.fog_enabled,
             cull_mode: CullModeDescription::Back,
             depth_bias: material.depth_bias,
+            light_map_texture: None,
+            light_map_intensity: material.light_map_intensity,
+            light_map_channel: UvChannelDescription::Uv1,
+            ao_map_texture: None,
+            ao_map_intensity: material.ao_map_intensity,
+            ao_map_channel: UvChannelDescription::Uv0,
         }
     }
 }
@@ -210,6 +247,12 @@ impl PhongMaterialDescription {
             fog_enabled: self.fog_enabled,
             cull_mode: self.cull_mode.to_face(),
             depth_bias: self.depth_bias,
+            light_map_texture: map(&self.light_map_texture, "light_map_texture", true)?,
+            light_map_intensity: self.light_map_intensity,
+            light_map_channel: self.light_map_channel.to_channel(),
+            ao_map_texture: map(&self.ao_map_texture, "ao_map_texture", false)?,
+            ao_map_intensity: self.ao_map_intensity,
+            ao_map_channel: self.ao_map_channel.to_channel(),
         })
     }
 }

@@ -38,7 +38,7 @@ pub(crate) use error::{read_ron, scene_color};
 pub use loader::{PhongScene, PhongSceneLoader, SceneLight};
 pub use material_file::{
     AlphaModeDescription, CullModeDescription, PhongMaterialDescription, PhongMaterialLoader,
-    UvTransformDescription,
+    UvChannelDescription, UvTransformDescription,
 };
 pub(crate) use relative_path::relative_path;
 pub(crate) use spawn::spawn_phong_scenes;

@@ -100,6 +100,7 @@ fn phong_surface(
         specular_model,
         true,
         vec3<f32>(1.0),
+        vec3<f32>(0.0),
     );
 }
 

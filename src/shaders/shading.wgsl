@@ -36,7 +36,8 @@ fn receives_shadows(instance_index: u32) -> bool {
 
 // ambient ⊙ k_a ⊙ k_d, times the surface's ambient occlusion
 fn ambient_light(surface: PhongSurface) -> vec3<f32> {
-    return ambient_color() * material.ambient_factor * surface.diffuse * surface.ambient_occlusion;
+    let indirect = ambient_color() * material.ambient_factor + surface.baked_light;
+    return indirect * surface.diffuse * surface.ambient_occlusion;
 }
 
 // Σ over every light that reaches the surface point: the directional lights, the point and
@@ -159,7 +160,8 @@ fn fragment_surface(in: VertexOutput, mapped: MappedMaterial) -> PhongSurface {
         material.flags & 3u,
     );
     surface.receives_shadows = receives_shadows(in.instance_index);
-    surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb);
+    surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb) * mapped.occlusion;
+    surface.baked_light = mapped.baked_light;
     return surface;
 }
 

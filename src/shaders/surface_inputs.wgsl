@@ -5,7 +5,7 @@
 struct SurfaceInputsUniform {
     // 0: world position P; 1: interpolated world normal (not normalized); 2: UV and the
     // tangent's handedness; 3: interpolated world tangent (not normalized); 4: vertex color
-    // (its own alpha, no tag).
+    // (its own alpha, no tag); 5: the second UV set.
     output: u32,
     // Written to alpha.
     tag: u32,
@@ -27,6 +27,10 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> @locatio
     uv_and_sign.z = in.world_tangent.w;
     tangent = in.world_tangent.xyz;
 #endif
+    var uv_b = vec2<f32>(0.0);
+#ifdef VERTEX_UVS_B
+    uv_b = in.uv_b;
+#endif
     var color = vec4<f32>(1.0);
 #ifdef VERTEX_COLORS
     color = in.color;
@@ -40,6 +44,7 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> @locatio
         case 2u: { return vec4<f32>(uv_and_sign, tag); }
         case 3u: { return vec4<f32>(tangent, tag); }
         case 4u: { return color; }
+        case 5u: { return vec4<f32>(uv_b, 0.0, tag); }
         default: { return vec4<f32>(in.world_position.xyz, tag); }
     }
 }

@@ -10,6 +10,8 @@
     base_color_texture, base_color_sampler,
     specular_texture, specular_sampler,
     emissive_texture, emissive_sampler,
+    light_map_texture, light_map_sampler,
+    ao_map_texture, ao_map_sampler,
 }
 #import bevy_phong::normals::facing_normal
 #import bevy_phong::uv::map_uv
@@ -27,12 +29,18 @@ struct MappedMaterial {
     emissive: vec3<f32>,
     // The surface normal, any length (normalized by `phong_surface`).
     normal: vec3<f32>,
+    // The light map's light, times its intensity (zero without one).
+    baked_light: vec3<f32>,
+    // The AO map's factor on the indirect light, 1 + intensity · (texel.r − 1) (1 without one).
+    occlusion: f32,
 }
 
 // `is_front`: the fragment's `@builtin(front_facing)`.
 fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
     let normal = facing_normal(in.world_normal, is_front);
-    var mapped = MappedMaterial(material.base_color, material.specular, material.emissive, normal);
+    var mapped = MappedMaterial(
+        material.base_color, material.specular, material.emissive, normal, vec3<f32>(0.0), 1.0,
+    );
 #ifdef VERTEX_COLORS
     mapped.base_color *= in.color;
 #endif
@@ -50,6 +58,24 @@ fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
 #endif
 #ifdef PHONG_NORMAL_MAP
     mapped.normal = with_normal_map(normal, in.world_tangent, uv);
+#endif
+#ifdef PHONG_LIGHT_MAP
+#ifdef PHONG_LIGHT_MAP_UV_B
+    let light_map_uv = in.uv_b;
+#else
+    let light_map_uv = uv;
+#endif
+    let light_map = textureSample(light_map_texture, light_map_sampler, light_map_uv).rgb;
+    mapped.baked_light = light_map * material.light_map_intensity;
+#endif
+#ifdef PHONG_AO_MAP
+#ifdef PHONG_AO_MAP_UV_B
+    let ao_map_uv = in.uv_b;
+#else
+    let ao_map_uv = uv;
+#endif
+    let ao = textureSample(ao_map_texture, ao_map_sampler, ao_map_uv).r;
+    mapped.occlusion = 1.0 + material.ao_map_intensity * (ao - 1.0);
 #endif
     return mapped;
 }

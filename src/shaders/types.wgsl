@@ -147,6 +147,10 @@ struct PhongMaterialUniform {
     alpha_cutoff: f32,
     // With PHONG_UV_TRANSFORM, the maps are sampled at (uv_transform · (uv, 1)).xy.
     uv_transform: mat3x3<f32>,
+    // With PHONG_LIGHT_MAP, the light map's texel times this is added to the ambient light.
+    light_map_intensity: f32,
+    // With PHONG_AO_MAP, the indirect light is scaled by 1 + this · (ao texel.r − 1).
+    ao_map_intensity: f32,
 }
 
 // A surface point, ready to be lit.
@@ -169,8 +173,11 @@ struct PhongSurface {
     // Whether shadows darken it (false for meshes with `NotShadowReceiver`).
     receives_shadows: bool,
     // Scales the ambient term per channel: 1, or the view's screen-space ambient occlusion
-    // (`bevy_phong::camera_effects::ambient_occlusion`).
+    // (`bevy_phong::camera_effects::ambient_occlusion`) times the material's AO map.
     ambient_occlusion: vec3<f32>,
+    // Light baked into the material's light map, linear RGB, added to the ambient light
+    // before k_d (zero without one).
+    baked_light: vec3<f32>,
 }
 
 const SPECULAR_MODEL_PHONG: u32 = 0u;

@@ -1,5 +1,6 @@
 //! Surface inputs beside the texture maps: a mesh's vertex colors (`Mesh::ATTRIBUTE_COLOR`),
-//! the material's UV transform and unlit materials, rendered on the render device and
+//! the material's UV transform, unlit materials, and light and AO maps on either UV set,
+//! rendered on the render device and
 //! compared per pixel with the reference model given each pixel's captured inputs
 //! (`reference::Material::with_vertex_color`, `reference::transformed_uv`,
 //! `reference::Material::unlit_color`).
@@ -12,7 +13,11 @@
 
 use crate::frames::{SIZE, TOLERANCE};
 use crate::texture_maps::{expected_color, float_map, loaded_images, normal_map};
-use bevy::{math::Affine2, prelude::*};
+use bevy::{
+    math::Affine2,
+    mesh::{UvChannel, VertexAttributeValues},
+    prelude::*,
+};
 use bevy_phong::prelude::*;
 use bevy_phong_headless::Harness;
 
@@ -204,4 +209,76 @@ fn unlit_materials_show_their_emissive_and_base_colors_only() {
         ),
     ];
     assert_follows_the_reference(harness, objects, "unlit materials");
+}
+
+/// `mesh` with a second UV set: its first, turned a quarter and shrunk into the middle.
+fn with_second_uvs(mut mesh: Mesh) -> Mesh {
+    let uvs = mesh
+        .attribute(Mesh::ATTRIBUTE_UV_0)
+        .and_then(|uvs| match uvs {
+            VertexAttributeValues::Float32x2(uvs) => Some(uvs.clone()),
+            _ => None,
+        })
+        .expect("a mesh with UVs");
+    let second: Vec<[f32; 2]> = uvs
+        .iter()
+        .map(|&[u, v]| [0.9 - 0.8 * v, 0.1 + 0.8 * u])
+        .collect();
+    mesh.insert_attribute(Mesh::ATTRIBUTE_UV_1, second);
+    mesh
+}
+
+/// Light maps add their light to the ambient light and AO maps scale both, on either UV
+/// set (the first moved by the UV transform), as the reference model says on each pixel's
+/// texels (`reference::shade_baked`).
+#[test]
+fn light_and_ao_maps_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    world.insert_resource(PhongAmbientLight {
+        color: Color::srgb(0.35, 0.35, 0.4),
+    });
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let base_color = images.add(stripes());
+    let light_map = images.add(float_map(|x, y| {
+        let level = 0.1 + 0.2 * ((3 * x + y) % 4) as f32;
+        [level, 0.8 - level, 0.4, 1.0]
+    }));
+    let ao_map = images.add(float_map(|x, y| {
+        [0.2 + 0.25 * ((x + 3 * y) % 4) as f32, 0.0, 0.0, 1.0]
+    }));
+    let objects = [
+        (
+            with_second_uvs(Sphere::new(1.2).mesh().uv(48, 32)),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            PhongMaterial {
+                base_color_texture: Some(base_color),
+                light_map_texture: Some(light_map.clone()),
+                light_map_intensity: 1.5,
+                ao_map_texture: Some(ao_map.clone()),
+                ao_map_intensity: 0.8,
+                uv_transform: Affine2::from_scale_angle_translation(
+                    Vec2::new(1.3, 0.7),
+                    0.2,
+                    Vec2::new(-0.1, 0.2),
+                ),
+                ..default()
+            },
+        ),
+        (
+            with_second_uvs(Cuboid::new(1.2, 1.2, 1.2).into()),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.7, 0.9),
+                light_map_texture: Some(light_map),
+                light_map_intensity: 0.5,
+                light_map_channel: UvChannel::Uv0,
+                ao_map_texture: Some(ao_map),
+                ao_map_channel: UvChannel::Uv1,
+                ..default()
+            },
+        ),
+    ];
+    assert_follows_the_reference(harness, objects, "light and AO maps");
 }

@@ -13,6 +13,7 @@ use crate::frames::{SIZE, TOLERANCE};
 use bevy::{
     asset::RenderAssetUsages,
     image::{Image, ImageSampler},
+    mesh::UvChannel,
     prelude::*,
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
@@ -150,6 +151,23 @@ pub(crate) fn sampled_uv(
     reference::transformed_uv(transform, uv).to_array()
 }
 
+/// The UVs a map of `material` on `channel` is sampled at in pixel `pixel`: the first set
+/// as [`sampled_uv`] gives it, the second as captured.
+fn map_uv(
+    material: &PhongMaterial,
+    channel: &UvChannel,
+    inputs: &SurfaceInputs,
+    pixel: usize,
+) -> [f64; 2] {
+    match channel {
+        UvChannel::Uv0 => sampled_uv(material, inputs, pixel),
+        UvChannel::Uv1 => {
+            let uv = inputs.second_uvs.as_ref().unwrap().pixels[pixel];
+            [uv[0].into(), uv[1].into()]
+        }
+    }
+}
+
 /// The interpolated vertex color of pixel `pixel` (white where the mesh has none).
 pub(crate) fn vertex_color(inputs: &SurfaceInputs, pixel: usize) -> DVec4 {
     let color = inputs.colors.as_ref().unwrap().pixels[pixel];
@@ -205,15 +223,18 @@ pub(crate) fn lit_normal(
     })
 }
 
-/// The texels each of `material`'s maps gives at `uv` (see [`sampled_uv`]), sRGB maps
-/// decoded as `decoding` says; `None` on a texel edge.
+/// The texels each of `material`'s maps gives in pixel `pixel` (at the UVs of
+/// [`sampled_uv`], or the second set for a light or AO map on it), sRGB maps decoded as
+/// `decoding` says; `None` on a texel edge.
 pub(crate) fn texels_at(
     material: &PhongMaterial,
-    uv: [f64; 2],
+    inputs: &SurfaceInputs,
+    pixel: usize,
     images: &HashMap<AssetId<Image>, Image>,
     decoding: SrgbDecoding,
 ) -> Option<reference::Texels> {
-    let sample = |map: &Option<Handle<Image>>| -> Result<Option<DVec4>, ()> {
+    let uv = sampled_uv(material, inputs, pixel);
+    let sample_at = |map: &Option<Handle<Image>>, uv: [f64; 2]| -> Result<Option<DVec4>, ()> {
         match map {
             None => Ok(None),
             Some(handle) => texel_at(&images[&handle.id()], uv, decoding)
@@ -221,6 +242,9 @@ pub(crate) fn texels_at(
                 .ok_or(()),
         }
     };
+    let sample = |map: &Option<Handle<Image>>| sample_at(map, uv);
+    let light_map_uv = map_uv(material, &material.light_map_channel, inputs, pixel);
+    let ao_map_uv = map_uv(material, &material.ao_map_channel, inputs, pixel);
     Some(reference::Texels {
         base_color: sample(&material.base_color_texture).ok()?,
         specular: sample(&material.specular_texture)
@@ -232,6 +256,12 @@ pub(crate) fn texels_at(
         normal: sample(&material.normal_map_texture)
             .ok()?
             .map(DVec4::truncate),
+        light_map: sample_at(&material.light_map_texture, light_map_uv)
+            .ok()?
+            .map(DVec4::truncate),
+        ao_map: sample_at(&material.ao_map_texture, ao_map_uv)
+            .ok()?
+            .map(|texel| texel.x),
     })
 }
 
@@ -283,7 +313,12 @@ pub(crate) fn lit_color(
     }
     let normal = lit_normal(material, surface, pixel, inputs, images)?;
     let surface = reference::SurfacePoint { normal, ..*surface };
-    Some(reference::shade(&surface, &mapped, lights))
+    let baked = reference::BakedLight::from_texels(
+        texels,
+        f64::from(material.light_map_intensity),
+        f64::from(material.ao_map_intensity),
+    );
+    Some(reference::shade_baked(&surface, &mapped, lights, &baked))
 }
 
 /// The reference color of a pixel of `material`, given its captured inputs; `None` on a
@@ -297,8 +332,7 @@ pub(crate) fn expected_color(
     lights: &reference::Lights,
 ) -> Option<DVec3> {
     // The maps here are linear (`Rgba8Unorm`): nothing to decode.
-    let uv = sampled_uv(material, inputs, pixel);
-    let texels = texels_at(material, uv, images, SrgbDecoding::Exact)?;
+    let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
     if masked_out(material, &texels, vertex_color(inputs, pixel).w)? {
         return Some(DVec3::ZERO);
     }

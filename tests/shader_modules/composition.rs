@@ -80,9 +80,9 @@ fn every_module_of_the_crate_validates_whole_with_every_combination_of_its_defs(
     let variants = variants::phong_def_combinations();
     assert_eq!(
         variants.len(),
-        2 * (3 * ((1 << 7) - 4) + variants::UNLIT_AND_FOG_KEYS),
+        2 * (3 * ((1 << 7) - 4) + variants::EXTRA_DEF_SETS),
         "on both devices, every subset of the seven defs but the four with the UV transform and \
-         no map, each without, with hard and with soft shadows, and the unlit and fogless keys"
+         no map, each without, with hard and with soft shadows, and the extra keys' sets"
     );
     for module in modules {
         assert_every_variant_validates(module, &variants);

@@ -11,7 +11,7 @@ use bevy::{
     },
     shader::ShaderDefVal,
 };
-use bevy_phong::PhongMaterialKey;
+use bevy_phong::{PhongMaterialKey, UvSet};
 use std::collections::BTreeSet;
 
 /// One set of shader defs, with a name that says where it comes from.
@@ -23,7 +23,8 @@ pub struct Variant {
 
 /// The vertex attributes of the meshes a material may be drawn on: without UVs, with UVs
 /// (Bevy's primitive shapes), with UVs and tangents (`Mesh::with_generated_tangents`), with
-/// tangents but no UVs, and with vertex colors beside UVs and tangents (glTF's `COLOR_0`).
+/// tangents but no UVs, and with a second UV set and vertex colors beside UVs and tangents
+/// (glTF's `TEXCOORD_1`, `COLOR_0`).
 fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
     let mut layouts = MeshVertexBufferLayouts::default();
     let kinds: [(&str, bool, bool, bool); 5] = [
@@ -51,6 +52,7 @@ fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
                 mesh.insert_attribute(Mesh::ATTRIBUTE_TANGENT, vec![[1.0f32, 0.0, 0.0, 1.0]; 3]);
             }
             if colors {
+                mesh.insert_attribute(Mesh::ATTRIBUTE_UV_1, vec![[0.0f32; 2]; 3]);
                 mesh.insert_attribute(Mesh::ATTRIBUTE_COLOR, vec![[1.0f32; 4]; 3]);
             }
             (name, mesh.get_mesh_vertex_buffer_layout(&mut layouts))
@@ -167,7 +169,7 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
-    let key = |bits: u32, unlit: bool, no_fog: bool| {
+    let key = |bits: u32, unlit: bool, no_fog: bool, baked: (Option<UvSet>, Option<UvSet>)| {
         let bit = |index: u32| bits & (1 << index) != 0;
         PhongMaterialKey {
             specular: bit(0),
@@ -185,26 +187,42 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             // Neither changes a shader def.
             cull_mode: Some(bevy::render::render_resource::Face::Back),
             depth_bias: 0,
+            light_map: baked.0,
+            ao_map: baked.1,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10)
-        .map(|bits| key(bits, false, false))
+        .map(|bits| key(bits, false, false, (None, None)))
         .collect();
-    // Unlit and fog off change only the entry's last steps: they are composed with no map
-    // and with every map, under each kind of shadows (`UNLIT_AND_FOG_KEYS`).
+    // Unlit, fog off and the baked maps change only a few steps of the entry: they are
+    // composed with no map and with every map, under each kind of shadows
+    // (`EXTRA_DEF_SETS`).
     let every_map = 0b11_0011_1111;
+    let baked_maps = [
+        (Some(UvSet::First), None),
+        (Some(UvSet::Second), None),
+        (None, Some(UvSet::First)),
+        (None, Some(UvSet::Second)),
+        (Some(UvSet::Second), Some(UvSet::First)),
+    ];
     for maps in [0, every_map] {
         for shadows in [0, 1 << 6, 3 << 6] {
             for (unlit, no_fog) in [(true, false), (false, true), (true, true)] {
-                keys.push(key(maps | shadows, unlit, no_fog));
+                keys.push(key(maps | shadows, unlit, no_fog, (None, None)));
+            }
+            for baked in baked_maps {
+                keys.push(key(maps | shadows, false, false, baked));
             }
         }
     }
     keys
 }
 
-/// How many keys [`material_keys`] adds for unlit materials and materials without fog.
-pub const UNLIT_AND_FOG_KEYS: usize = 2 * 3 * 3;
+/// How many distinct def sets the extra keys of [`material_keys`] give on a mesh with one
+/// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
+/// set (2; on the second they are left out there), each with no map and every map, under 3
+/// kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
@@ -371,6 +389,9 @@ pub fn phong_prepass() -> Vec<Variant> {
             }
             if layout.0.contains(Mesh::ATTRIBUTE_UV_0) {
                 prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_A".into()]);
+            }
+            if layout.0.contains(Mesh::ATTRIBUTE_UV_1) {
+                prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_B".into()]);
             }
             if layout.0.contains(Mesh::ATTRIBUTE_COLOR) {
                 prepass.push("VERTEX_COLORS".into());

@@ -69,7 +69,7 @@ impl<E: MaterialExtension> CapturedMaterial for ExtendedMaterial<PhongMaterial, 
 }
 
 /// Per-pixel inputs of the lighting equation: world position and normal (with texture maps
-/// also UV, tangent and vertex color), and in alpha the tag of the material that covers the pixel (0 for
+/// also UVs, tangent and vertex color), and in alpha the tag of the material that covers the pixel (0 for
 /// background).
 pub struct SurfaceInputs<M: Material = PhongMaterial> {
     /// World position in xyz, material tag in alpha.
@@ -82,6 +82,8 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub tangents: Option<FloatImage>,
     /// The interpolated vertex color, RGBA (white where the mesh has none).
     pub colors: Option<FloatImage>,
+    /// The second UV set in xy (zeros where the mesh has none).
+    pub second_uvs: Option<FloatImage>,
     /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
 }
@@ -283,8 +285,8 @@ impl Harness {
         self.capture::<M>(false)
     }
 
-    /// As [`Self::capture_inputs`], with the UVs and tangents that texture maps need and the
-    /// vertex colors.
+    /// As [`Self::capture_inputs`], with the UV sets and tangents that texture maps need and
+    /// the vertex colors.
     pub fn capture_inputs_with_maps(&mut self) -> SurfaceInputs {
         self.capture::<PhongMaterial>(true)
     }
@@ -308,6 +310,7 @@ impl Harness {
                 SurfaceInput::UvAndTangentSign,
                 SurfaceInput::WorldTangent,
                 SurfaceInput::VertexColor,
+                SurfaceInput::SecondUv,
             ]);
         }
         let assets = world.resource::<Assets<M>>();
@@ -354,6 +357,7 @@ impl Harness {
             uvs: images.next(),
             tangents: images.next(),
             colors: images.next(),
+            second_uvs: images.next(),
             materials: tags
                 .into_iter()
                 .map(|(handle, tag)| (tag, handle))

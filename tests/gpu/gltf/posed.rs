@@ -14,8 +14,7 @@ use super::{
 use crate::{
     frames::TOLERANCE,
     texture_maps::{
-        SrgbDecoding, lit_color, loaded_images, masked_out, output_alpha, sampled_uv, texels_at,
-        vertex_color,
+        SrgbDecoding, lit_color, loaded_images, masked_out, output_alpha, texels_at, vertex_color,
     },
 };
 use bevy::{
@@ -188,8 +187,7 @@ impl Scene<'_> {
             return Some(DVec3::ZERO);
         };
         let material = &self.materials[&handle.id()];
-        let uv = sampled_uv(material, inputs, pixel);
-        let texels = texels_at(material, uv, self.images, decoding)?;
+        let texels = texels_at(material, inputs, pixel, self.images, decoding)?;
         let vertex_alpha = vertex_color(inputs, pixel).w;
         let through = |weight: f64| -> Option<DVec3> {
             let behind = behind.expect("masked and blended primitives are not behind others");
