@@ -158,14 +158,14 @@ pub struct ObjectDescription {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum MaterialSource {
     /// Written in the scene file.
-    Inline(PhongMaterialDescription),
+    Inline(Box<PhongMaterialDescription>),
     /// A `*.phong.ron` file, relative to the scene file.
     File(String),
 }
 
 impl Default for MaterialSource {
     fn default() -> Self {
-        MaterialSource::Inline(PhongMaterialDescription::default())
+        MaterialSource::Inline(Box::default())
     }
 }
 
