@@ -166,10 +166,11 @@ pub struct PhongMaterial {
     /// Light baked into a texture (three.js's `lightMap`): its RGB times
     /// [`light_map_intensity`](Self::light_map_intensity) is added to the ambient light the
     /// surface receives, before `k_d` (SPEC.md, "Baked light"). Load it as the color data it
-    /// is (sRGB for an 8-bit image). Default none.
+    /// is (sRGB for an 8-bit image). Bevy's `Lightmap` component on the mesh adds its light
+    /// the same way, times the same intensity. Default none.
     #[dependency]
     pub light_map_texture: Option<Handle<Image>>,
-    /// Multiplies the light map, `≥ 0`. Default `1`.
+    /// Multiplies the light map and Bevy's `Lightmap`, `≥ 0`. Default `1`.
     pub light_map_intensity: f32,
     /// The UV set the light map is read at: `Uv1` (`Mesh::ATTRIBUTE_UV_1`, where baked
     /// light maps are laid out; as read, not moved by `uv_transform`) or `Uv0` (moved by it).

@@ -15,6 +15,9 @@
 }
 #import bevy_phong::normals::facing_normal
 #import bevy_phong::uv::map_uv
+#ifdef LIGHTMAP
+#import bevy_pbr::lightmap::lightmap
+#endif
 #ifdef PHONG_NORMAL_MAP
 #import bevy_phong::normals::with_normal_map
 #endif
@@ -29,7 +32,8 @@ struct MappedMaterial {
     emissive: vec3<f32>,
     // The surface normal, any length (normalized by `phong_surface`).
     normal: vec3<f32>,
-    // The light map's light, times its intensity (zero without one).
+    // The light map's light and Bevy's `Lightmap`'s, times the light map intensity (zero
+    // without either).
     baked_light: vec3<f32>,
     // The AO map's factor on the indirect light, 1 + intensity · (texel.r − 1) (1 without one).
     occlusion: f32,
@@ -67,6 +71,11 @@ fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
 #endif
     let light_map = textureSample(light_map_texture, light_map_sampler, light_map_uv).rgb;
     mapped.baked_light = light_map * material.light_map_intensity;
+#endif
+#ifdef LIGHTMAP
+    // Bevy's `Lightmap` component on the mesh: its texture at the second UV set mapped into
+    // its UV rectangle, as `StandardMaterial` reads it, times the light map intensity.
+    mapped.baked_light += lightmap(in.uv_b, material.light_map_intensity, in.instance_index);
 #endif
 #ifdef PHONG_AO_MAP
 #ifdef PHONG_AO_MAP_UV_B

@@ -12,10 +12,14 @@
 //! `f32` product to `k_d`.
 
 use crate::frames::{SIZE, TOLERANCE};
-use crate::texture_maps::{expected_color, float_map, loaded_images, normal_map};
+use crate::texture_maps::{
+    SrgbDecoding, expected_color, float_map, lit_color, loaded_images, normal_map, texel_at,
+    texels_at,
+};
 use bevy::{
     math::Affine2,
     mesh::{UvChannel, VertexAttributeValues},
+    pbr::Lightmap,
     prelude::*,
 };
 use bevy_phong::prelude::*;
@@ -281,4 +285,69 @@ fn light_and_ao_maps_follow_the_reference_model() {
         ),
     ];
     assert_follows_the_reference(harness, objects, "light and AO maps");
+}
+
+/// Bevy's `Lightmap` component lights a Phong mesh as it lights a `StandardMaterial` one:
+/// its texture, read at the second UV set mapped into its UV rectangle (whose corners Bevy
+/// packs into 16-bit fractions), times the material's light map intensity, adds to the
+/// ambient light, and the AO map darkens it.
+#[test]
+fn bevys_lightmap_component_adds_its_light_as_a_light_map() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let baked = images.add(float_map(|x, y| {
+        let level = 0.15 + 0.2 * ((x + 3 * y) % 4) as f32;
+        [0.9 - level, level, 0.3, 1.0]
+    }));
+    let ao_map = images.add(float_map(|x, y| {
+        [0.3 + 0.2 * ((2 * x + y) % 4) as f32, 0.0, 0.0, 1.0]
+    }));
+    let material = PhongMaterial {
+        base_color: Color::srgb(0.8, 0.75, 0.9),
+        light_map_intensity: 1.5,
+        ao_map_texture: Some(ao_map),
+        ..default()
+    };
+    let uv_rect = Rect::new(0.25, 0.1, 0.85, 0.7);
+    let mesh = world
+        .resource_mut::<Assets<Mesh>>()
+        .add(with_second_uvs(Sphere::new(1.2).mesh().uv(48, 32)));
+    let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+    world.spawn((
+        Mesh3d(mesh),
+        MeshMaterial3d(material),
+        Lightmap {
+            image: baked.clone(),
+            uv_rect,
+            bicubic_sampling: false,
+        },
+    ));
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let lights = harness.reference_lights();
+    let images = loaded_images(&mut harness);
+    // Bevy packs each corner coordinate into a 16-bit unsigned fraction.
+    let packed = |value: f32| (f64::from(value) * 65535.0).round() / 65535.0;
+    let (min, max) = (
+        uv_rect.min.to_array().map(packed),
+        uv_rect.max.to_array().map(packed),
+    );
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        let mut texels = texels_at(material, &inputs, pixel, &images, SrgbDecoding::Exact)?;
+        let second = inputs.second_uvs.as_ref().unwrap().pixels[pixel];
+        let uv = [0, 1].map(|axis| min[axis] + (max[axis] - min[axis]) * f64::from(second[axis]));
+        let texel = texel_at(&images[&baked.id()], uv, SrgbDecoding::Exact)?;
+        texels.light_map = Some(texel.truncate());
+        lit_color(material, surface, pixel, &inputs, &texels, &images, &lights)
+    });
+    comparison.assert_within("Bevy's Lightmap", TOLERANCE);
+    assert!(
+        comparison.skipped_pixels < comparison.lit_pixels / 5,
+        "too few pixels judged: {} lit, {} on texel edges",
+        comparison.lit_pixels,
+        comparison.skipped_pixels
+    );
 }

@@ -90,7 +90,7 @@ pub(crate) enum SrgbDecoding {
 /// The texel of `image` that nearest filtering gives at `uv` (clamped to the edge), or
 /// `None` within 1/100 texel of a texel's edge. Channels in `[0, 1]`; the color channels
 /// of an sRGB image decoded to linear as `decoding` says.
-fn texel_at(image: &Image, uv: [f64; 2], decoding: SrgbDecoding) -> Option<DVec4> {
+pub(crate) fn texel_at(image: &Image, uv: [f64; 2], decoding: SrgbDecoding) -> Option<DVec4> {
     let size = [image.width() as usize, image.height() as usize];
     let mut texel = [0usize; 2];
     for axis in 0..2 {
