@@ -72,7 +72,7 @@ impl SpecularModel {
 /// Each map is optional and multiplies its color, sampled at the mesh's first UV set
 /// (`Mesh::ATTRIBUTE_UV_0`) moved by [`uv_transform`](Self::uv_transform): `k_d ⊙
 /// base_color_texture` (alpha too), `k_s ⊙ specular_texture`, `emissive ⊙
-/// emissive_texture`. The [`normal_map_texture`] replaces the
+/// emissive_texture`, output alpha `⊙ alpha_map_texture.g`. The [`normal_map_texture`] replaces the
 /// interpolated normal by one in tangent space (it needs `Mesh::ATTRIBUTE_TANGENT`:
 /// `Mesh::with_generated_tangents`). Values are what the sampler returns: images Bevy loads
 /// as sRGB are decoded to linear first, so load specular and normal maps with
@@ -121,6 +121,11 @@ pub struct PhongMaterial {
     /// Multiplies `emissive`. Default none.
     #[dependency]
     pub emissive_texture: Option<Handle<Image>>,
+    /// Multiplies the output alpha by its green channel (three.js's `alphaMap`): a
+    /// grayscale cut-out or fade without touching the base color map. Load it as linear
+    /// data (`is_srgb: false`). Default none.
+    #[dependency]
+    pub alpha_map_texture: Option<Handle<Image>>,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
     /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
     /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
@@ -203,6 +208,7 @@ impl Default for PhongMaterial {
             base_color_texture: None,
             specular_texture: None,
             emissive_texture: None,
+            alpha_map_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
             double_sided: false,
@@ -329,7 +335,8 @@ impl From<&UvChannel> for UvSet {
 /// compiled pipelines are kept.
 ///
 /// Each texture map the material has adds its own shader def (`PHONG_BASE_COLOR_TEXTURE`,
-/// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_NORMAL_MAP`), a UV transform
+/// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_ALPHA_MAP`,
+/// `PHONG_NORMAL_MAP`), a UV transform
 /// other than the identity on a material with maps adds `PHONG_UV_TRANSFORM`, and
 /// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. A
 /// light map adds `PHONG_LIGHT_MAP`, an AO map `PHONG_AO_MAP` (each with `…_UV_B` on the
@@ -346,6 +353,8 @@ pub struct PhongMaterialKey {
     pub specular_texture: bool,
     /// Whether it has an emissive map.
     pub emissive_texture: bool,
+    /// Whether it has an alpha map.
+    pub alpha_map: bool,
     /// Whether it has a normal map.
     pub normal_map: bool,
     /// Whether it discards fragments below an alpha cutoff.
@@ -387,6 +396,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             base_color_texture: material.base_color_texture.is_some(),
             specular_texture: specular && material.specular_texture.is_some(),
             emissive_texture: material.emissive_texture.is_some(),
+            alpha_map: material.alpha_map_texture.is_some(),
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
@@ -446,12 +456,14 @@ impl PhongMaterialKey {
                 "PHONG_EMISSIVE_TEXTURE",
                 "emissive_texture",
             ),
+            (self.alpha_map, "PHONG_ALPHA_MAP", "alpha_map_texture"),
         ];
         let mut defs = Vec::new();
         let samples_a_map = has_uvs
             && (self.base_color_texture
                 || self.specular_texture
                 || self.emissive_texture
+                || self.alpha_map
                 || (self.normal_map && has_tangents)
                 || self.light_map == Some(UvSet::First)
                 || self.ao_map == Some(UvSet::First));

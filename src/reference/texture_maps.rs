@@ -20,6 +20,8 @@ pub struct Texels {
     pub light_map: Option<DVec3>,
     /// The AO map's red channel.
     pub ao_map: Option<f64>,
+    /// The alpha map's green channel; multiplies the output alpha only.
+    pub alpha_map: Option<f64>,
 }
 
 impl Material {
@@ -81,6 +83,7 @@ mod tests {
             normal: None,
             light_map: Some(DVec3::ONE),
             ao_map: Some(0.5),
+            alpha_map: Some(0.5),
         };
         let mapped = material().mapped(&texels);
         assert_eq!(mapped.diffuse, DVec3::new(0.25, 0.3, 0.7));

@@ -23,7 +23,8 @@ use bevy::{
 };
 
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
-/// uniform, 3 to 10 the four texture maps and 14 to 17 the light and AO maps, each followed
+/// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps and 18, 19 the
+/// alpha map, each followed
 /// by its sampler.
 #[derive(AsBindGroup)]
 struct SurfaceBindings {
@@ -47,6 +48,9 @@ struct SurfaceBindings {
     #[texture(16)]
     #[sampler(17)]
     ao_map_texture: Option<Handle<Image>>,
+    #[texture(18)]
+    #[sampler(19)]
+    alpha_map_texture: Option<Handle<Image>>,
 }
 
 impl From<&PhongMaterial> for SurfaceBindings {
@@ -59,6 +63,7 @@ impl From<&PhongMaterial> for SurfaceBindings {
             normal_map_texture: material.normal_map_texture.clone(),
             light_map_texture: material.light_map_texture.clone(),
             ao_map_texture: material.ao_map_texture.clone(),
+            alpha_map_texture: material.alpha_map_texture.clone(),
         }
     }
 }

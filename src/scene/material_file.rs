@@ -26,8 +26,9 @@ use serde::{Deserialize, Serialize};
 /// )
 /// ```
 ///
-/// Texture paths are relative to the file that names them. Specular, normal and AO maps are
-/// loaded as linear data (`is_srgb: false`), base color, emissive and light maps as sRGB.
+/// Texture paths are relative to the file that names them. Specular, normal, AO and alpha
+/// maps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
+/// as sRGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct PhongMaterialDescription {
@@ -53,6 +54,8 @@ pub struct PhongMaterialDescription {
     pub specular_texture: Option<String>,
     /// Path of the emissive map. Default none.
     pub emissive_texture: Option<String>,
+    /// Path of the alpha map (green channel, loaded as linear data). Default none.
+    pub alpha_map_texture: Option<String>,
     /// Path of the tangent-space normal map. Default none.
     pub normal_map_texture: Option<String>,
     /// Negate the normal map's green channel. Default `false`.
@@ -185,6 +188,7 @@ impl Default for PhongMaterialDescription {
             base_color_texture: None,
             specular_texture: None,
             emissive_texture: None,
+            alpha_map_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
             double_sided: false,
@@ -239,6 +243,7 @@ impl PhongMaterialDescription {
             base_color_texture: map(&self.base_color_texture, "base_color_texture", true)?,
             specular_texture: map(&self.specular_texture, "specular_texture", false)?,
             emissive_texture: map(&self.emissive_texture, "emissive_texture", true)?,
+            alpha_map_texture: map(&self.alpha_map_texture, "alpha_map_texture", false)?,
             normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
             double_sided: self.double_sided,

@@ -2,8 +2,8 @@
 // and Bevy's shadow maps, which draw with the prepass pipeline). Bevy runs it only where it
 // has something to do: a target to write, or fragments to discard (`AlphaMode::Mask`).
 // - Alpha mask: the fragments the main pass discards (by the base color's, the vertex
-//   color's and the base color map's alpha) are discarded here too, so the depth
-//   prepass leaves the holes open and Bevy's shadow maps let light through them.
+//   color's, the base color map's and the alpha map's alpha) are discarded here too, so the
+//   depth prepass leaves the holes open and Bevy's shadow maps let light through them.
 // - Normal prepass: the normal the main pass lights the fragment with (double-sided faces
 //   turned toward the viewer, the normal map applied), normalized (zero where degenerate), encoded as `n/2 + 1/2`
 //   like Bevy's.
@@ -17,6 +17,9 @@
 #ifdef PHONG_ALPHA_MASK
 #ifdef PHONG_BASE_COLOR_TEXTURE
 #import bevy_phong::bindings::{base_color_texture, base_color_sampler}
+#endif
+#ifdef PHONG_ALPHA_MAP
+#import bevy_phong::bindings::{alpha_map_texture, alpha_map_sampler}
 #endif
 #endif
 #ifdef NORMAL_PREPASS
@@ -39,6 +42,9 @@ fn discard_masked(in: VertexOutput) {
 #endif
 #ifdef PHONG_BASE_COLOR_TEXTURE
     alpha *= textureSample(base_color_texture, base_color_sampler, map_uv(in.uv)).a;
+#endif
+#ifdef PHONG_ALPHA_MAP
+    alpha *= textureSample(alpha_map_texture, alpha_map_sampler, map_uv(in.uv)).g;
 #endif
     if alpha < material.alpha_cutoff {
         discard;

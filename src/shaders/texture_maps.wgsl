@@ -12,6 +12,7 @@
     emissive_texture, emissive_sampler,
     light_map_texture, light_map_sampler,
     ao_map_texture, ao_map_sampler,
+    alpha_map_texture, alpha_map_sampler,
 }
 #import bevy_phong::normals::facing_normal
 #import bevy_phong::uv::map_uv
@@ -24,7 +25,8 @@
 
 // What the lighting equation takes from the material at one fragment.
 struct MappedMaterial {
-    // k_d ⊙ vertex color ⊙ base color map, with the output alpha.
+    // k_d ⊙ vertex color ⊙ base color map, with the output alpha (times the alpha map's
+    // green channel).
     base_color: vec4<f32>,
     // k_s · strength ⊙ specular map.
     specular: vec3<f32>,
@@ -59,6 +61,9 @@ fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
 #endif
 #ifdef PHONG_EMISSIVE_TEXTURE
     mapped.emissive *= textureSample(emissive_texture, emissive_sampler, uv).rgb;
+#endif
+#ifdef PHONG_ALPHA_MAP
+    mapped.base_color.a *= textureSample(alpha_map_texture, alpha_map_sampler, uv).g;
 #endif
 #ifdef PHONG_NORMAL_MAP
     mapped.normal = with_normal_map(normal, in.world_tangent, uv);

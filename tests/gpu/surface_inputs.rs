@@ -351,3 +351,38 @@ fn bevys_lightmap_component_adds_its_light_as_a_light_map() {
         comparison.skipped_pixels
     );
 }
+
+/// An alpha map's green channel multiplies the output alpha, and with a mask cuts holes
+/// where the product falls below the cutoff (its other channels are ignored: the red and
+/// alpha here would keep every texel).
+#[test]
+fn an_alpha_map_cuts_holes_by_its_green_channel() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let base_color = images.add(stripes());
+    let alpha_map = images.add(float_map(|x, y| {
+        [1.0, 0.1 + 0.3 * ((x + 2 * y) % 4) as f32, 0.0, 1.0]
+    }));
+    let masked = PhongMaterial {
+        base_color_texture: Some(base_color),
+        alpha_map_texture: Some(alpha_map),
+        alpha_mode: AlphaMode::Mask(0.45),
+        uv_transform: Affine2::from_angle(0.3),
+        ..default()
+    };
+    let objects = [
+        (
+            Sphere::new(1.2).mesh().uv(48, 32),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            masked.clone(),
+        ),
+        (
+            with_vertex_colors(Cuboid::new(1.2, 1.2, 1.2).into()),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            masked,
+        ),
+    ];
+    assert_follows_the_reference(harness, objects, "an alpha map");
+}

@@ -262,6 +262,9 @@ pub(crate) fn texels_at(
         ao_map: sample_at(&material.ao_map_texture, ao_map_uv)
             .ok()?
             .map(|texel| texel.x),
+        alpha_map: sample(&material.alpha_map_texture)
+            .ok()?
+            .map(|texel| texel.y),
     })
 }
 
@@ -272,7 +275,10 @@ pub(crate) fn output_alpha(
     texels: &reference::Texels,
     vertex_alpha: f64,
 ) -> f64 {
-    texels.base_color.map_or(1.0, |t| t.w) * f64::from(material.base_color.alpha()) * vertex_alpha
+    texels.base_color.map_or(1.0, |t| t.w)
+        * f64::from(material.base_color.alpha())
+        * vertex_alpha
+        * texels.alpha_map.unwrap_or(1.0)
 }
 
 /// Whether `material`'s alpha mask discards a fragment whose maps gave `texels` and whose

@@ -169,7 +169,7 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
-    let key = |bits: u32, unlit: bool, no_fog: bool, baked: (Option<UvSet>, Option<UvSet>)| {
+    let key = |bits: u32, unlit: bool, no_fog: bool, maps: (Option<UvSet>, Option<UvSet>, bool)| {
         let bit = |index: u32| bits & (1 << index) != 0;
         PhongMaterialKey {
             specular: bit(0),
@@ -187,31 +187,33 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             // Neither changes a shader def.
             cull_mode: Some(bevy::render::render_resource::Face::Back),
             depth_bias: 0,
-            light_map: baked.0,
-            ao_map: baked.1,
+            light_map: maps.0,
+            ao_map: maps.1,
+            alpha_map: maps.2,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10)
-        .map(|bits| key(bits, false, false, (None, None)))
+        .map(|bits| key(bits, false, false, (None, None, false)))
         .collect();
-    // Unlit, fog off and the baked maps change only a few steps of the entry: they are
+    // Unlit, fog off, the baked maps and the alpha map change only a few steps: they are
     // composed with no map and with every map, under each kind of shadows
     // (`EXTRA_DEF_SETS`).
     let every_map = 0b11_0011_1111;
-    let baked_maps = [
-        (Some(UvSet::First), None),
-        (Some(UvSet::Second), None),
-        (None, Some(UvSet::First)),
-        (None, Some(UvSet::Second)),
-        (Some(UvSet::Second), Some(UvSet::First)),
+    let extra_maps = [
+        (Some(UvSet::First), None, false),
+        (Some(UvSet::Second), None, false),
+        (None, Some(UvSet::First), false),
+        (None, Some(UvSet::Second), false),
+        (Some(UvSet::Second), Some(UvSet::First), false),
+        (None, None, true),
     ];
     for maps in [0, every_map] {
         for shadows in [0, 1 << 6, 3 << 6] {
             for (unlit, no_fog) in [(true, false), (false, true), (true, true)] {
-                keys.push(key(maps | shadows, unlit, no_fog, (None, None)));
+                keys.push(key(maps | shadows, unlit, no_fog, (None, None, false)));
             }
-            for baked in baked_maps {
-                keys.push(key(maps | shadows, false, false, baked));
+            for extra in extra_maps {
+                keys.push(key(maps | shadows, false, false, extra));
             }
         }
     }
@@ -220,9 +222,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 
 /// How many distinct def sets the extra keys of [`material_keys`] give on a mesh with one
 /// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
-/// set (2; on the second they are left out there), each with no map and every map, under 3
-/// kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2) * 2 * 3;
+/// set (2; on the second they are left out there), an alpha map (1), each with no map and
+/// every map, under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
