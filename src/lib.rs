@@ -143,7 +143,9 @@ pub use lights::{
     Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight, PhongShadows,
     PhongSpotLight,
 };
-pub use material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel, UvSet};
+pub use material::{
+    EnvironmentCombine, PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel, UvSet,
+};
 pub use plugin::{PhongMaterialAppExt, PhongPlugin};
 pub use schedule::PhongSystems;
 pub use shadows::PhongLit;

@@ -47,6 +47,20 @@ impl SpecularModel {
     }
 }
 
+/// How the environment map's color joins the lit color (three.js's `combine`), weighted by
+/// `k = reflectivity` times the specular map's red channel (1 without one).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
+#[reflect(Default, Debug, PartialEq, Clone)]
+pub enum EnvironmentCombine {
+    /// `mix(lit, lit ⊙ environment, k)`: the environment tints the surface.
+    #[default]
+    Multiply,
+    /// `mix(lit, environment, k)`: a mirror at `k = 1`.
+    Mix,
+    /// `lit + environment · k`: a glossy coat.
+    Add,
+}
+
 /// A surface lit by the Phong reflection model with this crate's light entities.
 ///
 /// Per SPEC.md, a surface point receives
@@ -123,7 +137,8 @@ pub struct PhongMaterial {
     pub emissive_texture: Option<Handle<Image>>,
     /// Multiplies the output alpha by its green channel (three.js's `alphaMap`): a
     /// grayscale cut-out or fade without touching the base color map. Load it as linear
-    /// data (`is_srgb: false`). Default none.
+    /// data (`is_srgb: false`). Left out under WebGL2 ([`crate::render::binds_every_map`]).
+    /// Default none.
     #[dependency]
     pub alpha_map_texture: Option<Handle<Image>>,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
@@ -192,6 +207,24 @@ pub struct PhongMaterial {
     /// The UV set the AO map is read at (as [`light_map_channel`](Self::light_map_channel)).
     /// Default `Uv0`, glTF's.
     pub ao_map_channel: UvChannel,
+    /// A cube map of what the surface reflects (three.js's `envMap`): an image of six
+    /// square layers viewed as a cube (`TextureViewDimension::Cube`), in linear color.
+    /// The ray from the camera, reflected about the lit normal (or refracted, with
+    /// [`refraction_ratio`](Self::refraction_ratio)), reads it at a mip level as wide as
+    /// the highlight's lobe (SPEC.md, "Environment map"), and
+    /// [`environment_combine`](Self::environment_combine) joins it to the lit color. Not
+    /// drawn on unlit materials, nor under WebGL2 ([`crate::render::binds_every_map`]).
+    /// Default none.
+    #[dependency]
+    pub environment_map: Option<Handle<Image>>,
+    /// How the environment joins the lit color. Default [`EnvironmentCombine::Multiply`].
+    pub environment_combine: EnvironmentCombine,
+    /// The environment's weight `k`, `[0, 1]` (times the specular map's red). Default `1`.
+    pub reflectivity: f32,
+    /// `None` reflects the view ray; `Some(η)` refracts it with the ratio of refractive
+    /// indices `η` (three.js's `refractionRatio`, 0.98 there; glass in air ≈ 0.66), `≥ 0`.
+    /// Default `None`.
+    pub refraction_ratio: Option<f32>,
 }
 
 impl Default for PhongMaterial {
@@ -223,6 +256,10 @@ impl Default for PhongMaterial {
             ao_map_texture: None,
             ao_map_intensity: 1.0,
             ao_map_channel: UvChannel::Uv0,
+            environment_map: None,
+            environment_combine: EnvironmentCombine::Multiply,
+            reflectivity: 1.0,
+            refraction_ratio: None,
         }
     }
 }
@@ -261,6 +298,10 @@ pub struct PhongMaterialUniform {
     pub light_map_intensity: f32,
     /// [`PhongMaterial::ao_map_intensity`].
     pub ao_map_intensity: f32,
+    /// [`PhongMaterial::reflectivity`].
+    pub reflectivity: f32,
+    /// [`PhongMaterial::refraction_ratio`] (0 when it reflects).
+    pub refraction_ratio: f32,
 }
 
 impl PhongMaterialUniform {
@@ -302,6 +343,10 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
             uv_transform: Mat3::from(limits::uv_transform(material.uv_transform)),
             light_map_intensity: limits::INTENSITY.apply(material.light_map_intensity),
             ao_map_intensity: limits::INTENSITY.apply(material.ao_map_intensity),
+            reflectivity: limits::FRACTION.apply(material.reflectivity),
+            refraction_ratio: material
+                .refraction_ratio
+                .map_or(0.0, |ratio| limits::REFRACTION_RATIO.apply(ratio)),
         }
     }
 }
@@ -340,7 +385,8 @@ impl From<&UvChannel> for UvSet {
 /// other than the identity on a material with maps adds `PHONG_UV_TRANSFORM`, and
 /// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. A
 /// light map adds `PHONG_LIGHT_MAP`, an AO map `PHONG_AO_MAP` (each with `…_UV_B` on the
-/// second UV set). An
+/// second UV set), an environment map `PHONG_ENVIRONMENT_MAP` (with `PHONG_ENV_MIX` or
+/// `PHONG_ENV_ADD` for those combine modes, `PHONG_ENV_REFRACTION` when it refracts). An
 /// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
 /// `PHONG_NO_FOG`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -355,6 +401,10 @@ pub struct PhongMaterialKey {
     pub emissive_texture: bool,
     /// Whether it has an alpha map.
     pub alpha_map: bool,
+    /// How its environment map joins the lit color, if it has one.
+    pub environment: Option<EnvironmentCombine>,
+    /// Whether the environment is looked up along the refracted view ray.
+    pub refraction: bool,
     /// Whether it has a normal map.
     pub normal_map: bool,
     /// Whether it discards fragments below an alpha cutoff.
@@ -397,6 +447,11 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             specular_texture: specular && material.specular_texture.is_some(),
             emissive_texture: material.emissive_texture.is_some(),
             alpha_map: material.alpha_map_texture.is_some(),
+            environment: material
+                .environment_map
+                .as_ref()
+                .map(|_| material.environment_combine),
+            refraction: material.refraction_ratio.is_some(),
             normal_map: material.normal_map_texture.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
@@ -475,6 +530,17 @@ impl PhongMaterialKey {
         }
         if self.unlit {
             defs.push("PHONG_UNLIT");
+        }
+        if let Some(combine) = self.environment {
+            defs.push("PHONG_ENVIRONMENT_MAP");
+            defs.extend(match combine {
+                EnvironmentCombine::Multiply => None,
+                EnvironmentCombine::Mix => Some("PHONG_ENV_MIX"),
+                EnvironmentCombine::Add => Some("PHONG_ENV_ADD"),
+            });
+            if self.refraction {
+                defs.push("PHONG_ENV_REFRACTION");
+            }
         }
         if self.no_fog {
             defs.push("PHONG_NO_FOG");

@@ -101,6 +101,7 @@ impl Plugin for PhongPlugin {
             load_shader_library!(app, "shaders/shading.wgsl");
             load_shader_library!(app, "shaders/normals.wgsl");
             load_shader_library!(app, "shaders/uv.wgsl");
+            load_shader_library!(app, "shaders/environment.wgsl");
             load_shader_library!(app, "shaders/texture_maps.wgsl");
             load_shader_library!(app, "shaders/shadows.wgsl");
             load_shader_library!(app, "shaders/camera_effects.wgsl");

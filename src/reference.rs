@@ -36,9 +36,11 @@ use bevy::{
 use glam::DVec3;
 
 mod camera_effects;
+mod environment;
 mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
+pub use environment::{environment_direction, environment_lod, with_environment};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::{Texels, mapped_normal};
 

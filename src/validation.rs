@@ -287,6 +287,15 @@ impl Checker {
             self.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
         }
         self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
+        let reflectivity = &mut material.reflectivity;
+        self.scalar("reflectivity", reflectivity, limits::FRACTION);
+        if let Some(ratio) = &mut material.refraction_ratio {
+            self.scalar("refraction_ratio", ratio, limits::REFRACTION_RATIO);
+        }
+        let intensity = &mut material.light_map_intensity;
+        self.scalar("light_map_intensity", intensity, limits::INTENSITY);
+        let intensity = &mut material.ao_map_intensity;
+        self.scalar("ao_map_intensity", intensity, limits::INTENSITY);
         let uv_transform = limits::uv_transform(material.uv_transform);
         if uv_transform != material.uv_transform {
             self.replace(

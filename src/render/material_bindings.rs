@@ -23,8 +23,8 @@ use bevy::{
 };
 
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
-/// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps and 18, 19 the
-/// alpha map, each followed
+/// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
+/// alpha map and 20, 21 the environment cube map, each followed
 /// by its sampler.
 #[derive(AsBindGroup)]
 struct SurfaceBindings {
@@ -51,6 +51,9 @@ struct SurfaceBindings {
     #[texture(18)]
     #[sampler(19)]
     alpha_map_texture: Option<Handle<Image>>,
+    #[texture(20, dimension = "cube")]
+    #[sampler(21)]
+    environment_map: Option<Handle<Image>>,
 }
 
 impl From<&PhongMaterial> for SurfaceBindings {
@@ -64,6 +67,7 @@ impl From<&PhongMaterial> for SurfaceBindings {
             light_map_texture: material.light_map_texture.clone(),
             ao_map_texture: material.ao_map_texture.clone(),
             alpha_map_texture: material.alpha_map_texture.clone(),
+            environment_map: material.environment_map.clone(),
         }
     }
 }
@@ -216,6 +220,19 @@ impl PhongSceneBindings<'_> {
     }
 }
 
+/// The bindings of the alpha map and the environment map (18 to 21), which a device with
+/// fewer storage buffers than the scene data needs (WebGL2) leaves out: there a fragment
+/// stage has 16 textures, which Bevy's view (its shadow maps, prepass textures and lookup
+/// tables) shares with the material, and every other map of the material fits beside them.
+const MAPS_OF_FULL_DEVICES: core::ops::RangeInclusive<u32> = 18..=21;
+
+/// Whether `render_device` binds every map of a [`PhongMaterial`]; where it does not
+/// (WebGL2), the alpha map and the environment map are left out, with a warning, and the
+/// material is drawn without them.
+pub fn binds_every_map(render_device: &RenderDevice) -> bool {
+    !crate::render::needs_scene_texture(render_device)
+}
+
 impl AsBindGroup for PhongMaterial {
     type Data = PhongMaterialKey;
     /// The parameters of Bevy's `AsBindGroup` derive (for the surface data) and the scene's.
@@ -249,6 +266,18 @@ impl AsBindGroup for PhongMaterial {
             surface,
             true,
         )?;
+        if !binds_every_map(render_device) {
+            bind_group
+                .bindings
+                .0
+                .retain(|(binding, _)| !MAPS_OF_FULL_DEVICES.contains(binding));
+            if self.alpha_map_texture.is_some() || self.environment_map.is_some() {
+                bevy::log::warn_once!(
+                    "PhongMaterial.alpha_map_texture and environment_map are left out on this \
+                     device (WebGL2's 16 textures a shader stage): drawn without them"
+                );
+            }
+        }
         bind_group.bindings.0.extend(scene.bindings()?);
         Ok(bind_group)
     }
@@ -258,6 +287,9 @@ impl AsBindGroup for PhongMaterial {
         _force_no_bindless: bool,
     ) -> Vec<BindGroupLayoutEntry> {
         let mut entries = SurfaceBindings::bind_group_layout_entries(render_device, true);
+        if !binds_every_map(render_device) {
+            entries.retain(|entry| !MAPS_OF_FULL_DEVICES.contains(&entry.binding));
+        }
         entries.extend(PhongSceneBindings::layout_entries(render_device));
         entries
     }

@@ -1,7 +1,7 @@
 //! `PhongMaterial` as a file: [`PhongMaterialDescription`] and the `*.phong.ron` loader.
 
 use super::{SceneColor, SceneFileError, relative_path, scene_color};
-use crate::material::{PhongMaterial, SpecularModel};
+use crate::material::{EnvironmentCombine, PhongMaterial, SpecularModel};
 use bevy::{
     asset::{AssetLoader, LoadContext, io::Reader},
     image::{Image, ImageLoaderSettings},
@@ -84,6 +84,15 @@ pub struct PhongMaterialDescription {
     pub ao_map_intensity: f32,
     /// The AO map's UV set: `Uv0` or `Uv1`. Default `Uv0`.
     pub ao_map_channel: UvChannelDescription,
+    /// Path of the environment cube map (a file that holds a cube, such as KTX2 or DDS;
+    /// loaded with the image loader's defaults). Default none.
+    pub environment_map: Option<String>,
+    /// `Multiply`, `Mix` or `Add`. Default `Multiply`.
+    pub environment_combine: EnvironmentCombine,
+    /// The environment's weight. Default `1`.
+    pub reflectivity: f32,
+    /// `Some(ratio)` refracts the view ray instead of reflecting it. Default `None`.
+    pub refraction_ratio: Option<f32>,
 }
 
 /// A mesh's UV set, as a file names it.
@@ -203,6 +212,10 @@ impl Default for PhongMaterialDescription {
             ao_map_texture: None,
             ao_map_intensity: material.ao_map_intensity,
             ao_map_channel: UvChannelDescription::Uv0,
+            environment_map: None,
+            environment_combine: material.environment_combine,
+            reflectivity: material.reflectivity,
+            refraction_ratio: material.refraction_ratio,
         }
     }
 }
@@ -258,6 +271,15 @@ impl PhongMaterialDescription {
             ao_map_texture: map(&self.ao_map_texture, "ao_map_texture", false)?,
             ao_map_intensity: self.ao_map_intensity,
             ao_map_channel: self.ao_map_channel.to_channel(),
+            environment_map: self
+                .environment_map
+                .as_deref()
+                .map(|path| relative_path(load_context, path, &at("environment_map")))
+                .transpose()?
+                .map(|resolved| load_context.load(resolved)),
+            environment_combine: self.environment_combine,
+            reflectivity: self.reflectivity,
+            refraction_ratio: self.refraction_ratio,
         })
     }
 }

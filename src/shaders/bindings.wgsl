@@ -1,5 +1,5 @@
 // The bindings of `PhongMaterial` in the material bind group: the material's own (0, 3–10,
-// 14–19)
+// 14–21)
 // and the plugin's scene data (1, 2, 11–13; `PhongSceneBindings`).
 #define_import_path bevy_phong::bindings
 
@@ -29,7 +29,13 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(15) var light_map_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(16) var ao_map_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(17) var ao_map_sampler: sampler;
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
+// Left out where the scene data is in a texture (WebGL2: 16 textures a stage, shared with
+// Bevy's view): `render::binds_every_map`.
 @group(#{MATERIAL_BIND_GROUP}) @binding(18) var alpha_map_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(19) var alpha_map_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(20) var environment_map: texture_cube<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(21) var environment_sampler: sampler;
+#endif
 @group(#{MATERIAL_BIND_GROUP}) @binding(12) var shadow_maps: texture_depth_2d_array;
 @group(#{MATERIAL_BIND_GROUP}) @binding(13) var shadow_sampler: sampler_comparison;

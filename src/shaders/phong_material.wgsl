@@ -4,6 +4,11 @@
 #import bevy_phong::shading::{fragment_surface, lit_color}
 #import bevy_phong::texture_maps::mapped_material
 #import bevy_phong::camera_effects::camera_effects
+#ifdef PHONG_ENVIRONMENT_MAP
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
+#import bevy_phong::environment::with_environment
+#endif
+#endif
 
 @fragment
 fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @location(0) vec4<f32> {
@@ -17,7 +22,13 @@ fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @locatio
     // `PhongMaterial::unlit`: no light, ambient or shadow.
     let color = mapped.emissive + mapped.base_color.rgb;
 #else
-    let color = lit_color(fragment_surface(in, mapped), mapped.emissive);
+    let surface = fragment_surface(in, mapped);
+    var color = lit_color(surface, mapped.emissive);
+#ifdef PHONG_ENVIRONMENT_MAP
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
+    color = with_environment(color, surface, mapped.environment_mask);
+#endif
+#endif
 #endif
     let lit = vec4<f32>(color, mapped.base_color.a);
     return camera_effects(lit, in.world_position.xyz, in.position.xy);

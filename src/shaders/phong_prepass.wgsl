@@ -19,7 +19,9 @@
 #import bevy_phong::bindings::{base_color_texture, base_color_sampler}
 #endif
 #ifdef PHONG_ALPHA_MAP
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
 #import bevy_phong::bindings::{alpha_map_texture, alpha_map_sampler}
+#endif
 #endif
 #endif
 #ifdef NORMAL_PREPASS
@@ -44,7 +46,9 @@ fn discard_masked(in: VertexOutput) {
     alpha *= textureSample(base_color_texture, base_color_sampler, map_uv(in.uv)).a;
 #endif
 #ifdef PHONG_ALPHA_MAP
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
     alpha *= textureSample(alpha_map_texture, alpha_map_sampler, map_uv(in.uv)).g;
+#endif
 #endif
     if alpha < material.alpha_cutoff {
         discard;

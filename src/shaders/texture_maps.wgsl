@@ -12,8 +12,12 @@
     emissive_texture, emissive_sampler,
     light_map_texture, light_map_sampler,
     ao_map_texture, ao_map_sampler,
-    alpha_map_texture, alpha_map_sampler,
 }
+#ifdef PHONG_ALPHA_MAP
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
+#import bevy_phong::bindings::{alpha_map_texture, alpha_map_sampler}
+#endif
+#endif
 #import bevy_phong::normals::facing_normal
 #import bevy_phong::uv::map_uv
 #ifdef LIGHTMAP
@@ -39,13 +43,15 @@ struct MappedMaterial {
     baked_light: vec3<f32>,
     // The AO map's factor on the indirect light, 1 + intensity · (texel.r − 1) (1 without one).
     occlusion: f32,
+    // The specular map's red channel, which weights the environment map (1 without one).
+    environment_mask: f32,
 }
 
 // `is_front`: the fragment's `@builtin(front_facing)`.
 fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
     let normal = facing_normal(in.world_normal, is_front);
     var mapped = MappedMaterial(
-        material.base_color, material.specular, material.emissive, normal, vec3<f32>(0.0), 1.0,
+        material.base_color, material.specular, material.emissive, normal, vec3<f32>(0.0), 1.0, 1.0,
     );
 #ifdef VERTEX_COLORS
     mapped.base_color *= in.color;
@@ -57,13 +63,17 @@ fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
     mapped.base_color *= textureSample(base_color_texture, base_color_sampler, uv);
 #endif
 #ifdef PHONG_SPECULAR_TEXTURE
-    mapped.specular *= textureSample(specular_texture, specular_sampler, uv).rgb;
+    let specular_texel = textureSample(specular_texture, specular_sampler, uv).rgb;
+    mapped.specular *= specular_texel;
+    mapped.environment_mask = specular_texel.r;
 #endif
 #ifdef PHONG_EMISSIVE_TEXTURE
     mapped.emissive *= textureSample(emissive_texture, emissive_sampler, uv).rgb;
 #endif
 #ifdef PHONG_ALPHA_MAP
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
     mapped.base_color.a *= textureSample(alpha_map_texture, alpha_map_sampler, uv).g;
+#endif
 #endif
 #ifdef PHONG_NORMAL_MAP
     mapped.normal = with_normal_map(normal, in.world_tangent, uv);

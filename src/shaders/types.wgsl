@@ -151,6 +151,10 @@ struct PhongMaterialUniform {
     light_map_intensity: f32,
     // With PHONG_AO_MAP, the indirect light is scaled by 1 + this · (ao texel.r − 1).
     ao_map_intensity: f32,
+    // With PHONG_ENVIRONMENT_MAP, the environment's weight (times the specular map's red).
+    reflectivity: f32,
+    // With PHONG_ENV_REFRACTION, the ratio of refractive indices.
+    refraction_ratio: f32,
 }
 
 // A surface point, ready to be lit.

@@ -12,7 +12,9 @@
 //!   prepasses, SSAO and the deferred renderer, each against its own formula;
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against
 //!   the reference model given each pixel's texels;
-//! - `surface_inputs`: vertex colors and the material's UV transform, the same way;
+//! - `surface_inputs`: vertex colors, the UV transform, unlit materials, light, AO and alpha
+//!   maps and Bevy's `Lightmap`, the same way;
+//! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
 //!   each primitive covers the pixels `StandardMaterial` covers, and the scene is lit as the
@@ -34,6 +36,7 @@ mod cases;
 mod clusters;
 mod contract;
 mod culling;
+mod environment;
 mod frames;
 mod fuzzed_scenes;
 mod game_features;

@@ -262,9 +262,11 @@ pub(crate) fn texels_at(
         ao_map: sample_at(&material.ao_map_texture, ao_map_uv)
             .ok()?
             .map(|texel| texel.x),
+        // Left out where the device does not bind every map (WebGL2).
         alpha_map: sample(&material.alpha_map_texture)
             .ok()?
-            .map(|texel| texel.y),
+            .map(|texel| texel.y)
+            .filter(|_| inputs.every_map_bound),
     })
 }
 

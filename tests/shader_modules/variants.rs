@@ -11,7 +11,7 @@ use bevy::{
     },
     shader::ShaderDefVal,
 };
-use bevy_phong::{PhongMaterialKey, UvSet};
+use bevy_phong::{EnvironmentCombine, PhongMaterialKey, UvSet};
 use std::collections::BTreeSet;
 
 /// One set of shader defs, with a name that says where it comes from.
@@ -169,7 +169,7 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
-    let key = |bits: u32, unlit: bool, no_fog: bool, maps: (Option<UvSet>, Option<UvSet>, bool)| {
+    let key = |bits: u32| {
         let bit = |index: u32| bits & (1 << index) != 0;
         PhongMaterialKey {
             specular: bit(0),
@@ -182,38 +182,45 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             soft_shadows: bit(7),
             double_sided: bit(8),
             uv_transform: bit(9),
-            unlit,
-            no_fog,
+            unlit: false,
+            no_fog: false,
             // Neither changes a shader def.
             cull_mode: Some(bevy::render::render_resource::Face::Back),
             depth_bias: 0,
-            light_map: maps.0,
-            ao_map: maps.1,
-            alpha_map: maps.2,
+            light_map: None,
+            ao_map: None,
+            alpha_map: false,
+            environment: None,
+            refraction: false,
         }
     };
-    let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10)
-        .map(|bits| key(bits, false, false, (None, None, false)))
-        .collect();
-    // Unlit, fog off, the baked maps and the alpha map change only a few steps: they are
-    // composed with no map and with every map, under each kind of shadows
-    // (`EXTRA_DEF_SETS`).
-    let every_map = 0b11_0011_1111;
-    let extra_maps = [
-        (Some(UvSet::First), None, false),
-        (Some(UvSet::Second), None, false),
-        (None, Some(UvSet::First), false),
-        (None, Some(UvSet::Second), false),
-        (Some(UvSet::Second), Some(UvSet::First), false),
-        (None, None, true),
+    let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
+    // Each of the rest changes only a few steps: they are composed with no map and with
+    // every map, under each kind of shadows (`EXTRA_DEF_SETS`).
+    let extras: Vec<fn(&mut PhongMaterialKey)> = vec![
+        |key| key.unlit = true,
+        |key| key.no_fog = true,
+        |key| (key.unlit, key.no_fog) = (true, true),
+        |key| key.light_map = Some(UvSet::First),
+        |key| key.light_map = Some(UvSet::Second),
+        |key| key.ao_map = Some(UvSet::First),
+        |key| key.ao_map = Some(UvSet::Second),
+        |key| (key.light_map, key.ao_map) = (Some(UvSet::Second), Some(UvSet::First)),
+        |key| key.alpha_map = true,
+        |key| key.environment = Some(EnvironmentCombine::Multiply),
+        |key| key.environment = Some(EnvironmentCombine::Mix),
+        |key| key.environment = Some(EnvironmentCombine::Add),
+        |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Multiply), true),
+        |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Mix), true),
+        |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Add), true),
     ];
+    let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
         for shadows in [0, 1 << 6, 3 << 6] {
-            for (unlit, no_fog) in [(true, false), (false, true), (true, true)] {
-                keys.push(key(maps | shadows, unlit, no_fog, (None, None, false)));
-            }
-            for extra in extra_maps {
-                keys.push(key(maps | shadows, false, false, extra));
+            for extra in &extras {
+                let mut key = key(maps | shadows);
+                extra(&mut key);
+                keys.push(key);
             }
         }
     }
@@ -222,9 +229,10 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 
 /// How many distinct def sets the extra keys of [`material_keys`] give on a mesh with one
 /// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
-/// set (2; on the second they are left out there), an alpha map (1), each with no map and
-/// every map, under 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1) * 2 * 3;
+/// set (2; on the second they are left out there), an alpha map (1), an environment map
+/// (6: three combine modes, reflected or refracted), each with no map and every map, under
+/// 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that

@@ -84,6 +84,9 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub colors: Option<FloatImage>,
     /// The second UV set in xy (zeros where the mesh has none).
     pub second_uvs: Option<FloatImage>,
+    /// Whether the render device binds every map of a material (see
+    /// `bevy_phong::render::binds_every_map`; not under WebGL2's limits).
+    pub every_map_bound: bool,
     /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
 }
@@ -358,11 +361,26 @@ impl Harness {
             tangents: images.next(),
             colors: images.next(),
             second_uvs: images.next(),
+            every_map_bound: self.binds_every_map(),
             materials: tags
                 .into_iter()
                 .map(|(handle, tag)| (tag, handle))
                 .collect(),
         }
+    }
+
+    /// Whether the render device binds every map of a material (see
+    /// `bevy_phong::render::binds_every_map`).
+    pub fn binds_every_map(&self) -> bool {
+        let render_app = self
+            .app
+            .get_sub_app(bevy::render::RenderApp)
+            .expect("the harness renders");
+        bevy_phong::render::binds_every_map(
+            render_app
+                .world()
+                .resource::<bevy::render::renderer::RenderDevice>(),
+        )
     }
 
     /// The scene's lights as the reference model takes them.
