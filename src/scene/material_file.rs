@@ -274,7 +274,7 @@ impl PhongMaterialDescription {
             environment_map: self
                 .environment_map
                 .as_deref()
-                .map(|path| relative_path(load_context, path, &at("environment_map")))
+                .map(|path| relative_path(load_context, path, at("environment_map")))
                 .transpose()?
                 .map(|resolved| load_context.load(resolved)),
             environment_combine: self.environment_combine,

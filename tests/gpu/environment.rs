@@ -5,13 +5,13 @@
 //! The cube has 8 texels a side and two mip levels, nearest-sampled, so the texel each
 //! pixel reads is known from the direction (Vulkan's cube face rules) and the level from
 //! the material's shininess; pixels within 1/100 texel of a texel's or a face's edge are
-//! left out. Tolerance: the frame tests' ([`TOLERANCE`]); the lookup adds a blend in `f32`.
+//! left out. Tolerance: the frame tests' (`TOLERANCE`); the lookup adds a blend in `f32`.
 //! Under WebGL2's limits the environment map is left out (`render::binds_every_map`): there
 //! the test checks that the surfaces are drawn as without it.
 
-use crate::frames::{SIZE, TOLERANCE};
+use crate::frames::SIZE;
 use crate::texture_maps::{
-    SrgbDecoding, float_map, lit_color, lit_normal, loaded_images, texels_at,
+    SrgbDecoding, assert_pixels_follow, float_map, lit_color, lit_normal, texels_at,
 };
 use bevy::{
     asset::RenderAssetUsages,
@@ -23,8 +23,9 @@ use bevy::{
     },
 };
 use bevy_phong::{EnvironmentCombine, prelude::*, reference};
-use bevy_phong_headless::Harness;
+use bevy_phong_headless::{Harness, SurfaceInputs};
 use glam::{DVec3, DVec4};
+use std::collections::HashMap;
 
 /// Texels a side of the cube's first level.
 const CUBE_SIZE: u32 = 8;
@@ -190,24 +191,19 @@ fn environment_maps_follow_the_reference_model() {
             },
         ),
     ];
-    for (mesh, transform, material) in objects {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
-    }
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let lights = harness.reference_lights();
-    let images = loaded_images(&mut harness);
-    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
-        let texels = texels_at(material, &inputs, pixel, &images, SrgbDecoding::Exact)?;
-        let lit = lit_color(material, surface, pixel, &inputs, &texels, &images, &lights)?;
+    let expected = |material: &PhongMaterial,
+                    surface: &reference::SurfacePoint,
+                    pixel: usize,
+                    inputs: &SurfaceInputs,
+                    images: &HashMap<AssetId<Image>, Image>,
+                    lights: &reference::Lights| {
+        let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
+        let lit = lit_color(material, surface, pixel, inputs, &texels, images, lights)?;
         // Where the device does not bind every map (WebGL2), the environment is left out.
         if !inputs.every_map_bound {
             return Some(lit);
         }
-        let normal = lit_normal(material, surface, pixel, &inputs, &images)?;
+        let normal = lit_normal(material, surface, pixel, inputs, images)?;
         let lit_surface = reference::SurfacePoint { normal, ..*surface };
         let ratio = material.refraction_ratio.map(f64::from);
         let direction = reference::environment_direction(&lit_surface, ratio);
@@ -227,12 +223,6 @@ fn environment_maps_follow_the_reference_model() {
             strength,
             material.environment_combine,
         ))
-    });
-    comparison.assert_within("environment maps", TOLERANCE);
-    assert!(
-        comparison.skipped_pixels < comparison.lit_pixels / 4,
-        "too few pixels judged: {} lit, {} on texel edges",
-        comparison.lit_pixels,
-        comparison.skipped_pixels
-    );
+    };
+    assert_pixels_follow(harness, objects, "environment maps", &expected);
 }

@@ -13,8 +13,8 @@
 
 use crate::frames::{SIZE, TOLERANCE};
 use crate::texture_maps::{
-    SrgbDecoding, expected_color, float_map, lit_color, loaded_images, normal_map, texel_at,
-    texels_at,
+    SrgbDecoding, assert_follows_the_reference, float_map, lit_color, loaded_images, normal_map,
+    spawn_map_lights, texel_at, texels_at,
 };
 use bevy::{
     math::Affine2,
@@ -54,28 +54,6 @@ fn with_vertex_colors(mut mesh: Mesh) -> Mesh {
     mesh
 }
 
-/// The lights of the texture map test: ambient, directional and point.
-fn spawn_lights(world: &mut World) {
-    world.insert_resource(PhongAmbientLight {
-        color: Color::srgb(0.2, 0.2, 0.25),
-    });
-    world.spawn((
-        PhongDirectionalLight {
-            color: Color::srgb(0.7, 0.7, 0.6),
-            ..default()
-        },
-        Transform::from_xyz(1.0, 2.0, 1.5).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    world.spawn((
-        PhongPointLight {
-            color: Color::srgb(0.9, 0.5, 0.3),
-            decay: Decay::new(1.0, 0.09, 0.032),
-            ..default()
-        },
-        Transform::from_xyz(-1.5, 1.5, 2.5),
-    ));
-}
-
 /// A base color map of stripes, every texel opaque.
 fn stripes() -> Image {
     float_map(|x, y| {
@@ -84,40 +62,11 @@ fn stripes() -> Image {
     })
 }
 
-/// Spawns `objects`, renders a frame and compares every pixel with the reference model.
-fn assert_follows_the_reference(
-    mut harness: Harness,
-    objects: impl IntoIterator<Item = (Mesh, Transform, PhongMaterial)>,
-    name: &str,
-) {
-    let world = harness.world_mut();
-    for (mesh, transform, material) in objects {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
-    }
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let lights = harness.reference_lights();
-    let images = loaded_images(&mut harness);
-    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
-        expected_color(material, surface, pixel, &inputs, &images, &lights)
-    });
-    comparison.assert_within(name, TOLERANCE);
-    assert!(
-        comparison.skipped_pixels < comparison.lit_pixels / 5,
-        "{name}: too few pixels judged: {} lit, {} on texel edges or the mask's cutoff",
-        comparison.lit_pixels,
-        comparison.skipped_pixels
-    );
-}
-
 #[test]
 fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
-    spawn_lights(world);
+    spawn_map_lights(world);
     let mut images = world.resource_mut::<Assets<Image>>();
     let base_color = images.add(stripes());
     let normals = images.add(normal_map());
@@ -182,7 +131,7 @@ fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
 fn unlit_materials_show_their_emissive_and_base_colors_only() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
-    spawn_lights(world);
+    spawn_map_lights(world);
     let base_color = world.resource_mut::<Assets<Image>>().add(stripes());
     let objects = [
         (
@@ -239,7 +188,7 @@ fn with_second_uvs(mut mesh: Mesh) -> Mesh {
 fn light_and_ao_maps_follow_the_reference_model() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
-    spawn_lights(world);
+    spawn_map_lights(world);
     world.insert_resource(PhongAmbientLight {
         color: Color::srgb(0.35, 0.35, 0.4),
     });
@@ -295,7 +244,7 @@ fn light_and_ao_maps_follow_the_reference_model() {
 fn bevys_lightmap_component_adds_its_light_as_a_light_map() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
-    spawn_lights(world);
+    spawn_map_lights(world);
     let mut images = world.resource_mut::<Assets<Image>>();
     let baked = images.add(float_map(|x, y| {
         let level = 0.15 + 0.2 * ((x + 3 * y) % 4) as f32;
@@ -359,7 +308,7 @@ fn bevys_lightmap_component_adds_its_light_as_a_light_map() {
 fn an_alpha_map_cuts_holes_by_its_green_channel() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
-    spawn_lights(world);
+    spawn_map_lights(world);
     let mut images = world.resource_mut::<Assets<Image>>();
     let base_color = images.add(stripes());
     let alpha_map = images.add(float_map(|x, y| {

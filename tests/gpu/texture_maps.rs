@@ -347,10 +347,8 @@ pub(crate) fn expected_color(
     lit_color(material, surface, pixel, inputs, &texels, images, lights)
 }
 
-#[test]
-fn texture_maps_follow_the_reference_model() {
-    let mut harness = Harness::new(SIZE, SIZE);
-    let world = harness.world_mut();
+/// The lights of the map tests: ambient, a directional light and a point light.
+pub(crate) fn spawn_map_lights(world: &mut World) {
     world.insert_resource(PhongAmbientLight {
         color: Color::srgb(0.2, 0.2, 0.25),
     });
@@ -369,6 +367,65 @@ fn texture_maps_follow_the_reference_model() {
         },
         Transform::from_xyz(-1.5, 1.5, 2.5),
     ));
+}
+
+/// What a pixel should show, given its material, surface point, index, captured inputs,
+/// the app's images and the lights: `None` where it cannot be judged.
+pub(crate) type ExpectedColor<'a> = dyn Fn(
+        &PhongMaterial,
+        &reference::SurfacePoint,
+        usize,
+        &SurfaceInputs,
+        &HashMap<AssetId<Image>, Image>,
+        &reference::Lights,
+    ) -> Option<DVec3>
+    + 'a;
+
+/// Spawns `objects`, renders a frame, captures its inputs with the maps' and compares every
+/// pixel with `expected`; at most a fifth of the lit pixels may go unjudged.
+pub(crate) fn assert_pixels_follow(
+    mut harness: Harness,
+    objects: impl IntoIterator<Item = (Mesh, Transform, PhongMaterial)>,
+    name: &str,
+    expected: &ExpectedColor,
+) {
+    let world = harness.world_mut();
+    for (mesh, transform, material) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let lights = harness.reference_lights();
+    let images = loaded_images(&mut harness);
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        expected(material, surface, pixel, &inputs, &images, &lights)
+    });
+    comparison.assert_within(name, TOLERANCE);
+    assert!(
+        comparison.skipped_pixels < comparison.lit_pixels / 5,
+        "{name}: too few pixels judged: {} lit, {} on texel edges or the mask's cutoff",
+        comparison.lit_pixels,
+        comparison.skipped_pixels
+    );
+}
+
+/// [`assert_pixels_follow`] the reference model ([`expected_color`]).
+pub(crate) fn assert_follows_the_reference(
+    harness: Harness,
+    objects: impl IntoIterator<Item = (Mesh, Transform, PhongMaterial)>,
+    name: &str,
+) {
+    assert_pixels_follow(harness, objects, name, &expected_color);
+}
+
+#[test]
+fn texture_maps_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_map_lights(world);
 
     let mut images = world.resource_mut::<Assets<Image>>();
     let base_color = images.add(color_map(0.2, 1.0));
@@ -426,25 +483,5 @@ fn texture_maps_follow_the_reference_model() {
             masked,
         ),
     ];
-    for (mesh, transform, material) in objects {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
-    }
-
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let lights = harness.reference_lights();
-    let images = loaded_images(&mut harness);
-    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
-        expected_color(material, surface, pixel, &inputs, &images, &lights)
-    });
-    comparison.assert_within("texture maps", TOLERANCE);
-    assert!(
-        comparison.skipped_pixels < comparison.lit_pixels / 5,
-        "too few pixels judged: {} lit, {} on texel edges",
-        comparison.lit_pixels,
-        comparison.skipped_pixels
-    );
+    assert_follows_the_reference(harness, objects, "texture maps");
 }
