@@ -62,11 +62,13 @@ pub enum SurfaceInput {
 /// `double_sided`: there the normal it writes on a back face is negated, as `PhongMaterial`
 /// negates it to light a back face.
 #[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
+#[uniform(0, SurfaceInputUniform)]
 #[bind_group_data(SurfaceInputsKey)]
 pub struct SurfaceInputsMaterial {
     /// What to write.
-    #[uniform(0)]
-    pub output: SurfaceInputUniform,
+    pub input: SurfaceInput,
+    /// Written to alpha as a float (except by [`SurfaceInput::VertexColor`]).
+    pub tag: u32,
     /// Whether back faces are drawn too (no culling). Default `false`.
     pub double_sided: bool,
     /// The faces culled when not `double_sided`. Default `Some(Face::Back)`.
@@ -84,20 +86,9 @@ impl SurfaceInputsMaterial {
     /// A material writing `input` in RGB and `tag` (as a float) in alpha (except
     /// [`SurfaceInput::VertexColor`], which writes the color's alpha), on front faces.
     pub fn new(input: SurfaceInput, tag: u32) -> Self {
-        let output = match input {
-            SurfaceInput::WorldPosition => 0,
-            SurfaceInput::WorldNormal => 1,
-            SurfaceInput::UvAndTangentSign => 2,
-            SurfaceInput::WorldTangent => 3,
-            SurfaceInput::VertexColor => 4,
-            SurfaceInput::SecondUv => 5,
-        };
         Self {
-            output: SurfaceInputUniform {
-                output,
-                tag,
-                double_sided: 0,
-            },
+            input,
+            tag,
             double_sided: false,
             cull_mode: Some(Face::Back),
         }
@@ -112,10 +103,6 @@ impl SurfaceInputsMaterial {
     pub fn with_double_sided(self, double_sided: bool) -> Self {
         Self {
             double_sided,
-            output: SurfaceInputUniform {
-                double_sided: u32::from(double_sided),
-                ..self.output
-            },
             ..self
         }
     }
@@ -140,7 +127,7 @@ impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
     }
 }
 
-/// The uniform of [`SurfaceInputsMaterial`].
+/// The uniform of [`SurfaceInputsMaterial`], made from it when it is bound.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, ShaderType)]
 pub struct SurfaceInputUniform {
     /// `0`: world position; `1`: world normal; `2`: UV and tangent sign; `3`: world tangent;
@@ -150,6 +137,24 @@ pub struct SurfaceInputUniform {
     pub tag: u32,
     /// `1` where back faces are lit with their normal negated (double-sided), else `0`.
     pub double_sided: u32,
+}
+
+impl From<&SurfaceInputsMaterial> for SurfaceInputUniform {
+    fn from(material: &SurfaceInputsMaterial) -> Self {
+        let output = match material.input {
+            SurfaceInput::WorldPosition => 0,
+            SurfaceInput::WorldNormal => 1,
+            SurfaceInput::UvAndTangentSign => 2,
+            SurfaceInput::WorldTangent => 3,
+            SurfaceInput::VertexColor => 4,
+            SurfaceInput::SecondUv => 5,
+        };
+        Self {
+            output,
+            tag: material.tag,
+            double_sided: u32::from(material.double_sided),
+        }
+    }
 }
 
 impl Material for SurfaceInputsMaterial {
