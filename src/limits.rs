@@ -126,6 +126,9 @@ pub const FRACTION: Limits = Limits::new(0.0, 1.0, 0.0);
 /// A ratio of refractive indices: `[0, 1e6]`, NaN → 1 (no bending).
 pub const REFRACTION_RATIO: Limits = Limits::new(0.0, 1e6, 1.0);
 
+/// A signed scale such as a material's bump scale: `[-1e6, 1e6]`, NaN → 0.
+pub const SIGNED_SCALE: Limits = Limits::new(-MAX_INTENSITY, MAX_INTENSITY, 0.0);
+
 /// A material's depth bias, in the depth buffer's steps: wgpu takes an `i32`. NaN → 0.
 pub const DEPTH_BIAS: Limits = Limits::new(-2_147_483_500.0, 2_147_483_500.0, 0.0);
 

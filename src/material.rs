@@ -149,6 +149,22 @@ pub struct PhongMaterial {
     /// Negates the normal map's green channel, for maps made with the other convention
     /// (Direct3D's, green pointing down). Default `false`.
     pub flip_normal_map_y: bool,
+    /// A height map (three.js's `bumpMap`): its red channel `h` is a height whose slope
+    /// tilts the normal, after the normal map, by `−bump_scale · (Δu·T + Δv·B)`, where `Δu`
+    /// and `Δv` are the changes of `h` one texel along `u` and `v` (of its largest mip) and
+    /// `T`, `B` the normal map's tangent frame (SPEC.md, "Bump map"). It needs UVs and
+    /// tangents, as the normal map. Load it as linear data (`is_srgb: false`). Left out under
+    /// WebGL2 ([`crate::render::binds_every_map`]). Default none.
+    #[dependency]
+    pub bump_map_texture: Option<Handle<Image>>,
+    /// How far a height step of 1 between neighbouring texels tilts the normal: at 1 such
+    /// a step tilts it by 45°. Negative values make the bumps dents. Default `1`.
+    pub bump_scale: f32,
+    /// Lights each triangle with its own plane's normal (three.js's `flatShading`): the
+    /// geometric normal of the face, turned to the side of the interpolated normal, in place
+    /// of the interpolated one, in the main pass and the normal prepass. The normal and bump
+    /// maps then tilt the face normal. Default `false`.
+    pub flat_shading: bool,
     /// Draws the back faces too, lit with the normal turned toward the viewer (negated on
     /// back faces, before the normal map), as glTF's `doubleSided` and Bevy's
     /// `StandardMaterial::double_sided`. Default `false`: back faces are culled.
@@ -244,6 +260,9 @@ impl Default for PhongMaterial {
             alpha_map_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
+            bump_map_texture: None,
+            bump_scale: 1.0,
+            flat_shading: false,
             double_sided: false,
             uv_transform: Affine2::IDENTITY,
             unlit: false,
@@ -302,6 +321,8 @@ pub struct PhongMaterialUniform {
     pub reflectivity: f32,
     /// [`PhongMaterial::refraction_ratio`] (0 when it reflects).
     pub refraction_ratio: f32,
+    /// [`PhongMaterial::bump_scale`].
+    pub bump_scale: f32,
 }
 
 impl PhongMaterialUniform {
@@ -347,6 +368,7 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
             refraction_ratio: material
                 .refraction_ratio
                 .map_or(0.0, |ratio| limits::REFRACTION_RATIO.apply(ratio)),
+            bump_scale: limits::SIGNED_SCALE.apply(material.bump_scale),
         }
     }
 }
@@ -381,14 +403,14 @@ impl From<&UvChannel> for UvSet {
 ///
 /// Each texture map the material has adds its own shader def (`PHONG_BASE_COLOR_TEXTURE`,
 /// `PHONG_SPECULAR_TEXTURE`, `PHONG_EMISSIVE_TEXTURE`, `PHONG_ALPHA_MAP`,
-/// `PHONG_NORMAL_MAP`), a UV transform
+/// `PHONG_NORMAL_MAP`, `PHONG_BUMP_MAP`), a UV transform
 /// other than the identity on a material with maps adds `PHONG_UV_TRANSFORM`, and
 /// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. A
 /// light map adds `PHONG_LIGHT_MAP`, an AO map `PHONG_AO_MAP` (each with `…_UV_B` on the
 /// second UV set), an environment map `PHONG_ENVIRONMENT_MAP` (with `PHONG_ENV_MIX` or
 /// `PHONG_ENV_ADD` for those combine modes, `PHONG_ENV_REFRACTION` when it refracts). An
 /// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
-/// `PHONG_NO_FOG`.
+/// `PHONG_NO_FOG`, flat shading `PHONG_FLAT_SHADING`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PhongMaterialKey {
     /// Whether the material has a specular term.
@@ -407,6 +429,10 @@ pub struct PhongMaterialKey {
     pub refraction: bool,
     /// Whether it has a normal map.
     pub normal_map: bool,
+    /// Whether it has a bump map.
+    pub bump_map: bool,
+    /// Whether it is lit with its faces' normals (shader def `PHONG_FLAT_SHADING`).
+    pub flat_shading: bool,
     /// Whether it discards fragments below an alpha cutoff.
     pub alpha_mask: bool,
     /// Whether back faces are drawn (no culling).
@@ -453,6 +479,8 @@ impl From<&PhongMaterial> for PhongMaterialKey {
                 .map(|_| material.environment_combine),
             refraction: material.refraction_ratio.is_some(),
             normal_map: material.normal_map_texture.is_some(),
+            bump_map: material.bump_map_texture.is_some(),
+            flat_shading: material.flat_shading,
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
             uv_transform: limits::uv_transform(material.uv_transform) != Affine2::IDENTITY,
@@ -519,7 +547,7 @@ impl PhongMaterialKey {
                 || self.specular_texture
                 || self.emissive_texture
                 || self.alpha_map
-                || (self.normal_map && has_tangents)
+                || ((self.normal_map || self.bump_map) && has_tangents)
                 || self.light_map == Some(UvSet::First)
                 || self.ao_map == Some(UvSet::First));
         if self.uv_transform && samples_a_map {
@@ -530,6 +558,9 @@ impl PhongMaterialKey {
         }
         if self.unlit {
             defs.push("PHONG_UNLIT");
+        }
+        if self.flat_shading {
+            defs.push("PHONG_FLAT_SHADING");
         }
         if let Some(combine) = self.environment {
             defs.push("PHONG_ENVIRONMENT_MAP");
@@ -594,13 +625,19 @@ impl PhongMaterialKey {
                 None => {}
             }
         }
-        if self.normal_map && has_uvs && has_tangents {
-            defs.push("PHONG_NORMAL_MAP");
-        } else if self.normal_map {
-            warn!(
-                "PhongMaterial.normal_map_texture is ignored on a mesh without UVs and tangents \
-                 (Mesh::ATTRIBUTE_UV_0, Mesh::ATTRIBUTE_TANGENT: Mesh::with_generated_tangents)"
-            );
+        let tangent_maps = [
+            (self.normal_map, "PHONG_NORMAL_MAP", "normal_map_texture"),
+            (self.bump_map, "PHONG_BUMP_MAP", "bump_map_texture"),
+        ];
+        for (used, def, field) in tangent_maps {
+            if used && has_uvs && has_tangents {
+                defs.push(def);
+            } else if used {
+                warn!(
+                    "PhongMaterial.{field} is ignored on a mesh without UVs and tangents \
+                     (Mesh::ATTRIBUTE_UV_0, Mesh::ATTRIBUTE_TANGENT: Mesh::with_generated_tangents)"
+                );
+            }
         }
         defs
     }

@@ -37,12 +37,14 @@ use glam::DVec3;
 
 mod camera_effects;
 mod environment;
+mod normals;
 mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use environment::{environment_direction, environment_lod, with_environment};
+pub use normals::{bumped_normal, face_normal, mapped_normal};
 pub use surface_inputs::transformed_uv;
-pub use texture_maps::{Texels, mapped_normal};
+pub use texture_maps::Texels;
 
 #[cfg(test)]
 mod baked_light_tests;

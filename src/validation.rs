@@ -287,6 +287,7 @@ impl Checker {
             self.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
         }
         self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
+        self.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
         let reflectivity = &mut material.reflectivity;
         self.scalar("reflectivity", reflectivity, limits::FRACTION);
         if let Some(ratio) = &mut material.refraction_ratio {

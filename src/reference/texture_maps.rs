@@ -38,20 +38,6 @@ impl Material {
     }
 }
 
-/// The normal a normal map gives: `n.x·T + n.y·B + n.z·N`, with `n = 2·texel − 1` (its `y`
-/// negated when `flip_y`), `T = tangent.xyz`, `B = tangent.w · N × T`, from the
-/// interpolated, unnormalized `normal` and `tangent` (MikkTSpace's frame). Any length; the
-/// lighting normalizes it.
-pub fn mapped_normal(normal: DVec3, tangent: DVec4, texel: DVec3, flip_y: bool) -> DVec3 {
-    let mut n = texel * 2.0 - 1.0;
-    if flip_y {
-        n.y = -n.y;
-    }
-    let tangent_xyz = tangent.truncate();
-    let bitangent = tangent.w * normal.cross(tangent_xyz);
-    n.x * tangent_xyz + n.y * bitangent + n.z * normal
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -90,22 +76,5 @@ mod tests {
         assert_eq!(mapped.specular, DVec3::new(0.0, 1.0, 0.5));
         assert_eq!(mapped.emissive, DVec3::splat(0.2));
         assert_eq!(mapped.specular_strength, 2.0);
-    }
-
-    #[test]
-    fn the_flat_texel_keeps_the_normal_and_the_others_tilt_it_in_the_tangent_frame() {
-        let normal = DVec3::Z * 2.0;
-        let tangent = DVec4::new(1.0, 0.0, 0.0, 1.0);
-        let flat = DVec3::new(0.5, 0.5, 1.0);
-        assert_eq!(mapped_normal(normal, tangent, flat, false), normal);
-        // Green up: toward B = N × T = +Y (times |N| = 2); flipped: toward -Y.
-        let up = DVec3::new(0.5, 1.0, 0.5);
-        assert_eq!(mapped_normal(normal, tangent, up, false), DVec3::Y * 2.0);
-        assert_eq!(mapped_normal(normal, tangent, up, true), -DVec3::Y * 2.0);
-        // A left-handed tangent (w = -1) mirrors the bitangent.
-        let mirrored = DVec4::new(1.0, 0.0, 0.0, -1.0);
-        assert_eq!(mapped_normal(normal, mirrored, up, false), -DVec3::Y * 2.0);
-        let right = DVec3::new(1.0, 0.5, 0.5);
-        assert_eq!(mapped_normal(normal, tangent, right, false), DVec3::X);
     }
 }

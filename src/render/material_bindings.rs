@@ -24,8 +24,8 @@ use bevy::{
 
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
 /// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
-/// alpha map and 20, 21 the environment cube map, each followed
-/// by its sampler.
+/// alpha map, 20, 21 the environment cube map and 22, 23 the bump map, each followed by its
+/// sampler.
 #[derive(AsBindGroup)]
 struct SurfaceBindings {
     #[uniform(0)]
@@ -54,6 +54,9 @@ struct SurfaceBindings {
     #[texture(20, dimension = "cube")]
     #[sampler(21)]
     environment_map: Option<Handle<Image>>,
+    #[texture(22)]
+    #[sampler(23)]
+    bump_map_texture: Option<Handle<Image>>,
 }
 
 impl From<&PhongMaterial> for SurfaceBindings {
@@ -68,6 +71,7 @@ impl From<&PhongMaterial> for SurfaceBindings {
             ao_map_texture: material.ao_map_texture.clone(),
             alpha_map_texture: material.alpha_map_texture.clone(),
             environment_map: material.environment_map.clone(),
+            bump_map_texture: material.bump_map_texture.clone(),
         }
     }
 }
@@ -220,15 +224,15 @@ impl PhongSceneBindings<'_> {
     }
 }
 
-/// The bindings of the alpha map and the environment map (18 to 21), which a device with
+/// The bindings of the alpha map, the environment map and the bump map (18 to 23), which a device with
 /// fewer storage buffers than the scene data needs (WebGL2) leaves out: there a fragment
 /// stage has 16 textures, which Bevy's view (its shadow maps, prepass textures and lookup
 /// tables) shares with the material, and every other map of the material fits beside them.
-const MAPS_OF_FULL_DEVICES: core::ops::RangeInclusive<u32> = 18..=21;
+const MAPS_OF_FULL_DEVICES: core::ops::RangeInclusive<u32> = 18..=23;
 
 /// Whether `render_device` binds every map of a [`PhongMaterial`]; where it does not
-/// (WebGL2), the alpha map and the environment map are left out, with a warning, and the
-/// material is drawn without them.
+/// (WebGL2), the alpha map, the environment map and the bump map are left out, with a
+/// warning, and the material is drawn without them.
 pub fn binds_every_map(render_device: &RenderDevice) -> bool {
     !crate::render::needs_scene_texture(render_device)
 }
@@ -271,10 +275,14 @@ impl AsBindGroup for PhongMaterial {
                 .bindings
                 .0
                 .retain(|(binding, _)| !MAPS_OF_FULL_DEVICES.contains(binding));
-            if self.alpha_map_texture.is_some() || self.environment_map.is_some() {
+            if self.alpha_map_texture.is_some()
+                || self.environment_map.is_some()
+                || self.bump_map_texture.is_some()
+            {
                 bevy::log::warn_once!(
-                    "PhongMaterial.alpha_map_texture and environment_map are left out on this \
-                     device (WebGL2's 16 textures a shader stage): drawn without them"
+                    "PhongMaterial.alpha_map_texture, environment_map and bump_map_texture are \
+                     left out on this device (WebGL2's 16 textures a shader stage): drawn \
+                     without them"
                 );
             }
         }

@@ -26,8 +26,8 @@ use serde::{Deserialize, Serialize};
 /// )
 /// ```
 ///
-/// Texture paths are relative to the file that names them. Specular, normal, AO and alpha
-/// maps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
+/// Texture paths are relative to the file that names them. Specular, normal, bump, AO and
+/// alpha maps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
 /// as sRGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -60,6 +60,12 @@ pub struct PhongMaterialDescription {
     pub normal_map_texture: Option<String>,
     /// Negate the normal map's green channel. Default `false`.
     pub flip_normal_map_y: bool,
+    /// Path of the bump (height) map (red channel, loaded as linear data). Default none.
+    pub bump_map_texture: Option<String>,
+    /// How far a height step of 1 between neighbouring texels tilts the normal. Default `1`.
+    pub bump_scale: f32,
+    /// Light each triangle with its face's normal. Default `false`.
+    pub flat_shading: bool,
     /// Draw back faces too, their normal negated. Default `false`.
     pub double_sided: bool,
     /// How the UVs move before the maps are sampled. Default none.
@@ -200,6 +206,9 @@ impl Default for PhongMaterialDescription {
             alpha_map_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
+            bump_map_texture: None,
+            bump_scale: material.bump_scale,
+            flat_shading: material.flat_shading,
             double_sided: false,
             uv_transform: UvTransformDescription::default(),
             unlit: material.unlit,
@@ -259,6 +268,9 @@ impl PhongMaterialDescription {
             alpha_map_texture: map(&self.alpha_map_texture, "alpha_map_texture", false)?,
             normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
+            bump_map_texture: map(&self.bump_map_texture, "bump_map_texture", false)?,
+            bump_scale: self.bump_scale,
+            flat_shading: self.flat_shading,
             double_sided: self.double_sided,
             uv_transform: self.uv_transform.to_affine2(),
             unlit: self.unlit,

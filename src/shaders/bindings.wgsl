@@ -1,5 +1,5 @@
 // The bindings of `PhongMaterial` in the material bind group: the material's own (0, 3–10,
-// 14–21)
+// 14–23)
 // and the plugin's scene data (1, 2, 11–13; `PhongSceneBindings`).
 #define_import_path bevy_phong::bindings
 
@@ -36,6 +36,8 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(19) var alpha_map_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(20) var environment_map: texture_cube<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(21) var environment_sampler: sampler;
+@group(#{MATERIAL_BIND_GROUP}) @binding(22) var bump_map_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(23) var bump_map_sampler: sampler;
 #endif
 @group(#{MATERIAL_BIND_GROUP}) @binding(12) var shadow_maps: texture_depth_2d_array;
 @group(#{MATERIAL_BIND_GROUP}) @binding(13) var shadow_sampler: sampler_comparison;

@@ -4,8 +4,8 @@
 // - Alpha mask: the fragments the main pass discards (by the base color's, the vertex
 //   color's, the base color map's and the alpha map's alpha) are discarded here too, so the
 //   depth prepass leaves the holes open and Bevy's shadow maps let light through them.
-// - Normal prepass: the normal the main pass lights the fragment with (double-sided faces
-//   turned toward the viewer, the normal map applied), normalized (zero where degenerate), encoded as `n/2 + 1/2`
+// - Normal prepass: the normal the main pass lights the fragment with (`lit_normal`: double-
+//   sided faces turned toward the viewer, flat shading, the normal and bump maps), normalized (zero where degenerate), encoded as `n/2 + 1/2`
 //   like Bevy's.
 // - Motion vectors and unclipped depth: as Bevy's own prepass shader.
 #import bevy_pbr::prepass_io::VertexOutput
@@ -26,10 +26,7 @@
 #endif
 #ifdef NORMAL_PREPASS
 #import bevy_phong::lighting::normalize_or_zero
-#import bevy_phong::normals::facing_normal
-#ifdef PHONG_NORMAL_MAP
-#import bevy_phong::normals::with_normal_map
-#endif
+#import bevy_phong::normals::lit_normal
 #endif
 #ifdef MOTION_VECTOR_PREPASS
 #import bevy_pbr::{prepass_bindings::previous_view_uniforms, mesh_view_bindings::view}
@@ -61,10 +58,15 @@ fn discard_masked(in: VertexOutput) {
 fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> FragmentOutput {
     var out: FragmentOutput;
 #ifdef NORMAL_PREPASS
-    var normal = facing_normal(in.world_normal, is_front);
-#ifdef PHONG_NORMAL_MAP
-    normal = with_normal_map(normal, in.world_tangent, map_uv(in.uv));
+    var uv = vec2<f32>(0.0);
+#ifdef VERTEX_UVS_A
+    uv = map_uv(in.uv);
 #endif
+    var tangent = vec4<f32>(0.0);
+#ifdef VERTEX_TANGENTS
+    tangent = in.world_tangent;
+#endif
+    let normal = lit_normal(in.world_normal, in.world_position.xyz, tangent, uv, is_front);
     // Sampled before any discard: texture sampling needs uniform control flow.
     out.normal = vec4<f32>(normalize_or_zero(normal) * 0.5 + vec3<f32>(0.5), 1.0);
 #endif

@@ -18,13 +18,10 @@
 #import bevy_phong::bindings::{alpha_map_texture, alpha_map_sampler}
 #endif
 #endif
-#import bevy_phong::normals::facing_normal
+#import bevy_phong::normals::lit_normal
 #import bevy_phong::uv::map_uv
 #ifdef LIGHTMAP
 #import bevy_pbr::lightmap::lightmap
-#endif
-#ifdef PHONG_NORMAL_MAP
-#import bevy_phong::normals::with_normal_map
 #endif
 
 // What the lighting equation takes from the material at one fragment.
@@ -36,7 +33,7 @@ struct MappedMaterial {
     specular: vec3<f32>,
     // emissive ⊙ emissive map.
     emissive: vec3<f32>,
-    // The surface normal, any length (normalized by `phong_surface`).
+    // The surface normal, any length (normalized by `phong_surface`): `lit_normal`'s.
     normal: vec3<f32>,
     // The light map's light and Bevy's `Lightmap`'s, times the light map intensity (zero
     // without either).
@@ -49,15 +46,20 @@ struct MappedMaterial {
 
 // `is_front`: the fragment's `@builtin(front_facing)`.
 fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
-    let normal = facing_normal(in.world_normal, is_front);
+    var uv = vec2<f32>(0.0);
+#ifdef VERTEX_UVS_A
+    uv = map_uv(in.uv);
+#endif
+    var tangent = vec4<f32>(0.0);
+#ifdef VERTEX_TANGENTS
+    tangent = in.world_tangent;
+#endif
+    let normal = lit_normal(in.world_normal, in.world_position.xyz, tangent, uv, is_front);
     var mapped = MappedMaterial(
         material.base_color, material.specular, material.emissive, normal, vec3<f32>(0.0), 1.0, 1.0,
     );
 #ifdef VERTEX_COLORS
     mapped.base_color *= in.color;
-#endif
-#ifdef VERTEX_UVS_A
-    let uv = map_uv(in.uv);
 #endif
 #ifdef PHONG_BASE_COLOR_TEXTURE
     mapped.base_color *= textureSample(base_color_texture, base_color_sampler, uv);
@@ -74,9 +76,6 @@ fn mapped_material(in: VertexOutput, is_front: bool) -> MappedMaterial {
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
     mapped.base_color.a *= textureSample(alpha_map_texture, alpha_map_sampler, uv).g;
 #endif
-#endif
-#ifdef PHONG_NORMAL_MAP
-    mapped.normal = with_normal_map(normal, in.world_tangent, uv);
 #endif
 #ifdef PHONG_LIGHT_MAP
 #ifdef PHONG_LIGHT_MAP_UV_B

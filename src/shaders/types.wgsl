@@ -155,6 +155,9 @@ struct PhongMaterialUniform {
     reflectivity: f32,
     // With PHONG_ENV_REFRACTION, the ratio of refractive indices.
     refraction_ratio: f32,
+    // With PHONG_BUMP_MAP, how far a height step of 1 between neighbouring texels tilts the
+    // normal (1: 45°).
+    bump_scale: f32,
 }
 
 // A surface point, ready to be lit.

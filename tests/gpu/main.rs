@@ -14,6 +14,7 @@
 //!   the reference model given each pixel's texels;
 //! - `surface_inputs`: vertex colors, the UV transform, unlit materials, light, AO and alpha
 //!   maps and Bevy's `Lightmap`, the same way;
+//! - `shading_normals`: bump maps and flat shading, the same way;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
@@ -53,6 +54,7 @@ mod scene_files;
 mod searchlight;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
+mod shading_normals;
 mod shadows;
 #[path = "../fuzz/shapes.rs"]
 mod shapes;

@@ -185,8 +185,9 @@ pub(crate) fn loaded_images(harness: &mut Harness) -> HashMap<AssetId<Image>, Im
 }
 
 /// The normal a pixel of `material` is lit with, given its captured inputs: the normal
-/// map's where the material has one and the mesh has tangents, the interpolated normal
-/// otherwise; `None` on a texel edge.
+/// map's and then the bump map's where the material has them and the mesh has tangents
+/// (the bump map only where the device binds it), around `surface.normal` (the frame normal:
+/// the interpolated normal, or the face normal with flat shading); `None` on a texel edge.
 pub(crate) fn lit_normal(
     material: &PhongMaterial,
     surface: &reference::SurfacePoint,
@@ -196,31 +197,44 @@ pub(crate) fn lit_normal(
 ) -> Option<DVec3> {
     let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
     let tangent = inputs.tangents.as_ref().unwrap().pixels[pixel];
-    let texel = match &material.normal_map_texture {
-        None => None,
-        // Normal maps are linear: nothing to decode.
-        Some(handle) => Some(texel_at(
-            &images[&handle.id()],
-            sampled_uv(material, inputs, pixel),
-            SrgbDecoding::Exact,
-        )?),
-    };
     let tangent = DVec4::new(
         tangent[0].into(),
         tangent[1].into(),
         tangent[2].into(),
         uv_and_sign[2].into(),
     );
-    // A normal map is applied only where the mesh has tangents (`w` is ±1 there, 0 without).
-    Some(match texel {
-        Some(texel) if tangent.w != 0.0 => reference::mapped_normal(
-            surface.normal,
-            tangent,
-            texel.truncate(),
-            material.flip_normal_map_y,
-        ),
-        _ => surface.normal,
-    })
+    // The tangent maps apply only where the mesh has tangents (`w` is ±1 there, 0 without).
+    if tangent.w == 0.0 {
+        return Some(surface.normal);
+    }
+    let uv = sampled_uv(material, inputs, pixel);
+    // Normal and bump maps are linear: nothing to decode.
+    let texel = |handle: &Handle<Image>, uv: [f64; 2]| {
+        texel_at(&images[&handle.id()], uv, SrgbDecoding::Exact)
+    };
+    let mut normal = surface.normal;
+    if let Some(handle) = &material.normal_map_texture {
+        let texel = texel(handle, uv)?.truncate();
+        normal = reference::mapped_normal(normal, tangent, texel, material.flip_normal_map_y);
+    }
+    if let Some(handle) = material
+        .bump_map_texture
+        .as_ref()
+        .filter(|_| inputs.every_map_bound)
+    {
+        let image = &images[&handle.id()];
+        let step = [
+            1.0 / f64::from(image.width()),
+            1.0 / f64::from(image.height()),
+        ];
+        let height = texel(handle, uv)?.x;
+        let along_u = texel(handle, [uv[0] + step[0], uv[1]])?.x;
+        let along_v = texel(handle, [uv[0], uv[1] + step[1]])?.x;
+        let slope = DVec2::new(along_u - height, along_v - height);
+        let scale = f64::from(bevy_phong::limits::SIGNED_SCALE.apply(material.bump_scale));
+        normal = reference::bumped_normal(normal, surface.normal, tangent, slope, scale);
+    }
+    Some(normal)
 }
 
 /// The texels each of `material`'s maps gives in pixel `pixel` (at the UVs of

@@ -192,6 +192,8 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             alpha_map: false,
             environment: None,
             refraction: false,
+            bump_map: false,
+            flat_shading: false,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
@@ -213,6 +215,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Multiply), true),
         |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Mix), true),
         |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Add), true),
+        |key| key.bump_map = true,
+        |key| key.flat_shading = true,
+        |key| (key.bump_map, key.flat_shading) = (true, true),
     ];
     let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
@@ -230,9 +235,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// How many distinct def sets the extra keys of [`material_keys`] give on a mesh with one
 /// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
 /// set (2; on the second they are left out there), an alpha map (1), an environment map
-/// (6: three combine modes, reflected or refracted), each with no map and every map, under
-/// 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6) * 2 * 3;
+/// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
+/// each with no map and every map, under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that

@@ -24,14 +24,17 @@ use crate::{
 const SAME_FRAME: f64 = 1e-6;
 
 /// The scene of the frames with a square in front of the sphere, cut out by an alpha mask
-/// (a checkerboard of alpha 0 and 1, cutoff 0.5), and a normal-mapped cube: what the
-/// prepasses must get right.
+/// (a checkerboard of alpha 0 and 1, cutoff 0.5), and a normal- and bump-mapped cube: what
+/// the prepasses must get right.
 fn masked_and_mapped_scene(harness: &mut Harness) {
     bright_scene(harness);
     let world = harness.world_mut();
     let mut images = world.resource_mut::<Assets<Image>>();
     let checker = images.add(float_map(|x, y| [1.0, 1.0, 1.0, ((x + y) % 2) as f32]));
     let normals = images.add(normal_map());
+    let heights = images.add(float_map(|x, y| {
+        [((x + 2 * y) % 3) as f32 / 2.0, 0.0, 0.0, 1.0]
+    }));
     let mut meshes = world.resource_mut::<Assets<Mesh>>();
     let square = meshes.add(Plane3d::new(Vec3::Z, Vec2::splat(0.9)));
     let cube = meshes.add(
@@ -49,6 +52,8 @@ fn masked_and_mapped_scene(harness: &mut Harness) {
     let mapped = materials.add(PhongMaterial {
         base_color: Color::srgb(0.6, 0.8, 0.3),
         normal_map_texture: Some(normals),
+        bump_map_texture: Some(heights),
+        bump_scale: 0.7,
         shininess: 30.0,
         ..default()
     });
@@ -116,7 +121,7 @@ fn prepasses_and_the_deferred_renderer_leave_the_phong_frame_unchanged() {
 }
 
 /// The normal prepass holds, at each Phong pixel, the unit normal the main pass lights it
-/// with: the normal map's on the mapped cube. Read back through a translucent full-view
+/// with: the normal and bump maps' on the mapped cube. Read back through a translucent full-view
 /// square (translucent meshes are not in the prepass) that shows the prepass normal.
 /// Tolerance: the prepass stores `n/2 + 1/2` in 10 bits per channel (`Rgb10a2Unorm`), so
 /// each decoded component is within one step of 2/1023, doubled for the normalization of
