@@ -233,6 +233,13 @@ pub struct PhongMaterial {
     /// Default none.
     #[dependency]
     pub environment_map: Option<Handle<Image>>,
+    /// Reflects the specular map of the camera's Bevy `EnvironmentMapLight` where the
+    /// material has no [`environment_map`](Self::environment_map): the same lookup, with the
+    /// direction turned by the light's `rotation` and the texel times its `intensity` and the
+    /// camera's exposure (Bevy's `Exposure`: `2^−EV100 / 1.2`), as `StandardMaterial` weighs
+    /// it. A camera without one leaves the lit color as it is. Works under WebGL2 too (the
+    /// cube is Bevy's view binding). Default `false`.
+    pub camera_environment: bool,
     /// How the environment joins the lit color. Default [`EnvironmentCombine::Multiply`].
     pub environment_combine: EnvironmentCombine,
     /// The environment's weight `k`, `[0, 1]` (times the specular map's red). Default `1`.
@@ -276,6 +283,7 @@ impl Default for PhongMaterial {
             ao_map_intensity: 1.0,
             ao_map_channel: UvChannel::Uv0,
             environment_map: None,
+            camera_environment: false,
             environment_combine: EnvironmentCombine::Multiply,
             reflectivity: 1.0,
             refraction_ratio: None,
@@ -408,7 +416,8 @@ impl From<&UvChannel> for UvSet {
 /// `AlphaMode::Mask` adds `PHONG_ALPHA_MASK`: materials without maps sample nothing. A
 /// light map adds `PHONG_LIGHT_MAP`, an AO map `PHONG_AO_MAP` (each with `…_UV_B` on the
 /// second UV set), an environment map `PHONG_ENVIRONMENT_MAP` (with `PHONG_ENV_MIX` or
-/// `PHONG_ENV_ADD` for those combine modes, `PHONG_ENV_REFRACTION` when it refracts). An
+/// `PHONG_ENV_ADD` for those combine modes, `PHONG_ENV_REFRACTION` when it refracts,
+/// `PHONG_ENV_CAMERA` for the camera's `EnvironmentMapLight`). An
 /// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
 /// `PHONG_NO_FOG`, flat shading `PHONG_FLAT_SHADING`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -427,6 +436,9 @@ pub struct PhongMaterialKey {
     pub environment: Option<EnvironmentCombine>,
     /// Whether the environment is looked up along the refracted view ray.
     pub refraction: bool,
+    /// Whether the environment is the camera's `EnvironmentMapLight` (shader def
+    /// `PHONG_ENV_CAMERA`) rather than the material's own cube.
+    pub camera_environment: bool,
     /// Whether it has a normal map.
     pub normal_map: bool,
     /// Whether it has a bump map.
@@ -473,11 +485,10 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             specular_texture: specular && material.specular_texture.is_some(),
             emissive_texture: material.emissive_texture.is_some(),
             alpha_map: material.alpha_map_texture.is_some(),
-            environment: material
-                .environment_map
-                .as_ref()
-                .map(|_| material.environment_combine),
+            environment: (material.environment_map.is_some() || material.camera_environment)
+                .then_some(material.environment_combine),
             refraction: material.refraction_ratio.is_some(),
+            camera_environment: material.environment_map.is_none() && material.camera_environment,
             normal_map: material.normal_map_texture.is_some(),
             bump_map: material.bump_map_texture.is_some(),
             flat_shading: material.flat_shading,
@@ -571,6 +582,9 @@ impl PhongMaterialKey {
             });
             if self.refraction {
                 defs.push("PHONG_ENV_REFRACTION");
+            }
+            if self.camera_environment {
+                defs.push("PHONG_ENV_CAMERA");
             }
         }
         if self.no_fog {

@@ -41,7 +41,9 @@ mod normals;
 mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
-pub use environment::{environment_direction, environment_lod, with_environment};
+pub use environment::{
+    camera_environment_direction, environment_direction, environment_lod, with_environment,
+};
 pub use normals::{bumped_normal, face_normal, mapped_normal};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;

@@ -3,7 +3,7 @@
 use super::SurfacePoint;
 use crate::material::EnvironmentCombine;
 use core::f64::consts::FRAC_PI_2;
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
 /// The mip level a cube of `size` texels a side is read at for the highlight exponent
 /// `shininess`: `max(log2(size / ((π/2) · sqrt(α + 1))), 0)`, where a texel spans about
@@ -34,6 +34,14 @@ pub fn environment_direction(surface: &SurfacePoint, refraction_ratio: Option<f6
     }
 }
 
+/// The direction the camera's Bevy `EnvironmentMapLight` is read along for the world
+/// direction `direction`: turned by the inverse of the light's `rotation`, then `z` negated
+/// (the cube's left-handed frame), as Bevy reads it.
+pub fn camera_environment_direction(direction: DVec3, rotation: DQuat) -> DVec3 {
+    let turned = rotation.inverse() * direction;
+    DVec3::new(turned.x, turned.y, -turned.z)
+}
+
 /// `lit` with the `environment` color joined by `combine` with weight `strength` (the
 /// reflectivity times the specular map's red).
 pub fn with_environment(
@@ -52,6 +60,18 @@ pub fn with_environment(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_cameras_environment_turns_against_its_rotation_into_a_left_handed_cube() {
+        let quarter_turn = DQuat::from_rotation_y(FRAC_PI_2);
+        // The light turned a quarter about +Y: what was seen along +X is now along -Z.
+        let direction = camera_environment_direction(-DVec3::Z, quarter_turn);
+        assert!((direction - DVec3::X).length() < 1e-12, "{direction}");
+        assert_eq!(
+            camera_environment_direction(DVec3::Z, DQuat::IDENTITY),
+            -DVec3::Z
+        );
+    }
 
     #[test]
     fn a_lobe_as_wide_as_a_texel_of_level_one_reads_level_one() {

@@ -93,6 +93,9 @@ pub struct PhongMaterialDescription {
     /// Path of the environment cube map (a file that holds a cube, such as KTX2 or DDS;
     /// loaded with the image loader's defaults). Default none.
     pub environment_map: Option<String>,
+    /// Reflect the camera's Bevy `EnvironmentMapLight` where there is no
+    /// `environment_map`. Default `false`.
+    pub camera_environment: bool,
     /// `Multiply`, `Mix` or `Add`. Default `Multiply`.
     pub environment_combine: EnvironmentCombine,
     /// The environment's weight. Default `1`.
@@ -222,6 +225,7 @@ impl Default for PhongMaterialDescription {
             ao_map_intensity: material.ao_map_intensity,
             ao_map_channel: UvChannelDescription::Uv0,
             environment_map: None,
+            camera_environment: material.camera_environment,
             environment_combine: material.environment_combine,
             reflectivity: material.reflectivity,
             refraction_ratio: material.refraction_ratio,
@@ -289,6 +293,7 @@ impl PhongMaterialDescription {
                 .map(|path| relative_path(load_context, path, at("environment_map")))
                 .transpose()?
                 .map(|resolved| load_context.load(resolved)),
+            camera_environment: self.camera_environment,
             environment_combine: self.environment_combine,
             reflectivity: self.reflectivity,
             refraction_ratio: self.refraction_ratio,

@@ -5,9 +5,7 @@
 #import bevy_phong::texture_maps::mapped_material
 #import bevy_phong::camera_effects::camera_effects
 #ifdef PHONG_ENVIRONMENT_MAP
-#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
 #import bevy_phong::environment::with_environment
-#endif
 #endif
 
 @fragment
@@ -25,9 +23,7 @@ fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @locatio
     let surface = fragment_surface(in, mapped);
     var color = lit_color(surface, mapped.emissive);
 #ifdef PHONG_ENVIRONMENT_MAP
-#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
     color = with_environment(color, surface, mapped.environment_mask);
-#endif
 #endif
 #endif
     let lit = vec4<f32>(color, mapped.base_color.a);

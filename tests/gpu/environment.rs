@@ -8,6 +8,12 @@
 //! left out. Tolerance: the frame tests' (`TOLERANCE`); the lookup adds a blend in `f32`.
 //! Under WebGL2's limits the environment map is left out (`render::binds_every_map`): there
 //! the test checks that the surfaces are drawn as without it.
+//!
+//! The camera's Bevy `EnvironmentMapLight` is read through Bevy's own sampler, which filters
+//! linearly: its cube has one color per face and level, so that a lookup at a whole level
+//! returns that color wherever its footprint stays on the face; pixels within half a texel
+//! (and 1 %) of a face's edge are left out (Vulkan filters across the edges of a cube's
+//! faces).
 
 use crate::frames::SIZE;
 use crate::texture_maps::{
@@ -23,7 +29,7 @@ use bevy::{
     },
 };
 use bevy_phong::{EnvironmentCombine, prelude::*, reference};
-use bevy_phong_headless::{Harness, SurfaceInputs};
+use bevy_phong_headless::{Harness, HarnessCamera, SurfaceInputs};
 use glam::{DVec3, DVec4};
 use std::collections::HashMap;
 
@@ -42,16 +48,17 @@ fn cube_texel(face: u32, level: u32, x: u32, y: u32) -> [f32; 4] {
     ]
 }
 
-/// A cube map of `CUBE_SIZE` texels a side with two levels, stored layer by layer (each
-/// face's levels together, as Bevy's images order them), nearest-sampled.
-fn cube_map() -> Image {
+/// A cube map of `cube_size` texels a side with two levels whose texel `(x, y)` of face
+/// `face` at level `level` is `texel(face, level, x, y)`, stored layer by layer (each face's
+/// levels together, as Bevy's images order them), nearest-sampled.
+fn cube_map(cube_size: u32, texel: impl Fn(u32, u32, u32, u32) -> [f32; 4]) -> Image {
     let mut data = Vec::new();
     for face in 0..6 {
         for level in 0..2 {
-            let size = CUBE_SIZE >> level;
+            let size = cube_size >> level;
             for y in 0..size {
                 for x in 0..size {
-                    let texel = cube_texel(face, level, x, y);
+                    let texel = texel(face, level, x, y);
                     data.extend(texel.map(|channel| (channel * 255.0).round() as u8));
                 }
             }
@@ -62,8 +69,8 @@ fn cube_map() -> Image {
         texture_descriptor: TextureDescriptor {
             label: None,
             size: Extent3d {
-                width: CUBE_SIZE,
-                height: CUBE_SIZE,
+                width: cube_size,
+                height: cube_size,
                 depth_or_array_layers: 6,
             },
             mip_level_count: 2,
@@ -83,10 +90,9 @@ fn cube_map() -> Image {
     }
 }
 
-/// The texel of level `level` that a nearest lookup along `direction` reads (Vulkan's
-/// cube map face selection and coordinates), as the stored bytes give it; `None` within
-/// 1/100 texel of a texel's edge or 1/1000 of a face's.
-fn cube_texel_at(direction: DVec3, level: u32) -> Option<DVec4> {
+/// The face a lookup along `direction` reads and its coordinates `(s, t)` on it, each in
+/// `[-1, 1]` (Vulkan's cube map face selection).
+fn cube_face(direction: DVec3) -> (u32, [f64; 2]) {
     let [x, y, z] = direction.to_array();
     let (ax, ay, az) = (x.abs(), y.abs(), z.abs());
     // (face, sc, tc, ma) for +X, -X, +Y, -Y, +Z, -Z.
@@ -107,10 +113,16 @@ fn cube_texel_at(direction: DVec3, level: u32) -> Option<DVec4> {
     } else {
         (5, -x, -y, az)
     };
+    (face, [sc / ma, tc / ma])
+}
+
+/// The texel of level `level` that a nearest lookup along `direction` reads, as the stored
+/// bytes give it; `None` within 1/100 texel of a texel's edge or 1/1000 of a face's.
+fn cube_texel_at(direction: DVec3, level: u32) -> Option<DVec4> {
+    let (face, coordinates) = cube_face(direction);
     let size = f64::from(CUBE_SIZE >> level);
     let mut texel = [0u32; 2];
-    for (axis, coordinate) in [sc, tc].into_iter().enumerate() {
-        let s = coordinate / ma;
+    for (axis, s) in coordinates.into_iter().enumerate() {
         if s.abs() > 0.999 {
             return None;
         }
@@ -126,10 +138,8 @@ fn cube_texel_at(direction: DVec3, level: u32) -> Option<DVec4> {
     Some(DVec4::from_array(stored))
 }
 
-#[test]
-fn environment_maps_follow_the_reference_model() {
-    let mut harness = Harness::new(SIZE, SIZE);
-    let world = harness.world_mut();
+/// The lights of the environment tests: ambient and a point light.
+fn spawn_lights(world: &mut World) {
     world.insert_resource(PhongAmbientLight {
         color: Color::srgb(0.2, 0.2, 0.25),
     });
@@ -140,24 +150,31 @@ fn environment_maps_follow_the_reference_model() {
         },
         Transform::from_xyz(-1.0, 2.5, 3.0),
     ));
-    let mut images = world.resource_mut::<Assets<Image>>();
-    let cube = images.add(cube_map());
-    let specular_map = images.add(float_map(|x, y| {
+}
+
+/// Three reflective objects, each given its environment by `environment`: a mirror-like
+/// sphere (Multiply, level 0), a dull cube masked by a specular map (Mix, level 1 of a cube
+/// `cube_size` texels a side) and a refracting sphere (Add).
+fn reflective_objects(
+    world: &mut World,
+    cube_size: u32,
+    environment: impl Fn(PhongMaterial) -> PhongMaterial,
+) -> [(Mesh, Transform, PhongMaterial); 3] {
+    let specular_map = world.resource_mut::<Assets<Image>>().add(float_map(|x, y| {
         [0.2 + 0.25 * ((x + y) % 4) as f32, 0.5, 0.5, 1.0]
     }));
     // A lobe one level-1 texel wide (see `reference::environment_lod`).
-    let level_one = (CUBE_SIZE as f32 / core::f32::consts::PI).powi(2) - 1.0;
-    let objects = [
+    let level_one = (cube_size as f32 / core::f32::consts::PI).powi(2) - 1.0;
+    [
         (
             Sphere::new(1.0).mesh().uv(48, 32),
             Transform::from_xyz(-2.3, 0.0, 0.0),
-            PhongMaterial {
+            environment(PhongMaterial {
                 base_color: Color::srgb(0.9, 0.8, 0.7),
-                environment_map: Some(cube.clone()),
                 reflectivity: 0.8,
                 shininess: 1e4,
                 ..default()
-            },
+            }),
         ),
         (
             Cuboid::new(1.3, 1.3, 1.3).into(),
@@ -167,62 +184,189 @@ fn environment_maps_follow_the_reference_model() {
                 0.5,
                 0.0,
             )),
-            PhongMaterial {
+            environment(PhongMaterial {
                 base_color: Color::srgb(0.4, 0.5, 0.9),
                 specular_texture: Some(specular_map),
-                environment_map: Some(cube.clone()),
                 environment_combine: EnvironmentCombine::Mix,
                 reflectivity: 0.7,
                 shininess: level_one,
                 ..default()
-            },
+            }),
         ),
         (
             Sphere::new(1.0).mesh().uv(48, 32),
             Transform::from_xyz(2.3, 0.0, 0.0),
-            PhongMaterial {
+            environment(PhongMaterial {
                 base_color: Color::srgb(0.3, 0.3, 0.3),
-                environment_map: Some(cube),
                 environment_combine: EnvironmentCombine::Add,
                 reflectivity: 0.5,
                 refraction_ratio: Some(0.66),
                 shininess: 1e4,
                 ..default()
-            },
+            }),
         ),
-    ];
+    ]
+}
+
+/// The reference color of a pixel of a reflective material, given the environment's color
+/// along a world direction at a level of a cube `cube_size` texels a side (`None` where it
+/// cannot be judged), or the lit color alone where `drawn` is false (the environment left
+/// out).
+#[allow(clippy::too_many_arguments)]
+fn reflected_color(
+    material: &PhongMaterial,
+    surface: &reference::SurfacePoint,
+    pixel: usize,
+    inputs: &SurfaceInputs,
+    images: &HashMap<AssetId<Image>, Image>,
+    lights: &reference::Lights,
+    drawn: bool,
+    cube_size: u32,
+    environment_at: &dyn Fn(DVec3, u32) -> Option<DVec3>,
+) -> Option<DVec3> {
+    let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
+    let lit = lit_color(material, surface, pixel, inputs, &texels, images, lights)?;
+    if !drawn {
+        return Some(lit);
+    }
+    let normal = lit_normal(material, surface, pixel, inputs, images)?;
+    let lit_surface = reference::SurfacePoint { normal, ..*surface };
+    let ratio = material.refraction_ratio.map(f64::from);
+    let direction = reference::environment_direction(&lit_surface, ratio);
+    let lod = reference::environment_lod(f64::from(material.shininess), cube_size.into());
+    // The nearer level, of the two there are.
+    let level = (lod + 0.5).floor().min(1.0) as u32;
+    assert!(
+        (lod - lod.round()).abs() < 1e-3,
+        "a level, not between two: {lod}"
+    );
+    let environment = environment_at(direction, level)?;
+    let mask = texels.specular.map_or(1.0, |texel| texel.x);
+    let strength = mask * f64::from(material.reflectivity);
+    Some(reference::with_environment(
+        lit,
+        environment,
+        strength,
+        material.environment_combine,
+    ))
+}
+
+#[test]
+fn environment_maps_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    let cube = world
+        .resource_mut::<Assets<Image>>()
+        .add(cube_map(CUBE_SIZE, cube_texel));
+    let objects = reflective_objects(world, CUBE_SIZE, |material| PhongMaterial {
+        environment_map: Some(cube.clone()),
+        ..material
+    });
     let expected = |material: &PhongMaterial,
                     surface: &reference::SurfacePoint,
                     pixel: usize,
                     inputs: &SurfaceInputs,
                     images: &HashMap<AssetId<Image>, Image>,
                     lights: &reference::Lights| {
-        let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
-        let lit = lit_color(material, surface, pixel, inputs, &texels, images, lights)?;
         // Where the device does not bind every map (WebGL2), the environment is left out.
-        if !inputs.every_map_bound {
-            return Some(lit);
-        }
-        let normal = lit_normal(material, surface, pixel, inputs, images)?;
-        let lit_surface = reference::SurfacePoint { normal, ..*surface };
-        let ratio = material.refraction_ratio.map(f64::from);
-        let direction = reference::environment_direction(&lit_surface, ratio);
-        let lod = reference::environment_lod(f64::from(material.shininess), CUBE_SIZE.into());
-        // Nearest between levels: the nearer level, of the two there are.
-        let level = (lod + 0.5).floor().min(1.0) as u32;
-        assert!(
-            (lod - lod.round()).abs() < 1e-3,
-            "a level, not between two: {lod}"
-        );
-        let environment = cube_texel_at(direction, level)?.truncate();
-        let mask = texels.specular.map_or(1.0, |texel| texel.x);
-        let strength = mask * f64::from(material.reflectivity);
-        Some(reference::with_environment(
-            lit,
-            environment,
-            strength,
-            material.environment_combine,
-        ))
+        let drawn = inputs.every_map_bound;
+        let environment_at = |direction, level| Some(cube_texel_at(direction, level)?.truncate());
+        reflected_color(
+            material,
+            surface,
+            pixel,
+            inputs,
+            images,
+            lights,
+            drawn,
+            CUBE_SIZE,
+            &environment_at,
+        )
     };
     assert_pixels_follow(harness, objects, "environment maps", &expected);
+}
+
+/// Texels a side of the first level of the camera's cube: many, so that few pixels read
+/// near a face's edge.
+const CAMERA_CUBE_SIZE: u32 = 32;
+
+/// One color per face and level of the camera's cube.
+fn face_color(face: u32, level: u32) -> [f32; 4] {
+    [
+        (face as f32 + 1.0) / 7.0,
+        0.9 - 0.5 * level as f32,
+        1.0 - (face as f32) / 8.0,
+        1.0,
+    ]
+}
+
+#[test]
+fn the_cameras_environment_map_light_is_reflected_as_the_materials_own_map() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_lights(world);
+    let cube = world
+        .resource_mut::<Assets<Image>>()
+        .add(cube_map(CAMERA_CUBE_SIZE, |face, level, _, _| {
+            face_color(face, level)
+        }));
+    let exposure = f64::from(bevy::camera::Exposure::default().exposure());
+    let intensity = 1.2 / exposure as f32;
+    let rotation = Quat::from_rotation_y(0.7) * Quat::from_rotation_x(0.3);
+    let camera = world
+        .query_filtered::<Entity, With<HarnessCamera>>()
+        .single(world)
+        .expect("the harness's camera");
+    world.entity_mut(camera).insert(EnvironmentMapLight {
+        diffuse_map: cube.clone(),
+        specular_map: cube,
+        intensity,
+        rotation,
+        affects_lightmapped_mesh_diffuse: true,
+    });
+    let mut objects = reflective_objects(world, CAMERA_CUBE_SIZE, |material| PhongMaterial {
+        camera_environment: true,
+        ..material
+    })
+    .to_vec();
+    // A material that does not ask for it is lit as before.
+    objects.push((
+        Sphere::new(0.7).mesh().uv(32, 16),
+        Transform::from_xyz(0.0, -1.8, 0.5),
+        PhongMaterial::from(Color::srgb(0.8, 0.8, 0.8)),
+    ));
+    let rotation = rotation.as_dquat();
+    let expected = |material: &PhongMaterial,
+                    surface: &reference::SurfacePoint,
+                    pixel: usize,
+                    inputs: &SurfaceInputs,
+                    images: &HashMap<AssetId<Image>, Image>,
+                    lights: &reference::Lights| {
+        let environment_at = |direction, level: u32| {
+            let turned = reference::camera_environment_direction(direction, rotation);
+            let (face, coordinates) = cube_face(turned);
+            // Half a texel (2 / size in these coordinates, halved) and 1 %: where bilinear
+            // filtering reaches the next face.
+            let margin = 1.0 - 1.01 / f64::from(CAMERA_CUBE_SIZE >> level);
+            if coordinates.iter().any(|s| s.abs() > margin) {
+                return None;
+            }
+            let stored = face_color(face, level)
+                .map(|channel| f64::from((channel * 255.0).round() as u8) / 255.0);
+            Some(DVec4::from_array(stored).truncate() * f64::from(intensity) * exposure)
+        };
+        reflected_color(
+            material,
+            surface,
+            pixel,
+            inputs,
+            images,
+            lights,
+            material.camera_environment,
+            CAMERA_CUBE_SIZE,
+            &environment_at,
+        )
+    };
+    assert_pixels_follow(harness, objects, "camera environment", &expected);
 }

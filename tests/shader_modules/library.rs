@@ -233,9 +233,11 @@ impl ShaderLibrary {
 }
 
 /// What the validator may assume of the device: naga's defaults (multisampled shading, cube
-/// map arrays), no optional feature.
+/// map arrays) and binding arrays of textures, which Bevy's view declares only where the
+/// device has them (its `MULTIPLE_LIGHT_PROBES_IN_ARRAY`, for `EnvironmentMapLight`s).
 fn capabilities() -> naga::valid::Capabilities {
     naga::valid::Capabilities::default()
+        | naga::valid::Capabilities::TEXTURE_AND_SAMPLER_BINDING_ARRAY
 }
 
 /// The defs Bevy's pipeline cache adds to every shader: storage buffer bindings as wgpu's

@@ -152,6 +152,9 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
         ),
         "TONEMAP_METHOD_TONY_MC_MAPFACE".into(),
         "DEBAND_DITHER".into(),
+        // An `EnvironmentMapLight`, in Bevy's binding arrays.
+        "ENVIRONMENT_MAP".into(),
+        "MULTIPLE_LIGHT_PROBES_IN_ARRAY".into(),
     ]);
     let mut game_camera = common();
     game_camera.extend([
@@ -159,6 +162,8 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
         "SCREEN_SPACE_AMBIENT_OCCLUSION".into(),
         "DEPTH_PREPASS".into(),
         "NORMAL_PREPASS".into(),
+        // An `EnvironmentMapLight`, without binding arrays.
+        "ENVIRONMENT_MAP".into(),
     ]);
     vec![
         ("render tests' camera", common()),
@@ -194,6 +199,7 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             refraction: false,
             bump_map: false,
             flat_shading: false,
+            camera_environment: false,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
@@ -218,6 +224,11 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         |key| key.bump_map = true,
         |key| key.flat_shading = true,
         |key| (key.bump_map, key.flat_shading) = (true, true),
+        |key| (key.environment, key.camera_environment) = (Some(EnvironmentCombine::Mix), true),
+        |key| {
+            key.environment = Some(EnvironmentCombine::Add);
+            (key.refraction, key.camera_environment) = (true, true);
+        },
     ];
     let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
@@ -236,8 +247,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
 /// set (2; on the second they are left out there), an alpha map (1), an environment map
 /// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
-/// each with no map and every map, under 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3) * 2 * 3;
+/// the camera's environment mixed in or refracted and added (2), each with no map and every
+/// map, under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
