@@ -372,15 +372,20 @@ impl Harness {
     /// Whether the render device binds every map of a material (see
     /// `bevy_phong::render::binds_every_map`).
     pub fn binds_every_map(&self) -> bool {
-        let render_app = self
-            .app
+        bevy_phong::render::binds_every_map(self.render_device())
+    }
+
+    /// The features the render device was created with (fewer under WebGL2's limits).
+    pub fn device_features(&self) -> bevy::render::settings::WgpuFeatures {
+        self.render_device().features()
+    }
+
+    fn render_device(&self) -> &bevy::render::renderer::RenderDevice {
+        self.app
             .get_sub_app(bevy::render::RenderApp)
-            .expect("the harness renders");
-        bevy_phong::render::binds_every_map(
-            render_app
-                .world()
-                .resource::<bevy::render::renderer::RenderDevice>(),
-        )
+            .expect("the harness renders")
+            .world()
+            .resource::<bevy::render::renderer::RenderDevice>()
     }
 
     /// The scene's lights as the reference model takes them.

@@ -1,6 +1,6 @@
 //! What a game turns on around its materials: double-sided surfaces, culled faces and depth
 //! bias, Bevy's fog, HDR, bloom, tonemapping, MSAA, blending, prepasses, SSAO and the
-//! deferred renderer, each rendered with `PhongMaterial` and checked against what the
+//! deferred renderer, Bevy's wireframes, each rendered with `PhongMaterial` and checked against what the
 //! feature's own formula gives.
 
 mod blend;
@@ -11,6 +11,7 @@ mod hdr;
 mod msaa;
 mod prepasses;
 mod ssao;
+mod wireframe;
 
 use bevy::math::DVec3;
 use bevy::prelude::*;
