@@ -183,7 +183,7 @@ pub fn table(
 }
 
 /// The share of pixels (RGBA, 4 bytes each) in which `a` and `b` differ, percent.
-fn changed_percent(a: &[u8], b: &[u8]) -> f64 {
+pub fn changed_percent(a: &[u8], b: &[u8]) -> f64 {
     let pixels = a.len().min(b.len()) / 4;
     let changed = a
         .chunks_exact(4)

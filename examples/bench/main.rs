@@ -12,9 +12,11 @@
 //! cargo run --example bench -- --webgl2   # only the storage path beside the WebGL2 one
 //! cargo run --example bench -- --ablation # only the shader ablation (--size N: at N²)
 //! cargo run --example bench -- --growth   # only how frame time grows with lights and size
+//! cargo run --example bench -- --materials  # only the material features (see features.rs)
 //! ```
 //!
-//! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`)
+//! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`,
+//! `--materials`)
 //! combine: with any of them, the run measures those tables and no other.
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -48,6 +50,7 @@
 
 mod ablation;
 mod accuracy;
+mod features;
 mod growth;
 mod plot;
 mod scene;
@@ -57,7 +60,7 @@ use bevy::prelude::*;
 use bevy_phong::{PhongLightCulling, SpecularModel};
 use scene::{Scene, Shading};
 use std::{fmt::Write as _, path::Path, time::Duration};
-use timing::{Frames, median_frame_time};
+use timing::{Frames, median_frame_time, median_frame_time_and_picture};
 
 struct Options {
     variants: bool,
@@ -208,6 +211,8 @@ struct Tables {
     ablation: bool,
     /// How frame time grows.
     growth: bool,
+    /// The material feature groups.
+    materials: bool,
 }
 
 impl Tables {
@@ -217,6 +222,7 @@ impl Tables {
         fallback: true,
         ablation: true,
         growth: true,
+        materials: true,
     };
 
     /// The tables whose flags are in `args`, or all of them when none is.
@@ -228,12 +234,14 @@ impl Tables {
             fallback: named("--webgl2"),
             ablation: named("--ablation"),
             growth: named("--growth"),
+            materials: named("--materials"),
         };
         let any = picked.frame_times
             || picked.shadows
             || picked.fallback
             || picked.ablation
-            || picked.growth;
+            || picked.growth
+            || picked.materials;
         if any { picked } else { Self::ALL }
     }
 }
@@ -325,6 +333,9 @@ fn main() {
     }
     if tables.fallback {
         fallback_costs(&options, directory);
+    }
+    if tables.materials {
+        material_costs(&options, directory);
     }
 }
 
@@ -494,6 +505,71 @@ fn shadow_costs(options: &Options, directory: &Path) {
     write(&directory.join("shadows.csv"), &csv);
 }
 
+/// The showcase with each group of material features beside the plain showcase, Phong and
+/// Standard (with the nearest settings Bevy has), at the shadow table's size, the rows
+/// taking turns over the rounds.
+fn material_costs(options: &Options, directory: &Path) {
+    let size = options.shadow_size;
+    let phong = Shading::Phong(Some(SpecularModel::Phong));
+    let groups = [
+        None,
+        Some(features::Features::SurfaceInputs),
+        Some(features::Features::BakedLight),
+        Some(features::Features::Environment),
+    ];
+    let scene = |group: Option<features::Features>| group.map_or(Scene::Showcase, Scene::Featured);
+    let mut csv = String::from("size,scene,shading,round,median_ms\n");
+    // Each row's picture (from its first round), to show that its features are drawn.
+    let mut pictures: [Vec<u8>; 8] = [const { Vec::new() }; 8];
+    let times: [f64; 8] = alternating_medians(options.rounds, |row, round| {
+        let (name, shading) = if row < 4 {
+            ("Phong", phong)
+        } else {
+            ("Standard", Shading::Standard)
+        };
+        let scene = scene(groups[row % 4]);
+        let (median, picture) = median_frame_time_and_picture(
+            scene,
+            size,
+            shading,
+            options.culling,
+            options.frames,
+            &[],
+        );
+        let median = ms(median);
+        if round == 0 {
+            pictures[row] = picture;
+        }
+        let _ = writeln!(csv, "{size},{},{name},{round},{median:.3}", scene.name());
+        eprintln!(
+            "{} {size}² {name}, round {round}: {median:.1} ms",
+            scene.name()
+        );
+        median
+    });
+    let mut table = String::from(
+        "| scene | Phong ms | Standard ms | Phong / Standard | Phong / plain Phong | Standard / plain Standard | pixels changed, Phong / Standard |\n|---|---|---|---|---|---|---|\n",
+    );
+    for (row, group) in groups.iter().enumerate() {
+        let (phong, standard) = (times[row], times[4 + row]);
+        let _ = writeln!(
+            table,
+            "| {} | {phong:.1} | {standard:.1} | {:.2} | {:.2} | {:.2} | {:.0} % / {:.0} % |",
+            scene(*group).name(),
+            phong / standard,
+            phong / times[0],
+            standard / times[4],
+            ablation::changed_percent(&pictures[0], &pictures[row]),
+            ablation::changed_percent(&pictures[4], &pictures[4 + row]),
+        );
+    }
+    println!(
+        "\nMaterial features, median ms at {size}² (the median of {} rounds):\n\n{table}",
+        options.rounds
+    );
+    write(&directory.join("materials.csv"), &csv);
+}
+
 /// Phong beside Standard and the constant-color floor, each scene at each size.
 fn frame_times(options: &Options, directory: &Path) {
     let default_culling = options.culling;
@@ -529,7 +605,7 @@ fn frame_times(options: &Options, directory: &Path) {
             let (error, _) =
                 accuracy::max_error(scene, Some(SpecularModel::Phong), default_culling);
             let lights = match scene {
-                Scene::Showcase | Scene::ShowcaseOnFloor { .. } => 3,
+                Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => 3,
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
                 Scene::WideWorld { lights, far } => lights + far,
             };

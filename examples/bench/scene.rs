@@ -9,6 +9,8 @@ use bevy::{
 };
 use bevy_phong::prelude::*;
 
+use crate::features::{self, Features};
+
 /// What the scene's meshes are made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shading {
@@ -40,6 +42,8 @@ pub enum Scene {
     /// kind spread over a world 1,000 units across, each at least 40 units from the field's
     /// middle along x or z: none reaches a visible pixel.
     WideWorld { lights: usize, far: usize },
+    /// The showcase with a group of material features on (`features.rs`).
+    Featured(Features),
 }
 
 impl Scene {
@@ -64,13 +68,16 @@ impl Scene {
                 "wide world, {} + {far} far away",
                 counted_point_lights(lights)
             ),
+            Scene::Featured(features) => format!("showcase, {}", features.name()),
         }
     }
 
     /// Where the camera stands (looking at the origin).
     pub fn camera_position(self) -> Vec3 {
         match self {
-            Scene::Showcase | Scene::ShowcaseOnFloor { .. } => Vec3::new(0.0, 1.0, 8.5),
+            Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => {
+                Vec3::new(0.0, 1.0, 8.5)
+            }
             _ => Vec3::new(0.0, 14.0, 16.0),
         }
     }
@@ -140,7 +147,10 @@ fn objects(scene: Scene) -> Vec<(Mesh, Vec3, Color)> {
             Color::srgb(0.6, 0.6, 0.6),
         ));
     }
-    if matches!(scene, Scene::Showcase | Scene::ShowcaseOnFloor { .. }) {
+    if matches!(
+        scene,
+        Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_)
+    ) {
         objects.push((
             Cuboid::new(1.6, 1.6, 1.6).into(),
             Vec3::new(-4.5, 0.0, 0.0),
@@ -205,7 +215,7 @@ fn point_lights(scene: Scene) -> Vec<Light> {
             .collect()
     };
     match scene {
-        Scene::Showcase | Scene::ShowcaseOnFloor { .. } => [
+        Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => [
             (Vec3::new(-3.0, 3.0, 0.0), Color::linear_rgb(1.0, 0.0, 0.0)),
             (Vec3::new(3.0, 3.0, 0.0), Color::linear_rgb(0.0, 0.0, 1.0)),
         ]
@@ -282,7 +292,7 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
     }
 
     let (directional, has_directional, shadows) = match scene {
-        Scene::Showcase => (
+        Scene::Showcase | Scene::Featured(_) => (
             Transform::default().looking_to(Vec3::NEG_X, Vec3::Y),
             true,
             false,
@@ -352,5 +362,8 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
             }
         }
         Shading::Constant => {}
+    }
+    if let Scene::Featured(group) = scene {
+        features::apply(world, group, shading);
     }
 }

@@ -1,7 +1,8 @@
-//! Writes bevy_phong's glTF test asset, `assets/gltf/phong_test.gltf`: one JSON file with
-//! its buffer and images as base64 `data:` URIs, made entirely by this crate (no
-//! third-party asset). Regenerate it with `cargo run -p phong_gltf_asset`; a test fails when
-//! the committed file differs from what [`phong_test_gltf`] writes.
+//! Writes bevy_phong's glTF assets: the test asset, `assets/gltf/phong_test.gltf`, and the
+//! `baked_room` example's room ([`baked_room`]). Each is one JSON file with its buffer and
+//! images as base64 `data:` URIs, made entirely by this crate (no third-party asset).
+//! Regenerate them with `cargo run -p phong_gltf_asset`; a test fails when a committed file
+//! differs from what its function writes.
 //!
 //! Its scene's nodes:
 //!
@@ -20,10 +21,13 @@
 //! - `Lamp`: a `KHR_lights_punctual` point light at (0, 4, 3), 50,000 cd, range 20 m;
 //! - `Sun`: a directional light of 3,000 lux pointing down at 60° toward −Z.
 
+pub mod baked_room;
 mod base64;
 mod builder;
 mod images;
 mod png;
+mod room;
+mod room_bake;
 mod shapes;
 
 use builder::{Buffers, quantize, quantize_json};

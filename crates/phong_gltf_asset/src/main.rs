@@ -1,13 +1,24 @@
-//! Writes `assets/gltf/phong_test.gltf` (see the library's documentation).
+//! Writes the crate's glTF assets (see the library's documentation).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-fn main() -> std::io::Result<()> {
+fn write(relative: &str, text: String) -> std::io::Result<()> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
-        .join(phong_gltf_asset::ASSET_PATH);
-    std::fs::create_dir_all(path.parent().expect("the asset path has a folder"))?;
-    std::fs::write(&path, phong_gltf_asset::phong_test_gltf())?;
+        .join(relative);
+    std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))?;
+    std::fs::write(&path, text)?;
     println!("wrote {}", path.display());
     Ok(())
+}
+
+fn main() -> std::io::Result<()> {
+    write(
+        phong_gltf_asset::ASSET_PATH,
+        phong_gltf_asset::phong_test_gltf(),
+    )?;
+    write(
+        phong_gltf_asset::baked_room::ASSET_PATH,
+        phong_gltf_asset::baked_room::baked_room_gltf(),
+    )
 }

@@ -25,7 +25,7 @@ fn vec3(v: [f64; 3]) -> [f32; 3] {
 /// Indices of a grid of `columns × rows` quads over vertices laid out row by row
 /// (`columns + 1` per row), counter-clockwise seen from where `u × v` points (`u` the
 /// direction of growing column, `v` of growing row).
-fn grid_indices(columns: usize, rows: usize) -> Vec<u16> {
+pub(crate) fn grid_indices(columns: usize, rows: usize) -> Vec<u16> {
     let stride = columns + 1;
     let mut indices = Vec::new();
     for row in 0..rows {
