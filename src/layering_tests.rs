@@ -27,6 +27,7 @@ const LAYERS: &[(&str, &[&str])] = &[
         &[
             "limits",
             "direction",
+            "displacement",
             "quoting",
             "schedule",
             "shadow_presence",

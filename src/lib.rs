@@ -90,7 +90,8 @@
 //! layers (none of its own layer or above), so that the imports point one way and no
 //! module needs the plugin that ties them together. From the bottom:
 //!
-//! 1. foundations, which use nothing of the crate: `limits`, `direction`, `quoting`,
+//! 1. foundations, which use nothing of the crate: `limits`, `direction`, `displacement`
+//!    (the displaced vertex stages), `quoting`,
 //!    `schedule` (the [`PhongSystems`] sets), `shadow_presence` (whether the scene casts
 //!    shadows, read by the material key), `storage_buffer` (the growable GPU buffer),
 //!    `view_key` (how a fragment finds its view's clusters and cascades);
@@ -110,6 +111,7 @@
 
 pub mod culling;
 mod direction;
+mod displacement;
 pub mod extension;
 #[cfg(feature = "gltf")]
 pub mod gltf;
@@ -136,6 +138,7 @@ mod view_key;
 mod layering_tests;
 
 pub use culling::{PhongLightCulling, PhongViewClusters};
+pub use displacement::DisplacementUniform;
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};

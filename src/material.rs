@@ -1,5 +1,6 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
+use crate::displacement::DisplacementUniform;
 use crate::limits;
 use crate::shadow_presence::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
 use bevy::{
@@ -160,6 +161,22 @@ pub struct PhongMaterial {
     /// How far a height step of 1 between neighbouring texels tilts the normal: at 1 such
     /// a step tilts it by 45°. Negative values make the bumps dents. Default `1`.
     pub bump_scale: f32,
+    /// A height map that moves the mesh's vertices (three.js's `displacementMap`): each
+    /// vertex moves along its normal, in the mesh's local space, by
+    /// `red · displacement_scale + displacement_bias`, the map read at the vertex's first UV set (moved by
+    /// [`uv_transform`](Self::uv_transform)) at its largest mip, after the morph targets and
+    /// before skinning (SPEC.md, "Displacement"). Every pass moves it alike: the main pass,
+    /// the prepasses, Bevy's shadow maps and the crate's. The normals are not recomputed
+    /// (pair it with a normal map of the same heights); the mesh's bounds are not grown, so
+    /// a displacement beyond them can be culled early (add `NoFrustumCulling`, or a larger
+    /// `Aabb`). It needs UVs and normals. Load it as linear data (`is_srgb: false`). Default
+    /// none.
+    #[dependency]
+    pub displacement_map: Option<Handle<Image>>,
+    /// How far a texel of 1 moves a vertex, in the mesh's local units. Default `1`.
+    pub displacement_scale: f32,
+    /// Added to every vertex's distance, local units. Default `0`.
+    pub displacement_bias: f32,
     /// Lights each triangle with its own plane's normal (three.js's `flatShading`): the
     /// geometric normal of the face, turned to the side of the interpolated normal, in place
     /// of the interpolated one, in the main pass and the normal prepass. The normal and bump
@@ -269,6 +286,9 @@ impl Default for PhongMaterial {
             flip_normal_map_y: false,
             bump_map_texture: None,
             bump_scale: 1.0,
+            displacement_map: None,
+            displacement_scale: 1.0,
+            displacement_bias: 0.0,
             flat_shading: false,
             double_sided: false,
             uv_transform: Affine2::IDENTITY,
@@ -381,6 +401,18 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
     }
 }
 
+/// The material's displacement as the vertex stage reads it, each value brought into its
+/// range ([`limits::SIGNED_SCALE`], [`limits::uv_transform`]).
+impl From<&PhongMaterial> for DisplacementUniform {
+    fn from(material: &PhongMaterial) -> Self {
+        Self {
+            uv_transform: Mat3::from(limits::uv_transform(material.uv_transform)),
+            scale: limits::SIGNED_SCALE.apply(material.displacement_scale),
+            bias: limits::SIGNED_SCALE.apply(material.displacement_bias),
+        }
+    }
+}
+
 /// The UV set a map is read at, as [`PhongMaterialKey`] holds Bevy's [`UvChannel`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum UvSet {
@@ -445,6 +477,9 @@ pub struct PhongMaterialKey {
     pub bump_map: bool,
     /// Whether it is lit with its faces' normals (shader def `PHONG_FLAT_SHADING`).
     pub flat_shading: bool,
+    /// Whether its vertices are displaced (the crate's vertex shaders, with the vertex def
+    /// `PHONG_DISPLACEMENT_MAP`).
+    pub displacement: bool,
     /// Whether it discards fragments below an alpha cutoff.
     pub alpha_mask: bool,
     /// Whether back faces are drawn (no culling).
@@ -492,6 +527,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             normal_map: material.normal_map_texture.is_some(),
             bump_map: material.bump_map_texture.is_some(),
             flat_shading: material.flat_shading,
+            displacement: material.displacement_map.is_some(),
             alpha_mask: matches!(material.alpha_mode, AlphaMode::Mask(_)),
             double_sided: material.double_sided,
             uv_transform: limits::uv_transform(material.uv_transform) != Affine2::IDENTITY,
@@ -678,6 +714,9 @@ impl Material for PhongMaterial {
         descriptor.primitive.cull_mode = key.bind_group_data.culled_face(mirrored);
         if let Some(depth_stencil) = descriptor.depth_stencil.as_mut() {
             depth_stencil.bias.constant = key.bind_group_data.depth_bias;
+        }
+        if key.bind_group_data.displacement {
+            crate::displacement::displace(descriptor, layout, "PhongMaterial")?;
         }
         if let Some(fragment) = descriptor.fragment.as_mut() {
             let defs = key.bind_group_data.shader_defs(layout);

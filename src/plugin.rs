@@ -23,7 +23,7 @@ use crate::{
 };
 use bevy::{
     app::{App, Plugin, PostUpdate, PreUpdate},
-    asset::{AssetApp, Assets, embedded_asset},
+    asset::{AssetApp, Assets, embedded_asset, load_internal_asset},
     camera::visibility::VisibilitySystems,
     ecs::schedule::IntoScheduleConfigs,
     pbr::{Material, MaterialPlugin, MeshMaterial3d},
@@ -108,6 +108,19 @@ impl Plugin for PhongPlugin {
             embedded_asset!(app, "shaders/phong_material.wgsl");
             embedded_asset!(app, "shaders/phong_prepass.wgsl");
             embedded_asset!(app, "shaders/shadow_caster.wgsl");
+            load_shader_library!(app, "shaders/displacement.wgsl");
+            load_internal_asset!(
+                app,
+                crate::displacement::PHONG_VERTEX_SHADER,
+                "shaders/phong_vertex.wgsl",
+                Shader::from_wgsl
+            );
+            load_internal_asset!(
+                app,
+                crate::displacement::PHONG_PREPASS_VERTEX_SHADER,
+                "shaders/phong_prepass_vertex.wgsl",
+                Shader::from_wgsl
+            );
         }
         if app.get_sub_app(RenderApp).is_none() {
             app.init_asset::<PhongMaterial>()

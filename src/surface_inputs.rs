@@ -1,8 +1,10 @@
 //! [`SurfaceInputsMaterial`]: renders the per-pixel inputs of the lighting equation.
 
+use crate::{DisplacementUniform, PhongMaterial};
 use bevy::{
     app::{App, Plugin},
-    asset::{Asset, embedded_asset},
+    asset::{Asset, Handle, embedded_asset},
+    image::Image,
     mesh::MeshVertexBufferLayoutRef,
     pbr::{Material, MaterialPipeline, MaterialPipelineKey, MaterialPlugin},
     reflect::Reflect,
@@ -60,7 +62,8 @@ pub enum SurfaceInput {
 ///
 /// Like the material it stands in for, it culls the faces of its `cull_mode`, and none when
 /// `double_sided`: there the normal it writes on a back face is negated, as `PhongMaterial`
-/// negates it to light a back face.
+/// negates it to light a back face; and it moves the vertices by the same displacement map
+/// ([`SurfaceInputsMaterial::standing_in_for`] copies all three).
 #[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
 #[uniform(0, SurfaceInputUniform)]
 #[bind_group_data(SurfaceInputsKey)]
@@ -74,6 +77,14 @@ pub struct SurfaceInputsMaterial {
     /// The faces culled when not `double_sided`. Default `Some(Face::Back)`.
     #[reflect(ignore, clone)]
     pub cull_mode: Option<Face>,
+    /// The displacement map that moves the vertices, as `PhongMaterial::displacement_map`.
+    /// Default none.
+    #[texture(24, visibility(vertex))]
+    #[sampler(25, visibility(vertex))]
+    pub displacement_map: Option<Handle<Image>>,
+    /// Its scale, bias and UV transform.
+    #[uniform(26)]
+    pub displacement: DisplacementUniform,
 }
 
 impl Default for SurfaceInputsMaterial {
@@ -91,6 +102,20 @@ impl SurfaceInputsMaterial {
             tag,
             double_sided: false,
             cull_mode: Some(Face::Back),
+            displacement_map: None,
+            displacement: DisplacementUniform::default(),
+        }
+    }
+
+    /// A material writing `input` and `tag` for the surface `material` draws: the same
+    /// faces (`double_sided`, `cull_mode`) and the same displaced vertices.
+    pub fn standing_in_for(material: &PhongMaterial, input: SurfaceInput, tag: u32) -> Self {
+        Self {
+            double_sided: material.double_sided,
+            cull_mode: material.cull_mode,
+            displacement_map: material.displacement_map.clone(),
+            displacement: material.into(),
+            ..Self::new(input, tag)
         }
     }
 
@@ -108,11 +133,14 @@ impl SurfaceInputsMaterial {
     }
 }
 
-/// The pipeline key of a [`SurfaceInputsMaterial`]: the faces it culls.
+/// The pipeline key of a [`SurfaceInputsMaterial`]: the faces it culls, and whether it
+/// displaces its vertices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SurfaceInputsKey {
     /// The faces culled: none when double-sided.
     pub culled: Option<Face>,
+    /// Whether it has a displacement map.
+    pub displaced: bool,
 }
 
 impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
@@ -123,6 +151,7 @@ impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
             } else {
                 material.cull_mode
             },
+            displaced: material.displacement_map.is_some(),
         }
     }
 }
@@ -165,10 +194,13 @@ impl Material for SurfaceInputsMaterial {
     fn specialize(
         _pipeline: &MaterialPipeline,
         descriptor: &mut RenderPipelineDescriptor,
-        _layout: &MeshVertexBufferLayoutRef,
+        layout: &MeshVertexBufferLayoutRef,
         key: MaterialPipelineKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
         descriptor.primitive.cull_mode = key.bind_group_data.culled;
+        if key.bind_group_data.displaced {
+            crate::displacement::displace(descriptor, layout, "SurfaceInputsMaterial")?;
+        }
         Ok(())
     }
 }

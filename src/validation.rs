@@ -288,6 +288,10 @@ impl Checker {
         }
         self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
         self.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
+        let scale = &mut material.displacement_scale;
+        self.scalar("displacement_scale", scale, limits::SIGNED_SCALE);
+        let bias = &mut material.displacement_bias;
+        self.scalar("displacement_bias", bias, limits::SIGNED_SCALE);
         let reflectivity = &mut material.reflectivity;
         self.scalar("reflectivity", reflectivity, limits::FRACTION);
         if let Some(ratio) = &mut material.refraction_ratio {

@@ -3,6 +3,7 @@
 //! bind group takes from the render world when Bevy prepares the material.
 
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
+use crate::DisplacementUniform;
 use crate::material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform};
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
@@ -25,7 +26,8 @@ use bevy::{
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
 /// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
 /// alpha map, 20, 21 the environment cube map and 22, 23 the bump map, each followed by its
-/// sampler.
+/// sampler; 24 to 26 the displacement map, its sampler and its uniform, read in the vertex
+/// stage.
 #[derive(AsBindGroup)]
 struct SurfaceBindings {
     #[uniform(0)]
@@ -57,6 +59,11 @@ struct SurfaceBindings {
     #[texture(22)]
     #[sampler(23)]
     bump_map_texture: Option<Handle<Image>>,
+    #[texture(24, visibility(vertex))]
+    #[sampler(25, visibility(vertex))]
+    displacement_map: Option<Handle<Image>>,
+    #[uniform(26)]
+    displacement: DisplacementUniform,
 }
 
 impl From<&PhongMaterial> for SurfaceBindings {
@@ -72,6 +79,8 @@ impl From<&PhongMaterial> for SurfaceBindings {
             alpha_map_texture: material.alpha_map_texture.clone(),
             environment_map: material.environment_map.clone(),
             bump_map_texture: material.bump_map_texture.clone(),
+            displacement_map: material.displacement_map.clone(),
+            displacement: material.into(),
         }
     }
 }

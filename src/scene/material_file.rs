@@ -26,8 +26,8 @@ use serde::{Deserialize, Serialize};
 /// )
 /// ```
 ///
-/// Texture paths are relative to the file that names them. Specular, normal, bump, AO and
-/// alpha maps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
+/// Texture paths are relative to the file that names them. Specular, normal, bump,
+/// displacement, AO and alpha maps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
 /// as sRGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -64,6 +64,12 @@ pub struct PhongMaterialDescription {
     pub bump_map_texture: Option<String>,
     /// How far a height step of 1 between neighbouring texels tilts the normal. Default `1`.
     pub bump_scale: f32,
+    /// Path of the displacement map (red channel, loaded as linear data). Default none.
+    pub displacement_map: Option<String>,
+    /// How far a texel of 1 moves a vertex along its normal, local units. Default `1`.
+    pub displacement_scale: f32,
+    /// Added to every vertex's displacement, local units. Default `0`.
+    pub displacement_bias: f32,
     /// Light each triangle with its face's normal. Default `false`.
     pub flat_shading: bool,
     /// Draw back faces too, their normal negated. Default `false`.
@@ -211,6 +217,9 @@ impl Default for PhongMaterialDescription {
             flip_normal_map_y: false,
             bump_map_texture: None,
             bump_scale: material.bump_scale,
+            displacement_map: None,
+            displacement_scale: material.displacement_scale,
+            displacement_bias: material.displacement_bias,
             flat_shading: material.flat_shading,
             double_sided: false,
             uv_transform: UvTransformDescription::default(),
@@ -274,6 +283,9 @@ impl PhongMaterialDescription {
             flip_normal_map_y: self.flip_normal_map_y,
             bump_map_texture: map(&self.bump_map_texture, "bump_map_texture", false)?,
             bump_scale: self.bump_scale,
+            displacement_map: map(&self.displacement_map, "displacement_map", false)?,
+            displacement_scale: self.displacement_scale,
+            displacement_bias: self.displacement_bias,
             flat_shading: self.flat_shading,
             double_sided: self.double_sided,
             uv_transform: self.uv_transform.to_affine2(),

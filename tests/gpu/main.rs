@@ -15,6 +15,7 @@
 //! - `surface_inputs`: vertex colors, the UV transform, unlit materials, light, AO and alpha
 //!   maps and Bevy's `Lightmap`, the same way;
 //! - `shading_normals`: bump maps and flat shading, the same way;
+//! - `displacement`: displacement maps, the positions and the lit colors;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
@@ -37,6 +38,7 @@ mod cases;
 mod clusters;
 mod contract;
 mod culling;
+mod displacement;
 mod environment;
 mod frames;
 mod fuzzed_scenes;

@@ -5,8 +5,8 @@
 
 use crate::{
     library::{
-        CONSTANT_COLOR, CONTRACT_KERNEL, PHONG_MATERIAL, PHONG_PREPASS, SEARCHLIGHT, SHADOW_CASTER,
-        SURFACE_INPUTS, library,
+        CONSTANT_COLOR, CONTRACT_KERNEL, PHONG_MATERIAL, PHONG_PREPASS, PHONG_PREPASS_VERTEX,
+        PHONG_VERTEX, SEARCHLIGHT, SHADOW_CASTER, SURFACE_INPUTS, library,
     },
     variants::{self, Variant},
 };
@@ -97,6 +97,12 @@ fn every_phong_material_variant_validates() {
 #[test]
 fn every_phong_prepass_variant_validates() {
     assert_every_variant_validates(PHONG_PREPASS, &variants::phong_prepass());
+}
+
+#[test]
+fn every_displaced_vertex_variant_validates() {
+    assert_every_variant_validates(PHONG_VERTEX, &variants::displaced_vertex(false));
+    assert_every_variant_validates(PHONG_PREPASS_VERTEX, &variants::displaced_vertex(true));
 }
 
 #[test]

@@ -35,6 +35,10 @@ pub const SEARCHLIGHT: &str = "shaders/searchlight.wgsl";
 pub const CONSTANT_COLOR: &str = "shaders/constant_color.wgsl";
 /// The shader contract's kernel (`tests/gpu/contract/`), not an asset.
 pub const CONTRACT_KERNEL: &str = "tests/gpu/contract/kernel.wgsl";
+/// A displaced material's main pass vertex stage (an internal asset, at a fixed handle).
+pub const PHONG_VERTEX: &str = "src/shaders/phong_vertex.wgsl";
+/// A displaced material's prepass vertex stage (an internal asset, at a fixed handle).
+pub const PHONG_PREPASS_VERTEX: &str = "src/shaders/phong_prepass_vertex.wgsl";
 
 /// Frames to wait for the shaders to load before giving up (a frame takes a millisecond or
 /// more).
@@ -90,13 +94,26 @@ impl ShaderLibrary {
         .into_iter()
         .map(|path| (path, server.load(path)))
         .collect();
-        let kernel =
-            Shader::from_wgsl(include_str!("../gpu/contract/kernel.wgsl"), CONTRACT_KERNEL);
+        // Entries that are no asset of a path: included as the crate includes them.
+        let sources = [
+            (CONTRACT_KERNEL, include_str!("../gpu/contract/kernel.wgsl")),
+            (
+                PHONG_VERTEX,
+                include_str!("../../src/shaders/phong_vertex.wgsl"),
+            ),
+            (
+                PHONG_PREPASS_VERTEX,
+                include_str!("../../src/shaders/phong_prepass_vertex.wgsl"),
+            ),
+        ];
         let mut missing = Vec::new();
         for _ in 0..MAX_LOAD_FRAMES {
             app.update();
             let shaders = app.world().resource::<Assets<Shader>>();
-            let mut entries = HashMap::from([(CONTRACT_KERNEL, kernel.clone())]);
+            let mut entries: HashMap<&'static str, Shader> = sources
+                .iter()
+                .map(|&(path, source)| (path, Shader::from_wgsl(source, path)))
+                .collect();
             for (path, handle) in &handles {
                 if let LoadState::Failed(error) = server.load_state(handle) {
                     panic!("{path} did not load: {error}");
@@ -112,7 +129,7 @@ impl ShaderLibrary {
                 .collect();
             let library = Self { modules, entries };
             missing = library.missing_imports();
-            if library.entries.len() == handles.len() + 1 && missing.is_empty() {
+            if library.entries.len() == handles.len() + sources.len() && missing.is_empty() {
                 return library;
             }
             std::thread::sleep(std::time::Duration::from_millis(1));

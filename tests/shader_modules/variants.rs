@@ -200,6 +200,8 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             bump_map: false,
             flat_shading: false,
             camera_environment: false,
+            // A vertex-stage switch: `displaced_vertex` composes its shaders.
+            displacement: false,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
@@ -364,75 +366,44 @@ pub fn shadow_caster() -> Vec<Variant> {
     variants
 }
 
+/// The prepasses Bevy runs a fragment stage for (see [`phong_prepass`]).
+const PREPASS_SETUPS: [(&str, &[&str]); 4] = [
+    ("masked depth prepass", &["DEPTH_PREPASS", "MAY_DISCARD"]),
+    (
+        "normal prepass",
+        &[
+            "DEPTH_PREPASS",
+            "NORMAL_PREPASS",
+            "NORMAL_PREPASS_OR_DEFERRED_PREPASS",
+        ],
+    ),
+    (
+        "normal and motion-vector prepasses",
+        &[
+            "DEPTH_PREPASS",
+            "NORMAL_PREPASS",
+            "NORMAL_PREPASS_OR_DEFERRED_PREPASS",
+            "MOTION_VECTOR_PREPASS",
+            "MOTION_VECTOR_PREPASS_OR_DEFERRED_PREPASS",
+        ],
+    ),
+    (
+        "directional shadow map",
+        &["UNCLIPPED_DEPTH_ORTHO_EMULATION", "MAY_DISCARD"],
+    ),
+];
+
 /// The prepass fragment variants of a material that specializes as `PhongMaterial` does:
 /// every distinct set of the crate's defs on every mesh, in the prepasses Bevy runs a
 /// fragment stage for (an alpha-masked depth prepass, the normal prepass, the normal and
 /// motion-vector prepasses, a shadow map of a directional light emulating unclipped depth),
 /// on both [`devices`] (Bevy's prepass pipeline, bevy_pbr 0.19 `prepass/mod.rs`).
 pub fn phong_prepass() -> Vec<Variant> {
-    let setups: [(&str, &[&str]); 4] = [
-        ("masked depth prepass", &["DEPTH_PREPASS", "MAY_DISCARD"]),
-        (
-            "normal prepass",
-            &[
-                "DEPTH_PREPASS",
-                "NORMAL_PREPASS",
-                "NORMAL_PREPASS_OR_DEFERRED_PREPASS",
-            ],
-        ),
-        (
-            "normal and motion-vector prepasses",
-            &[
-                "DEPTH_PREPASS",
-                "NORMAL_PREPASS",
-                "NORMAL_PREPASS_OR_DEFERRED_PREPASS",
-                "MOTION_VECTOR_PREPASS",
-                "MOTION_VECTOR_PREPASS_OR_DEFERRED_PREPASS",
-            ],
-        ),
-        (
-            "directional shadow map",
-            &["UNCLIPPED_DEPTH_ORTHO_EMULATION", "MAY_DISCARD"],
-        ),
-    ];
     let mut variants = Vec::new();
     for (mesh, layout) in mesh_layouts() {
         let phong_defs = distinct_phong_defs(&layout);
-        for (setup, setup_defs) in setups {
-            let normals = setup_defs.contains(&"NORMAL_PREPASS");
-            let mut prepass: Vec<ShaderDefVal> = [
-                "PREPASS_PIPELINE",
-                "VERTEX_POSITIONS",
-                "VERTEX_OUTPUT_INSTANCE_INDEX",
-                "VIEW_PROJECTION_PERSPECTIVE",
-            ]
-            .into_iter()
-            .chain(setup_defs.iter().copied())
-            .map(Into::into)
-            .collect();
-            // Bevy declares the fragment's outputs only where it has some to write.
-            if setup_defs != ["DEPTH_PREPASS", "MAY_DISCARD"] {
-                prepass.push("PREPASS_FRAGMENT".into());
-            }
-            if layout.0.contains(Mesh::ATTRIBUTE_UV_0) {
-                prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_A".into()]);
-            }
-            if layout.0.contains(Mesh::ATTRIBUTE_UV_1) {
-                prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_B".into()]);
-            }
-            if layout.0.contains(Mesh::ATTRIBUTE_COLOR) {
-                prepass.push("VERTEX_COLORS".into());
-            }
-            if normals {
-                prepass.push("VERTEX_NORMALS".into());
-                if layout.0.contains(Mesh::ATTRIBUTE_TANGENT) {
-                    prepass.push("VERTEX_TANGENTS".into());
-                }
-            }
-            prepass.push(ShaderDefVal::UInt(
-                "MATERIAL_BIND_GROUP".into(),
-                MATERIAL_BIND_GROUP_INDEX as u32,
-            ));
+        for (setup, setup_defs) in PREPASS_SETUPS {
+            let prepass = prepass_defs(&layout, setup_defs);
             for (device, device_def) in devices() {
                 for phong in &phong_defs {
                     let mut defs = prepass.clone();
@@ -443,6 +414,104 @@ pub fn phong_prepass() -> Vec<Variant> {
                         defs,
                     });
                 }
+            }
+        }
+    }
+    variants
+}
+
+/// The defs of Bevy's prepass pipeline for a mesh of `layout` in the prepass `setup_defs`.
+fn prepass_defs(layout: &MeshVertexBufferLayoutRef, setup_defs: &[&str]) -> Vec<ShaderDefVal> {
+    let normals = setup_defs.contains(&"NORMAL_PREPASS");
+    let mut prepass: Vec<ShaderDefVal> = [
+        "PREPASS_PIPELINE",
+        "VERTEX_POSITIONS",
+        "VERTEX_OUTPUT_INSTANCE_INDEX",
+        "VIEW_PROJECTION_PERSPECTIVE",
+    ]
+    .into_iter()
+    .chain(setup_defs.iter().copied())
+    .map(Into::into)
+    .collect();
+    // Bevy declares the fragment's outputs only where it has some to write.
+    if setup_defs != ["DEPTH_PREPASS", "MAY_DISCARD"] {
+        prepass.push("PREPASS_FRAGMENT".into());
+    }
+    if layout.0.contains(Mesh::ATTRIBUTE_UV_0) {
+        prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_A".into()]);
+    }
+    if layout.0.contains(Mesh::ATTRIBUTE_UV_1) {
+        prepass.extend(["VERTEX_UVS".into(), "VERTEX_UVS_B".into()]);
+    }
+    if layout.0.contains(Mesh::ATTRIBUTE_COLOR) {
+        prepass.push("VERTEX_COLORS".into());
+    }
+    if normals {
+        prepass.push("VERTEX_NORMALS".into());
+        if layout.0.contains(Mesh::ATTRIBUTE_TANGENT) {
+            prepass.push("VERTEX_TANGENTS".into());
+        }
+    }
+    prepass.push(ShaderDefVal::UInt(
+        "MATERIAL_BIND_GROUP".into(),
+        MATERIAL_BIND_GROUP_INDEX as u32,
+    ));
+    prepass
+}
+
+/// How a displaced mesh may be posed: not at all, skinned, morphed, or both (each with last
+/// frame's pose for motion vectors).
+const POSES: [&[&str]; 4] = [
+    &[],
+    &["SKINNED", "HAS_PREVIOUS_SKIN"],
+    &["MORPH_TARGETS", "HAS_PREVIOUS_MORPH"],
+    &[
+        "SKINNED",
+        "HAS_PREVIOUS_SKIN",
+        "MORPH_TARGETS",
+        "HAS_PREVIOUS_MORPH",
+    ],
+];
+
+/// The variants of the displaced vertex stages (`PHONG_DISPLACEMENT_MAP`): every mesh with
+/// UVs and normals, each pose, under every camera and device (`prepass`: in every prepass).
+pub fn displaced_vertex(prepass: bool) -> Vec<Variant> {
+    let mut variants = Vec::new();
+    for (mesh, layout) in mesh_layouts() {
+        if !(layout.0.contains(Mesh::ATTRIBUTE_UV_0) && layout.0.contains(Mesh::ATTRIBUTE_NORMAL)) {
+            continue;
+        }
+        let setups: Vec<(String, Vec<ShaderDefVal>)> = if prepass {
+            PREPASS_SETUPS
+                .iter()
+                .flat_map(|(setup, setup_defs)| {
+                    let defs = prepass_defs(&layout, setup_defs);
+                    devices().map(|(device, device_def)| {
+                        let mut defs = defs.clone();
+                        defs.push(device_def);
+                        (format!("{setup}, {device}"), defs)
+                    })
+                })
+                .collect()
+        } else {
+            view_setups()
+                .into_iter()
+                .map(|(view, view_defs)| {
+                    let mut defs = mesh_defs(&layout);
+                    defs.extend(view_defs);
+                    (view, defs)
+                })
+                .collect()
+        };
+        for (setup, setup_defs) in &setups {
+            for pose in POSES {
+                let mut defs = setup_defs.clone();
+                defs.push("PHONG_DISPLACEMENT_MAP".into());
+                defs.extend(pose.iter().map(|&def| def.into()));
+                variants.push(Variant {
+                    name: format!("mesh of {mesh}, {setup}, {pose:?}"),
+                    defs,
+                });
             }
         }
     }

@@ -11,7 +11,7 @@ use bevy::{
     prelude::*,
     render::{
         error_handler::RenderErrorHandler,
-        render_resource::{Face, TextureFormat, TextureUsages},
+        render_resource::{TextureFormat, TextureUsages},
         view::Msaa,
     },
 };
@@ -39,32 +39,23 @@ const MAX_SETTLE_FRAMES: u32 = 600;
 /// Frames to wait for a scene file and what it names to load before giving up.
 const MAX_LOAD_FRAMES: u32 = 2_000;
 
-/// A material whose per-pixel inputs [`Harness`] captures: it says which faces it draws,
-/// so that the capture draws the same ones.
+/// A material whose per-pixel inputs [`Harness`] captures: the Phong material it draws
+/// with, whose faces and displaced vertices the capture draws alike
+/// ([`SurfaceInputsMaterial::standing_in_for`]).
 pub trait CapturedMaterial: Material {
-    /// Whether back faces are drawn too, their normal turned toward the viewer.
-    fn double_sided(&self) -> bool;
-    /// The faces it culls when not double-sided (`Some(Face::Back)` for most materials).
-    fn cull_mode(&self) -> Option<Face>;
+    /// The Phong material this one draws with.
+    fn phong(&self) -> &PhongMaterial;
 }
 
 impl CapturedMaterial for PhongMaterial {
-    fn double_sided(&self) -> bool {
-        self.double_sided
-    }
-
-    fn cull_mode(&self) -> Option<Face> {
-        self.cull_mode
+    fn phong(&self) -> &PhongMaterial {
+        self
     }
 }
 
 impl<E: MaterialExtension> CapturedMaterial for ExtendedMaterial<PhongMaterial, E> {
-    fn double_sided(&self) -> bool {
-        self.base.double_sided
-    }
-
-    fn cull_mode(&self) -> Option<Face> {
-        self.base.cull_mode
+    fn phong(&self) -> &PhongMaterial {
+        &self.base
     }
 }
 
@@ -317,15 +308,13 @@ impl Harness {
             ]);
         }
         let assets = world.resource::<Assets<M>>();
-        let faces: HashMap<Handle<M>, (bool, Option<Face>)> = tags
+        let drawn: HashMap<Handle<M>, PhongMaterial> = tags
             .keys()
             .map(|handle| {
-                let faces = assets
+                let material = assets
                     .get(handle)
-                    .map_or((false, Some(Face::Back)), |material| {
-                        (material.double_sided(), material.cull_mode())
-                    });
-                (handle.clone(), faces)
+                    .map_or_else(PhongMaterial::default, |material| material.phong().clone());
+                (handle.clone(), material)
             })
             .collect();
         let mut images = Vec::new();
@@ -333,9 +322,7 @@ impl Harness {
             let world = self.app.world_mut();
             for (entity, handle) in &meshes {
                 let material = world.resource_mut::<Assets<SurfaceInputsMaterial>>().add(
-                    SurfaceInputsMaterial::new(input, tags[handle])
-                        .with_double_sided(faces[handle].0)
-                        .with_cull_mode(faces[handle].1),
+                    SurfaceInputsMaterial::standing_in_for(&drawn[handle], input, tags[handle]),
                 );
                 world
                     .entity_mut(*entity)

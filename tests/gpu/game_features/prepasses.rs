@@ -24,8 +24,9 @@ use crate::{
 const SAME_FRAME: f64 = 1e-6;
 
 /// The scene of the frames with a square in front of the sphere, cut out by an alpha mask
-/// (a checkerboard of alpha 0 and 1, cutoff 0.5), and a normal- and bump-mapped cube: what
-/// the prepasses must get right.
+/// (a checkerboard of alpha 0 and 1, cutoff 0.5), a normal- and bump-mapped cube and a
+/// sphere displaced inward (a prepass that did not move its vertices would hide it behind
+/// their undisplaced depth): what the prepasses must get right.
 fn masked_and_mapped_scene(harness: &mut Harness) {
     bright_scene(harness);
     let world = harness.world_mut();
@@ -35,7 +36,9 @@ fn masked_and_mapped_scene(harness: &mut Harness) {
     let heights = images.add(float_map(|x, y| {
         [((x + 2 * y) % 3) as f32 / 2.0, 0.0, 0.0, 1.0]
     }));
+    let half = images.add(float_map(|_, _| [0.5, 0.0, 0.0, 1.0]));
     let mut meshes = world.resource_mut::<Assets<Mesh>>();
+    let sphere = meshes.add(Sphere::new(0.7).mesh().uv(24, 16));
     let square = meshes.add(Plane3d::new(Vec3::Z, Vec2::splat(0.9)));
     let cube = meshes.add(
         Mesh::from(Cuboid::new(0.9, 0.9, 0.9))
@@ -57,6 +60,18 @@ fn masked_and_mapped_scene(harness: &mut Harness) {
         shininess: 30.0,
         ..default()
     });
+    let displaced = materials.add(PhongMaterial {
+        base_color: Color::srgb(0.3, 0.5, 0.9),
+        displacement_map: Some(half),
+        displacement_scale: -0.4,
+        displacement_bias: 0.0,
+        ..default()
+    });
+    world.spawn((
+        Mesh3d(sphere),
+        MeshMaterial3d(displaced),
+        Transform::from_xyz(-1.5, 1.4, 1.0),
+    ));
     world.spawn((
         Mesh3d(square),
         MeshMaterial3d(masked),
