@@ -6,6 +6,11 @@
 // Bevy prepared for it this frame (src/shadows/posed.rs): p' = p + Σ_t w_t · Δ_t, then for a
 // skinned one P = Σ_k ω_k · J_k · p' with `clip_from_local` being the map's clip-from-world
 // (the joint matrices J_k place it in the world).
+//
+// A displaced caster (DISPLACED: its material has a displacement map) moves each vertex, after
+// the morph targets, along its (morphed) normal by red · scale + bias of the map at its moved
+// UVs, as the material's own vertex stages do (`bevy_phong::displacement`): the map in group
+// DISPLACEMENT_GROUP, the scale, bias and UV transform in the draw's instance data.
 
 struct Caster {
     @builtin(vertex_index) vertex_index: u32,
@@ -22,7 +27,32 @@ struct Caster {
     @location(6) joint_indices: vec4<u32>,
     @location(7) joint_weights: vec4<f32>,
 #endif
+#ifdef DISPLACED
+    @location(8) normal: vec3<f32>,
+    @location(9) uv: vec2<f32>,
+    // The UV transform's matrix by columns (xy, zw), then its translation, scale and bias.
+    @location(10) uv_matrix: vec4<f32>,
+    @location(11) shift_scale_bias: vec4<f32>,
+#endif
 }
+
+#ifdef DISPLACED
+@group(#{DISPLACEMENT_GROUP}) @binding(0) var displacement_map: texture_2d<f32>;
+@group(#{DISPLACEMENT_GROUP}) @binding(1) var displacement_sampler: sampler;
+
+// The local offset of the caster's vertex with local normal `normal`.
+fn displacement_offset(caster: Caster, normal: vec3<f32>) -> vec3<f32> {
+    let length_squared = dot(normal, normal);
+    if length_squared == 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let uv = mat2x2<f32>(caster.uv_matrix.xy, caster.uv_matrix.zw) * caster.uv
+        + caster.shift_scale_bias.xy;
+    let height = textureSampleLevel(displacement_map, displacement_sampler, uv, 0.0).r;
+    let distance = height * caster.shift_scale_bias.z + caster.shift_scale_bias.w;
+    return normal * inverseSqrt(length_squared) * distance;
+}
+#endif
 
 #ifdef POSED
 #ifdef DEFORMATION_IN_UNIFORMS
@@ -63,11 +93,12 @@ fn weight(descriptor: u32, morph_target: u32) -> f32 {
     return weights.weights[morph_target / 4u][morph_target % 4u];
 }
 
-fn displacement(descriptor: u32, vertex: u32, morph_target: u32) -> vec3<f32> {
+// The target's change of `kind` (0 position, 1 normal) at `vertex`.
+fn target_delta(descriptor: u32, vertex: u32, morph_target: u32, kind: u32) -> vec3<f32> {
     let width = u32(textureDimensions(targets).x);
     var moved = vec3<f32>(0.0);
     for (var component = 0u; component < 3u; component += 1u) {
-        let texel = 9u * vertex + component;
+        let texel = 9u * vertex + 3u * kind + component;
         moved[component] = textureLoad(targets, vec3<u32>(texel % width, texel / width, morph_target), 0).r;
     }
     return moved;
@@ -98,20 +129,22 @@ fn weight(descriptor: u32, morph_target: u32) -> f32 {
     return weights[descriptors[descriptor].current_weights_offset + morph_target];
 }
 
-fn displacement(descriptor: u32, vertex: u32, morph_target: u32) -> vec3<f32> {
+// The target's change of `kind` (0 position, 1 normal) at `vertex`.
+fn target_delta(descriptor: u32, vertex: u32, morph_target: u32, kind: u32) -> vec3<f32> {
     let d = descriptors[descriptor];
-    return targets[d.targets_offset + morph_target * d.vertex_count + vertex].position;
+    let morph = targets[d.targets_offset + morph_target * d.vertex_count + vertex];
+    return select(morph.position, morph.normal, kind == 1u);
 }
 #endif
 
-// p + Σ_t w_t · Δ_t for the mesh's `vertex`.
-fn morphed(position: vec3<f32>, descriptor: u32, vertex: u32) -> vec3<f32> {
-    var moved = position;
+// v + Σ_t w_t · Δ_t for the mesh's `vertex`, `v` its `kind` (0 position, 1 normal).
+fn morphed(value: vec3<f32>, descriptor: u32, vertex: u32, kind: u32) -> vec3<f32> {
+    var moved = value;
     let count = target_count(descriptor);
     for (var morph_target = 0u; morph_target < count; morph_target += 1u) {
         let w = weight(descriptor, morph_target);
         if w != 0.0 {
-            moved += w * displacement(descriptor, vertex, morph_target);
+            moved += w * target_delta(descriptor, vertex, morph_target, kind);
         }
     }
     return moved;
@@ -128,7 +161,15 @@ fn vertex(caster: Caster) -> @builtin(position) vec4<f32> {
     );
     var position = vec4<f32>(caster.position, 1.0);
 #ifdef MORPHED
-    position = vec4<f32>(morphed(caster.position, caster.deform.y, caster.vertex_index - caster.deform.z), 1.0);
+    let vertex = caster.vertex_index - caster.deform.z;
+    position = vec4<f32>(morphed(caster.position, caster.deform.y, vertex, 0u), 1.0);
+#endif
+#ifdef DISPLACED
+    var normal = caster.normal;
+#ifdef MORPHED
+    normal = morphed(caster.normal, caster.deform.y, vertex, 1u);
+#endif
+    position = vec4<f32>(position.xyz + displacement_offset(caster, normal), 1.0);
 #endif
 #ifdef SKINNED
     let first = caster.deform.x;

@@ -5,6 +5,7 @@ use super::{
     MAX_SHADOW_VIEWS,
     cameras::{PhongLit, ShadowCamera, ShadowCameraQuery, shadow_cameras},
     deformed::Poses,
+    displaced::CasterDisplacement,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
@@ -14,6 +15,7 @@ use super::{
 };
 use crate::lights::PhongShadows;
 use crate::limits;
+use crate::material::PhongMaterial;
 use crate::shadow_presence::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
@@ -27,12 +29,13 @@ use bevy::{
         message::MessageWriter,
         query::{Has, With, Without},
         resource::Resource,
-        system::{Query, ResMut},
+        system::{Query, Res, ResMut},
     },
     light::NotShadowCaster,
     log::warn,
     math::{Mat4, Vec3, Vec3A, Vec4},
     mesh::{Mesh, Mesh3d, morph::MeshMorphWeights, skinning::SkinnedMesh},
+    pbr::MeshMaterial3d,
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
@@ -99,6 +102,8 @@ pub(crate) struct ShadowInstance {
     /// The triangles' space (the mesh's local space, or world space for skinned ones) to
     /// the map's clip space.
     pub clip_from_local: Mat4,
+    /// How its material's displacement map moves its vertices, if it has one.
+    pub displacement: Option<CasterDisplacement>,
 }
 
 /// The shadow maps of this frame, which the render world draws.
@@ -117,6 +122,7 @@ struct Caster {
     source: CasterSource,
     world_from_local: Mat4,
     bounds: Bounds,
+    displacement: Option<CasterDisplacement>,
 }
 
 /// The shadow views of the current frame (one per shadow map, as the shader reads them),
@@ -160,6 +166,7 @@ type CasterData = (
     &'static InheritedVisibility,
     Has<SkinnedMesh>,
     Has<MeshMorphWeights>,
+    Option<&'static MeshMaterial3d<PhongMaterial>>,
 );
 
 /// Lays out every requested shadow map of this frame: the maps' views (written into the
@@ -171,6 +178,7 @@ pub(crate) fn gather_shadows(
     cameras: ShadowCameraQuery,
     phong_lit: Query<(), With<PhongLit>>,
     casters: Query<CasterData, Without<NotShadowCaster>>,
+    materials: Res<Assets<PhongMaterial>>,
     mut state: ResMut<PhongShadowViews>,
     mut frame: ResMut<ShadowFrame>,
     mut slots: ResMut<ShadowSlots>,
@@ -193,19 +201,29 @@ pub(crate) fn gather_shadows(
     state.records.clear();
     state.casters.clear();
     if !requests.is_empty() {
-        for (entity, mesh, transform, aabb, visibility, skinned, morphed) in &casters {
+        for (entity, mesh, transform, aabb, visibility, skinned, morphed, material) in &casters {
             if !visibility.get() {
                 continue;
             }
+            let displacement = material
+                .and_then(|material| materials.get(&material.0))
+                .and_then(CasterDisplacement::of);
+            // Bounds grown by the farthest the displacement moves a vertex.
+            let reach = displacement.as_ref().map_or(0.0, |displacement| {
+                displacement.reach() * largest_scale(transform)
+            });
             if !(skinned || morphed) {
                 // A mesh without bounds (`NoFrustumCulling`) is not placed in any map.
                 let Some(aabb) = aabb else {
                     continue;
                 };
+                let mut bounds = bounds(transform, aabb);
+                bounds.radius += reach;
                 state.casters.push(Caster {
                     source: CasterSource::Mesh(mesh.id()),
                     world_from_local: transform.to_matrix(),
-                    bounds: bounds(transform, aabb),
+                    bounds,
+                    displacement,
                 });
                 continue;
             }
@@ -223,7 +241,11 @@ pub(crate) fn gather_shadows(
                         } else {
                             transform.to_matrix()
                         },
-                        bounds: pose.bounds,
+                        bounds: Bounds {
+                            radius: pose.bounds.radius + reach,
+                            ..pose.bounds
+                        },
+                        displacement,
                     });
                 }
                 // Still loading: it casts once its assets are loaded.
@@ -275,6 +297,7 @@ pub(crate) fn gather_shadows(
                         .map(|caster| ShadowInstance {
                             source: caster.source.clone(),
                             clip_from_local: view.clip_from_world * caster.world_from_local,
+                            displacement: caster.displacement.clone(),
                         }),
                 );
                 next.passes.push(ShadowPass {
@@ -475,17 +498,21 @@ fn atlas_layout(current: AtlasLayout, size: u32, layers: u32) -> AtlasLayout {
     }
 }
 
-/// A sphere around a mesh's bounding box, in world space.
-fn bounds(transform: &GlobalTransform, aabb: &Aabb) -> Bounds {
+/// The largest factor by which `transform` stretches a length.
+fn largest_scale(transform: &GlobalTransform) -> f32 {
     let matrix = transform.affine().matrix3;
-    let scale = matrix
+    matrix
         .x_axis
         .length()
         .max(matrix.y_axis.length())
-        .max(matrix.z_axis.length());
+        .max(matrix.z_axis.length())
+}
+
+/// A sphere around a mesh's bounding box, in world space.
+fn bounds(transform: &GlobalTransform, aabb: &Aabb) -> Bounds {
     Bounds {
         center: transform.transform_point(Vec3::from(aabb.center)),
-        radius: Vec3::from(aabb.half_extents).length() * scale,
+        radius: Vec3::from(aabb.half_extents).length() * largest_scale(transform),
     }
 }
 

@@ -45,6 +45,7 @@
 
 mod cameras;
 mod deformed;
+mod displaced;
 mod gather;
 mod gpu_types;
 mod posed;
@@ -166,6 +167,7 @@ pub(crate) fn add_shadow_rendering(app: &mut App) {
         .init_gpu_resource::<ShadowCasterPipeline>()
         .init_resource::<ShadowDraws>()
         .init_resource::<posed::PosedBindGroups>()
+        .init_resource::<displaced::DisplacedBindGroups>()
         .init_resource::<SpecializedMeshPipelines<ShadowCasterPipeline>>()
         .add_systems(ExtractSchedule, extract_shadow_frame)
         .add_systems(
@@ -174,6 +176,7 @@ pub(crate) fn add_shadow_rendering(app: &mut App) {
                 prepare_shadow_atlas.in_set(RenderSystems::PrepareAssets),
                 prepare_shadow_draws.in_set(RenderSystems::PrepareResources),
                 posed::prepare_posed_bind_groups.in_set(RenderSystems::PrepareBindGroups),
+                displaced::prepare_displaced_bind_groups.in_set(RenderSystems::PrepareBindGroups),
             ),
         )
         .add_systems(

@@ -3,16 +3,19 @@
 //! cameras render.
 
 use super::{
+    displaced::{DisplacedBindGroups, displacement_layout},
     gather::{AtlasLayout, CasterSource, ShadowFrame},
     posed::{BevyDeformation, PosedBindGroups, PosedDraw, PosedLayouts},
 };
+use crate::displacement::can_displace;
 use bevy::{
-    asset::{AssetServer, Handle},
+    asset::{AssetId, AssetServer, Handle},
     ecs::{
         resource::Resource,
         system::{Commands, Res, ResMut},
         world::{FromWorld, World},
     },
+    image::Image,
     log::error,
     mesh::{Mesh, MeshVertexBufferLayoutRef, PrimitiveTopology, VertexBufferLayout},
     prelude::default,
@@ -34,7 +37,7 @@ use bevy::{
         renderer::{RenderContext, RenderDevice, RenderQueue},
         sync_world::MainEntity,
     },
-    shader::Shader,
+    shader::{Shader, ShaderDefVal},
 };
 use bytemuck::{Pod, Zeroable};
 
@@ -163,22 +166,25 @@ impl FromWorld for ShadowCasterPipeline {
     }
 }
 
-/// A caster pipeline's variant: the mesh's topology and, for a posed caster, whether its
-/// joints and its morph targets pose it.
+/// A caster pipeline's variant: the mesh's topology, for a posed caster whether its joints
+/// and its morph targets pose it, and whether a displacement map moves its vertices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct ShadowCasterKey {
     topology: PrimitiveTopology,
     posed: Option<(bool, bool)>,
+    displaced: bool,
 }
 
 /// One draw's instance data (`Caster` in `shadow_caster.wgsl`): the matrix to the map's
 /// clip space by columns, then where a posed caster's deformation is (see
-/// [`PosedDraw::deform`]).
+/// [`PosedDraw::deform`]), then a displaced caster's UV transform, scale and bias (see
+/// [`super::displaced::CasterDisplacement::instance_data`]).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct CasterInstance {
     clip_from_local: [f32; 16],
     deform: [u32; 4],
+    displacement: [f32; 8],
 }
 
 /// Bytes of a [`CasterInstance`].
@@ -198,6 +204,10 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
             attributes.push(Mesh::ATTRIBUTE_JOINT_INDEX.at_shader_location(6));
             attributes.push(Mesh::ATTRIBUTE_JOINT_WEIGHT.at_shader_location(7));
         }
+        if key.displaced {
+            attributes.push(Mesh::ATTRIBUTE_NORMAL.at_shader_location(8));
+            attributes.push(Mesh::ATTRIBUTE_UV_0.at_shader_location(9));
+        }
         let vertices = layout.0.get_layout(&attributes)?;
         let mut instance_attributes: Vec<VertexAttribute> = (0..4)
             .map(|column| VertexAttribute {
@@ -206,7 +216,7 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
                 shader_location: 1 + column,
             })
             .collect();
-        let (bind_group_layouts, shader_defs) = match key.posed {
+        let (mut bind_group_layouts, mut shader_defs) = match key.posed {
             Some(_) => {
                 instance_attributes.push(VertexAttribute {
                     format: VertexFormat::Uint32x4,
@@ -217,6 +227,19 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
             }
             None => (Vec::new(), Vec::new()),
         };
+        if key.displaced {
+            instance_attributes.extend([10, 11].map(|shader_location| VertexAttribute {
+                format: VertexFormat::Float32x4,
+                offset: 80 + 16 * (shader_location as u64 - 10),
+                shader_location,
+            }));
+            shader_defs.push("DISPLACED".into());
+            shader_defs.push(ShaderDefVal::UInt(
+                "DISPLACEMENT_GROUP".into(),
+                bind_group_layouts.len() as u32,
+            ));
+            bind_group_layouts.push(displacement_layout());
+        }
         let instance = VertexBufferLayout {
             array_stride: INSTANCE_SIZE,
             step_mode: VertexStepMode::Instance,
@@ -262,6 +285,8 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
 pub(crate) struct ShadowDraws {
     pipelines: Vec<Option<CachedRenderPipelineId>>,
     posed: Vec<Option<PosedDraw>>,
+    /// Each displaced caster's map, and the bind group it is bound at.
+    displaced: Vec<Option<(AssetId<Image>, u32)>>,
     instances: RawBufferVec<CasterInstance>,
 }
 
@@ -270,6 +295,7 @@ impl Default for ShadowDraws {
         Self {
             pipelines: Vec::new(),
             posed: Vec::new(),
+            displaced: Vec::new(),
             instances: RawBufferVec::new(BufferUsages::VERTEX),
         }
     }
@@ -279,6 +305,11 @@ impl ShadowDraws {
     /// The posed casters' draws of this frame.
     pub fn posed(&self) -> impl Iterator<Item = &PosedDraw> {
         self.posed.iter().flatten()
+    }
+
+    /// The displacement maps of this frame's displaced casters (repeated per caster).
+    pub fn displacement_maps(&self) -> impl Iterator<Item = AssetId<Image>> + '_ {
+        self.displaced.iter().flatten().map(|(map, _)| *map)
     }
 }
 
@@ -300,6 +331,7 @@ pub(crate) fn prepare_shadow_draws(
     let draws = &mut *draws;
     draws.pipelines.clear();
     draws.posed.clear();
+    draws.displaced.clear();
     draws.instances.clear();
     let Some(frame) = frame else { return };
     let mut specialize = |key, layout: &MeshVertexBufferLayoutRef| match pipelines
@@ -341,28 +373,37 @@ pub(crate) fn prepare_shadow_draws(
                 )
                 .map(|draw| (draw, (skinned, morphed)))
         });
+        // A displacement moves the vertices of a mesh that has UVs and normals.
+        let displacement = instance
+            .displacement
+            .as_ref()
+            .filter(|_| mesh.is_some_and(|mesh| can_displace(&mesh.layout)));
+        let key = |posed| ShadowCasterKey {
+            topology: mesh.map_or(PrimitiveTopology::TriangleList, |m| m.primitive_topology()),
+            posed,
+            displaced: displacement.is_some(),
+        };
         let pipeline_id = match (mesh, posed, posed_draw) {
-            (Some(mesh), None, _) => specialize(
-                ShadowCasterKey {
-                    topology: mesh.primitive_topology(),
-                    posed: None,
-                },
-                &mesh.layout,
-            ),
-            (Some(mesh), Some(_), Some((_, variant))) => specialize(
-                ShadowCasterKey {
-                    topology: mesh.primitive_topology(),
-                    posed: Some(variant),
-                },
-                &mesh.layout,
-            ),
+            (Some(mesh), None, _) => specialize(key(None), &mesh.layout),
+            (Some(mesh), Some(_), Some((_, variant))) => {
+                specialize(key(Some(variant)), &mesh.layout)
+            }
             _ => None,
+        };
+        let posed_groups = match posed_draw {
+            Some((_, (_, true))) => 2,
+            Some(_) => 1,
+            None => 0,
         };
         draws.pipelines.push(pipeline_id);
         draws.posed.push(posed_draw.map(|(draw, _)| draw));
+        draws
+            .displaced
+            .push(displacement.map(|displacement| (displacement.map, posed_groups)));
         draws.instances.push(CasterInstance {
             clip_from_local: instance.clip_from_local.to_cols_array(),
             deform: posed_draw.map_or([0; 4], |(draw, _)| draw.deform),
+            displacement: displacement.map_or([0.0; 8], |d| d.instance_data()),
         });
     }
     if !draws.instances.is_empty() {
@@ -377,6 +418,7 @@ pub(crate) fn render_shadow_maps(
     atlas: Res<ShadowAtlas>,
     draws: Res<ShadowDraws>,
     posed_groups: Res<PosedBindGroups>,
+    displaced_groups: Res<DisplacedBindGroups>,
     pipeline_layouts: Res<ShadowCasterPipeline>,
     cache: Res<PipelineCache>,
     meshes: Res<RenderAssets<RenderMesh>>,
@@ -425,6 +467,13 @@ pub(crate) fn render_shadow_maps(
                     };
                     render_pass.set_bind_group(1, morphs, &dynamic(weights_offset));
                 }
+            }
+            if let Some((map, group)) = draws.displaced[index] {
+                // A map not on the GPU yet: the caster is drawn from the next frame on.
+                let Some(bind_group) = displaced_groups.0.get(&map) else {
+                    continue;
+                };
+                render_pass.set_bind_group(group as usize, bind_group, &[]);
             }
             render_pass.set_vertex_buffer(0, vertices.buffer.slice(..));
             render_pass.set_vertex_buffer(1, instance_buffer.slice(offset..offset + INSTANCE_SIZE));

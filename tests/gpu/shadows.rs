@@ -794,6 +794,47 @@ fn not_shadow_caster_and_not_shadow_receiver_work_on_phong_meshes() {
     judge(&mut harness, &scene, &lights, &roles, &inputs).assert_holds("markers");
 }
 
+/// A caster whose material has a displacement map casts the displaced shape: the scene's
+/// sphere, grown by a map of one texel (red 128/255, scale 0.3, bias 0.05: 0.6 becomes
+/// 0.80), is judged against the exact rays to a sphere of that radius, under a directional
+/// light (cascade maps) and a point light (cube maps). The sphere (`ico(5)`, 10,242
+/// vertices) lies within 10⁻⁴ of its vertices' sphere, far inside the band.
+#[test]
+fn a_displaced_caster_casts_the_shadow_of_its_displaced_shape() {
+    let (mut harness, mut scene) = harness();
+    let world = harness.world_mut();
+    let mut map = Image::new_fill(
+        bevy::render::render_resource::Extent3d::default(),
+        bevy::render::render_resource::TextureDimension::D2,
+        &[128, 0, 0, 255],
+        bevy::render::render_resource::TextureFormat::Rgba8Unorm,
+        bevy::asset::RenderAssetUsages::default(),
+    );
+    map.sampler = bevy::image::ImageSampler::nearest();
+    let map = world.resource_mut::<Assets<Image>>().add(map);
+    let (scale, bias) = (0.3, 0.05);
+    let (_, shape, material) = &mut scene.shapes[1];
+    let Shape::Sphere { radius, .. } = shape else {
+        panic!("the scene's second shape is its sphere");
+    };
+    *radius += 128.0 / 255.0 * scale + bias;
+    if let Some(mut sphere) = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .get_mut(&*material)
+    {
+        sphere.displacement_map = Some(map);
+        sphere.displacement_scale = scale as f32;
+        sphere.displacement_bias = bias as f32;
+    }
+    let lights = vec![
+        directional(&mut harness, SUN, on(), one_cascade()),
+        point(&mut harness, Vec3::new(-1.5, 2.8, 1.8), on()),
+    ];
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("displaced sphere");
+}
+
 #[test]
 fn a_light_inside_an_object_is_blocked_everywhere_outside_it() {
     let (mut harness, scene) = harness();

@@ -351,16 +351,41 @@ pub fn without_defs() -> Vec<Variant> {
 /// (under WebGL2's limits) in uniform buffers and a texture.
 pub fn shadow_caster() -> Vec<Variant> {
     let mut variants = without_defs();
-    for (skinned, morphed) in [(true, false), (false, true), (true, true)] {
+    let poses: [&[&str]; 4] = [&[], &["SKINNED"], &["MORPHED"], &["SKINNED", "MORPHED"]];
+    for pose in poses {
         for uniforms in [false, true] {
-            let mut defs: Vec<&str> = vec!["POSED"];
-            defs.extend(skinned.then_some("SKINNED"));
-            defs.extend(morphed.then_some("MORPHED"));
-            defs.extend(uniforms.then_some("DEFORMATION_IN_UNIFORMS"));
-            variants.push(Variant {
-                name: defs.join(" "),
-                defs: defs.into_iter().map(ShaderDefVal::from).collect(),
-            });
+            for displaced in [false, true] {
+                let mut defs: Vec<ShaderDefVal> = Vec::new();
+                if !pose.is_empty() {
+                    defs.push("POSED".into());
+                    defs.extend(pose.iter().map(|&def| def.into()));
+                    if uniforms {
+                        defs.push("DEFORMATION_IN_UNIFORMS".into());
+                    }
+                } else if uniforms {
+                    continue;
+                }
+                if displaced {
+                    // After the posed groups: joints (0) and morphs (1).
+                    let group = if pose.contains(&"MORPHED") {
+                        2
+                    } else {
+                        pose.len().min(1)
+                    };
+                    defs.push("DISPLACED".into());
+                    defs.push(ShaderDefVal::UInt(
+                        "DISPLACEMENT_GROUP".into(),
+                        group as u32,
+                    ));
+                }
+                if defs.is_empty() {
+                    continue;
+                }
+                variants.push(Variant {
+                    name: format!("{pose:?}, uniforms {uniforms}, displaced {displaced}"),
+                    defs,
+                });
+            }
         }
     }
     variants
