@@ -147,7 +147,8 @@ pub use lights::{
     PhongSpotLight,
 };
 pub use material::{
-    EnvironmentCombine, PhongMaterial, PhongMaterialKey, PhongMaterialUniform, SpecularModel, UvSet,
+    DiffuseKind, DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialKey,
+    PhongMaterialUniform, SpecularMode, SpecularModel, UvSet,
 };
 pub use plugin::{PhongMaterialAppExt, PhongPlugin};
 pub use schedule::PhongSystems;
@@ -159,9 +160,9 @@ pub use surface_inputs::{
 /// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
 pub mod prelude {
     pub use crate::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCulling,
-        PhongMaterial, PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongShadows,
-        PhongSpotLight, PhongViewClusters, SpecularModel,
+        Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
+        PhongLightCulling, PhongMaterial, PhongMaterialAppExt, PhongPlugin, PhongPointLight,
+        PhongShadows, PhongSpotLight, PhongViewClusters, SpecularMode, SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 

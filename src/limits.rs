@@ -126,6 +126,9 @@ pub const FRACTION: Limits = Limits::new(0.0, 1.0, 0.0);
 /// A ratio of refractive indices: `[0, 1e6]`, NaN → 1 (no bending).
 pub const REFRACTION_RATIO: Limits = Limits::new(0.0, 1e6, 1.0);
 
+/// The most toon bands a [`DiffuseMode::Toon`](crate::DiffuseMode::Toon) has (at least 1).
+pub const TOON_BANDS: u32 = 256;
+
 /// A signed scale such as a material's bump scale: `[-1e6, 1e6]`, NaN → 0.
 pub const SIGNED_SCALE: Limits = Limits::new(-MAX_INTENSITY, MAX_INTENSITY, 0.0);
 

@@ -48,6 +48,44 @@ impl SpecularModel {
     }
 }
 
+/// How the diffuse term of each light is shaped from `N·L` (SPEC.md, "Stylized shading").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Default, Debug, PartialEq, Clone)]
+pub enum DiffuseMode {
+    /// `max(N·L, 0)` (Lambert's).
+    #[default]
+    Lambert,
+    /// `max((N·L + w) / (1 + w), 0)` with the wrap `w` in `[0, 1]`: the light reaches past the
+    /// terminator, down to `N·L = −w` (soft, skin-like falloff; Godot's Lambert Wrap).
+    Wrap(f32),
+    /// `N·L` in `bands` flat steps (cel shading): `(⌊x·n⌋ + e(fract(x·n))) / n` with
+    /// `x = max(N·L, 0)`, where `e` rises from 0 to 1 over the last `smoothing` (in `[0, 1]`)
+    /// of each step (0: hard steps). `bands` in `[1, 256]`.
+    Toon {
+        /// The number of steps from dark to fully lit.
+        bands: u32,
+        /// The share of each step over which it rises to the next, `[0, 1]`.
+        smoothing: f32,
+    },
+}
+
+/// How the highlight of each light is drawn (SPEC.md, "Stylized shading").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, Serialize, Deserialize)]
+#[reflect(Default, Debug, PartialEq, Clone)]
+pub enum SpecularMode {
+    /// `H` as the specular model gives it.
+    #[default]
+    Smooth,
+    /// A flat spot where `H > 1/2` (cel shading): `H` through a step at 1/2 that rises over
+    /// `smoothing` (in `[0, 1]`; 0: a hard edge).
+    Toon {
+        /// The width of the spot's edge, in units of `H`, `[0, 1]`.
+        smoothing: f32,
+    },
+    /// No highlight (the variant without the specular term, as a zero specular strength).
+    Off,
+}
+
 /// How the environment map's color joins the lit color (three.js's `combine`), weighted by
 /// `k = reflectivity` times the specular map's red channel (1 without one).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
@@ -120,6 +158,12 @@ pub struct PhongMaterial {
     pub shininess: f32,
     /// Reflection-vector (Phong) or half-vector (Blinn-Phong) highlight. Default Phong.
     pub specular_model: SpecularModel,
+    /// How each light's diffuse term is shaped from `N·L`: Lambert's, wrapped, or in toon
+    /// bands. Default [`DiffuseMode::Lambert`].
+    pub diffuse_mode: DiffuseMode,
+    /// How each light's highlight is drawn: as computed, as a toon spot, or not at all.
+    /// Default [`SpecularMode::Smooth`].
+    pub specular_mode: SpecularMode,
     /// Color added without lighting, linear RGB. Default black.
     pub emissive: LinearRgba,
     /// How the output alpha (`base_color.a`, times the base color map's alpha) is used.
@@ -276,6 +320,8 @@ impl Default for PhongMaterial {
             specular_strength: 1.0,
             shininess: 32.0,
             specular_model: SpecularModel::Phong,
+            diffuse_mode: DiffuseMode::Lambert,
+            specular_mode: SpecularMode::Smooth,
             emissive: LinearRgba::BLACK,
             alpha_mode: AlphaMode::Opaque,
             base_color_texture: None,
@@ -351,6 +397,9 @@ pub struct PhongMaterialUniform {
     pub refraction_ratio: f32,
     /// [`PhongMaterial::bump_scale`].
     pub bump_scale: f32,
+    /// The stylized modes' numbers: the diffuse wrap, the toon bands (as a float) and their
+    /// smoothing, the toon highlight's smoothing ([`Self::style_of`]).
+    pub style: Vec4,
 }
 
 impl PhongMaterialUniform {
@@ -397,7 +446,29 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
                 .refraction_ratio
                 .map_or(0.0, |ratio| limits::REFRACTION_RATIO.apply(ratio)),
             bump_scale: limits::SIGNED_SCALE.apply(material.bump_scale),
+            style: Self::style_of(material.diffuse_mode, material.specular_mode),
         }
+    }
+}
+
+impl PhongMaterialUniform {
+    /// `(wrap, bands, band smoothing, highlight smoothing)` of the modes, each brought into
+    /// its range ([`limits::FRACTION`], [`limits::TOON_BANDS`]); `(0, 1, 0, 0)` for the
+    /// modes without numbers.
+    pub fn style_of(diffuse: DiffuseMode, specular: SpecularMode) -> Vec4 {
+        let mut style = Vec4::new(0.0, 1.0, 0.0, 0.0);
+        match diffuse {
+            DiffuseMode::Lambert => {}
+            DiffuseMode::Wrap(wrap) => style.x = limits::FRACTION.apply(wrap),
+            DiffuseMode::Toon { bands, smoothing } => {
+                style.y = bands.clamp(1, limits::TOON_BANDS) as f32;
+                style.z = limits::FRACTION.apply(smoothing);
+            }
+        }
+        if let SpecularMode::Toon { smoothing } = specular {
+            style.w = limits::FRACTION.apply(smoothing);
+        }
+        style
     }
 }
 
@@ -411,6 +482,17 @@ impl From<&PhongMaterial> for DisplacementUniform {
             bias: limits::SIGNED_SCALE.apply(material.displacement_bias),
         }
     }
+}
+
+/// A [`DiffuseMode`] without its numbers, as [`PhongMaterialKey`] holds it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DiffuseKind {
+    /// [`DiffuseMode::Lambert`].
+    Lambert,
+    /// [`DiffuseMode::Wrap`].
+    Wrap,
+    /// [`DiffuseMode::Toon`].
+    Toon,
 }
 
 /// The UV set a map is read at, as [`PhongMaterialKey`] holds Bevy's [`UvChannel`].
@@ -451,11 +533,17 @@ impl From<&UvChannel> for UvSet {
 /// `PHONG_ENV_ADD` for those combine modes, `PHONG_ENV_REFRACTION` when it refracts,
 /// `PHONG_ENV_CAMERA` for the camera's `EnvironmentMapLight`). An
 /// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
-/// `PHONG_NO_FOG`, flat shading `PHONG_FLAT_SHADING`.
+/// `PHONG_NO_FOG`, flat shading `PHONG_FLAT_SHADING`; the stylized modes
+/// `PHONG_DIFFUSE_WRAP`, `PHONG_DIFFUSE_TOON` and `PHONG_SPECULAR_TOON`
+/// ([`SpecularMode::Off`] is `PHONG_NO_SPECULAR`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PhongMaterialKey {
     /// Whether the material has a specular term.
     pub specular: bool,
+    /// The diffuse mode's kind (shader defs `PHONG_DIFFUSE_WRAP`, `PHONG_DIFFUSE_TOON`).
+    pub diffuse: DiffuseKind,
+    /// Whether the highlight is a toon spot (shader def `PHONG_SPECULAR_TOON`).
+    pub toon_specular: bool,
     /// Whether it has a base color map.
     pub base_color_texture: bool,
     /// Whether it has a specular map (only sampled with a specular term).
@@ -513,9 +601,16 @@ pub struct PhongMaterialKey {
 
 impl From<&PhongMaterial> for PhongMaterialKey {
     fn from(material: &PhongMaterial) -> Self {
-        let specular = PhongMaterialUniform::from(material).specular != Vec3::ZERO;
+        let specular = PhongMaterialUniform::from(material).specular != Vec3::ZERO
+            && material.specular_mode != SpecularMode::Off;
         Self {
             specular,
+            diffuse: match material.diffuse_mode {
+                DiffuseMode::Lambert => DiffuseKind::Lambert,
+                DiffuseMode::Wrap(_) => DiffuseKind::Wrap,
+                DiffuseMode::Toon { .. } => DiffuseKind::Toon,
+            },
+            toon_specular: matches!(material.specular_mode, SpecularMode::Toon { .. }),
             base_color_texture: material.base_color_texture.is_some(),
             specular_texture: specular && material.specular_texture.is_some(),
             emissive_texture: material.emissive_texture.is_some(),
@@ -602,7 +697,14 @@ impl PhongMaterialKey {
         }
         if !self.specular {
             defs.push("PHONG_NO_SPECULAR");
+        } else if self.toon_specular {
+            defs.push("PHONG_SPECULAR_TOON");
         }
+        defs.extend(match self.diffuse {
+            DiffuseKind::Lambert => None,
+            DiffuseKind::Wrap => Some("PHONG_DIFFUSE_WRAP"),
+            DiffuseKind::Toon => Some("PHONG_DIFFUSE_TOON"),
+        });
         if self.unlit {
             defs.push("PHONG_UNLIT");
         }

@@ -27,7 +27,7 @@ use crate::{
         PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight, light_direction,
     },
     limits,
-    material::{PhongMaterial, SpecularModel},
+    material::{DiffuseMode, PhongMaterial, SpecularMode, SpecularModel},
 };
 use bevy::{
     color::{Color, ColorToComponents},
@@ -38,6 +38,7 @@ use glam::DVec3;
 mod camera_effects;
 mod environment;
 mod normals;
+mod stylized;
 mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
@@ -45,6 +46,7 @@ pub use environment::{
     camera_environment_direction, environment_direction, environment_lod, with_environment,
 };
 pub use normals::{bumped_normal, face_normal, mapped_normal};
+pub use stylized::{diffuse_factor, highlight_factor, near_a_step};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;
 
@@ -92,6 +94,10 @@ pub struct Material {
     pub specular_model: SpecularModel,
     /// Added unlit color, linear RGB.
     pub emissive: DVec3,
+    /// How each light's `N·L` is shaped (its numbers in their ranges).
+    pub diffuse_mode: DiffuseMode,
+    /// How each light's highlight is drawn (its numbers in their ranges).
+    pub specular_mode: SpecularMode,
 }
 
 /// One light, in world space.
@@ -374,8 +380,10 @@ fn toward(
     (attenuation > 0.0).then(|| (offset / distance, attenuation))
 }
 
-/// `color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · strength · H(N, L, V)` for a unit
-/// `to_light` (`L`); zero where `N·L ≤ 0`.
+/// `color ⊙ k_d · f_d(N·L) + specular ⊙ k_s · strength · f_s(H(N, L, V))` for a unit
+/// `to_light` (`L`), `f_d` and `f_s` the material's modes ([`diffuse_factor`],
+/// [`highlight_factor`]: `max(N·L, 0)` and `H` by default); zero where `N·L ≤ 0` but for a
+/// wrapped diffuse term, and zero without a normal.
 pub fn phong_light(
     surface: &SurfacePoint,
     material: &Material,
@@ -385,19 +393,25 @@ pub fn phong_light(
 ) -> DVec3 {
     let normal = normalize_or_zero(surface.normal);
     let n_dot_l = normal.dot(to_light);
-    // Also true for a NaN `n_dot_l`.
-    if n_dot_l.is_nan() || n_dot_l <= 0.0 {
+    // Nothing on the far side (but for a wrapped diffuse term), nor without a normal.
+    let wrapped = matches!(material.diffuse_mode, DiffuseMode::Wrap(_));
+    if n_dot_l.is_nan() || normal == DVec3::ZERO || (!wrapped && n_dot_l <= 0.0) {
         return DVec3::ZERO;
     }
     let view = normalize_or_zero(surface.camera - surface.position);
-    let highlight = highlight(
-        material.specular_model,
-        normal,
-        to_light,
-        view,
-        material.shininess,
-    );
-    color * material.diffuse * n_dot_l
+    let highlight = if n_dot_l > 0.0 {
+        let h = highlight(
+            material.specular_model,
+            normal,
+            to_light,
+            view,
+            material.shininess,
+        );
+        highlight_factor(material.specular_mode, h)
+    } else {
+        0.0
+    };
+    color * material.diffuse * diffuse_factor(material.diffuse_mode, n_dot_l)
         + specular * material.specular * material.specular_strength * highlight
 }
 
@@ -497,7 +511,26 @@ impl From<&PhongMaterial> for Material {
             shininess: limits::EXPONENT.apply(material.shininess).into(),
             specular_model: material.specular_model,
             emissive: channels(material.emissive.into()),
+            diffuse_mode: clamped_diffuse(material.diffuse_mode),
+            specular_mode: match material.specular_mode {
+                SpecularMode::Toon { smoothing } => SpecularMode::Toon {
+                    smoothing: limits::FRACTION.apply(smoothing),
+                },
+                mode => mode,
+            },
         }
+    }
+}
+
+/// `mode` with its numbers in their ranges, as the material's uniform holds them.
+fn clamped_diffuse(mode: DiffuseMode) -> DiffuseMode {
+    match mode {
+        DiffuseMode::Lambert => DiffuseMode::Lambert,
+        DiffuseMode::Wrap(wrap) => DiffuseMode::Wrap(limits::FRACTION.apply(wrap)),
+        DiffuseMode::Toon { bands, smoothing } => DiffuseMode::Toon {
+            bands: bands.clamp(1, limits::TOON_BANDS),
+            smoothing: limits::FRACTION.apply(smoothing),
+        },
     }
 }
 
@@ -594,6 +627,8 @@ mod tests {
             shininess: 1.0,
             specular_model: SpecularModel::Phong,
             emissive: DVec3::ZERO,
+            diffuse_mode: crate::DiffuseMode::Lambert,
+            specular_mode: crate::SpecularMode::Smooth,
         }
     }
 
@@ -868,6 +903,8 @@ mod properties {
                         shininess,
                         specular_model,
                         emissive,
+                        diffuse_mode: crate::DiffuseMode::Lambert,
+                        specular_mode: crate::SpecularMode::Smooth,
                     }
                 },
             )

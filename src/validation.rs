@@ -28,7 +28,7 @@ use crate::{
         PhongShadows, PhongSpotLight,
     },
     limits::{self, Limits},
-    material::PhongMaterial,
+    material::{DiffuseMode, PhongMaterial, SpecularMode},
     quoting::bounded,
 };
 use bevy::{
@@ -139,6 +139,29 @@ impl Checker {
     }
 
     /// A scalar in the range of `limits`.
+    /// The numbers of the diffuse and specular modes.
+    fn stylized_modes(&mut self, material: &mut PhongMaterial) {
+        match &mut material.diffuse_mode {
+            DiffuseMode::Lambert => {}
+            DiffuseMode::Wrap(wrap) => self.scalar("diffuse_mode", wrap, limits::FRACTION),
+            DiffuseMode::Toon { bands, smoothing } => {
+                self.scalar("diffuse_mode", smoothing, limits::FRACTION);
+                let fixed = (*bands).clamp(1, limits::TOON_BANDS);
+                if fixed != *bands {
+                    self.replace(
+                        "diffuse_mode",
+                        format!("bands {bands}"),
+                        format!("bands {fixed} (allowed: 1 to {})", limits::TOON_BANDS),
+                    );
+                    *bands = fixed;
+                }
+            }
+        }
+        if let SpecularMode::Toon { smoothing } = &mut material.specular_mode {
+            self.scalar("specular_mode", smoothing, limits::FRACTION);
+        }
+    }
+
     fn scalar(&mut self, field: &'static str, value: &mut f32, limits: Limits) {
         let fixed = limits.apply(*value);
         // NaN never equals itself: it is replaced.
@@ -288,6 +311,7 @@ impl Checker {
         }
         self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
         self.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
+        self.stylized_modes(material);
         let scale = &mut material.displacement_scale;
         self.scalar("displacement_scale", scale, limits::SIGNED_SCALE);
         let bias = &mut material.displacement_bias;

@@ -12,6 +12,8 @@ fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
         shininess: 32.0,
         specular_model: SpecularModel::Phong,
         emissive: DVec3::splat(0.125),
+        diffuse_mode: crate::DiffuseMode::Lambert,
+        specular_mode: crate::SpecularMode::Smooth,
     };
     let lights = Lights {
         ambient: DVec3::splat(0.25),

@@ -42,6 +42,8 @@ mod tests {
             shininess: 32.0,
             specular_model: SpecularModel::Phong,
             emissive: DVec3::splat(0.1),
+            diffuse_mode: crate::DiffuseMode::Lambert,
+            specular_mode: crate::SpecularMode::Smooth,
         };
         let colored = material.with_vertex_color(DVec4::new(0.5, 1.0, 0.25, 0.3));
         assert_eq!(colored.diffuse, DVec3::new(0.25, 0.6, 0.2));

@@ -52,6 +52,8 @@ mod tests {
             shininess: 32.0,
             specular_model: SpecularModel::Phong,
             emissive: DVec3::splat(0.1),
+            diffuse_mode: crate::DiffuseMode::Lambert,
+            specular_mode: crate::SpecularMode::Smooth,
         }
     }
 

@@ -1,7 +1,9 @@
 //! `PhongMaterial` as a file: [`PhongMaterialDescription`] and the `*.phong.ron` loader.
 
 use super::{SceneColor, SceneFileError, relative_path, scene_color};
-use crate::material::{EnvironmentCombine, PhongMaterial, SpecularModel};
+use crate::material::{
+    DiffuseMode, EnvironmentCombine, PhongMaterial, SpecularMode, SpecularModel,
+};
 use bevy::{
     asset::{AssetLoader, LoadContext, io::Reader},
     image::{Image, ImageLoaderSettings},
@@ -44,6 +46,10 @@ pub struct PhongMaterialDescription {
     pub shininess: f32,
     /// `Phong` or `BlinnPhong`. Default `Phong`.
     pub specular_model: SpecularModel,
+    /// `Lambert`, `Wrap(w)` or `Toon(bands: n, smoothing: s)`. Default `Lambert`.
+    pub diffuse_mode: DiffuseMode,
+    /// `Smooth`, `Toon(smoothing: s)` or `Off`. Default `Smooth`.
+    pub specular_mode: SpecularMode,
     /// Unlit color. Default black.
     pub emissive: SceneColor,
     /// `Opaque`, `Mask(cutoff)` or `Blend`. Default `Opaque`.
@@ -207,6 +213,8 @@ impl Default for PhongMaterialDescription {
             specular_strength: material.specular_strength,
             shininess: material.shininess,
             specular_model: material.specular_model,
+            diffuse_mode: material.diffuse_mode,
+            specular_mode: material.specular_mode,
             emissive: SceneColor::black(),
             alpha_mode: AlphaModeDescription::Opaque,
             base_color_texture: None,
@@ -269,6 +277,8 @@ impl PhongMaterialDescription {
             specular_strength: self.specular_strength,
             shininess: self.shininess,
             specular_model: self.specular_model,
+            diffuse_mode: self.diffuse_mode,
+            specular_mode: self.specular_mode,
             emissive,
             alpha_mode: match self.alpha_mode {
                 AlphaModeDescription::Opaque => AlphaMode::Opaque,

@@ -101,6 +101,7 @@ fn phong_surface(
         true,
         vec3<f32>(1.0),
         vec3<f32>(0.0),
+        vec4<f32>(0.0, 1.0, 0.0, 0.0),
     );
 }
 
@@ -157,8 +158,50 @@ fn highlight(surface: PhongSurface, to_light: vec3<f32>, n_dot_l: f32) -> f32 {
     return power_of_one_minus(d, surface.shininess);
 }
 
-// color ⊙ k_d · max(N·L, 0) + specular ⊙ k_s · H(N, L, V), for a unit `to_light` (L).
-// Zero on the side of the surface facing away from the light.
+// `t` in [0, 1] eased from 0 at `1 − width` to 1 at 1 (a smoothstep; 0 throughout for a
+// zero width): how a toon step rises into the next.
+fn step_rise(t: f32, width: f32) -> f32 {
+    if !(width > 0.0) {
+        return 0.0;
+    }
+    let x = saturate((t - (1.0 - width)) / width);
+    return x * x * (3.0 - 2.0 * x);
+}
+
+// The diffuse factor of `n_dot_l` (N·L) in the material's mode: max(N·L, 0) (Lambert),
+// max((N·L + w) / (1 + w), 0) (PHONG_DIFFUSE_WRAP), or (⌊x·n⌋ + rise(fract(x·n))) / n with
+// x = max(N·L, 0) (PHONG_DIFFUSE_TOON), the numbers from `style` (PhongSurface.style).
+fn diffuse_factor(n_dot_l: f32, style: vec4<f32>) -> f32 {
+#ifdef PHONG_DIFFUSE_WRAP
+    return max((n_dot_l + style.x) / (1.0 + style.x), 0.0);
+#else
+#ifdef PHONG_DIFFUSE_TOON
+    let steps = max(n_dot_l, 0.0) * style.y;
+    return (floor(steps) + step_rise(fract(steps), style.z)) / style.y;
+#else
+    return max(n_dot_l, 0.0);
+#endif
+#endif
+}
+
+// The highlight `h` drawn in the material's mode: as it is, or (PHONG_SPECULAR_TOON) a
+// flat spot where h > 1/2, its edge rising over `width`.
+fn highlight_factor(h: f32, width: f32) -> f32 {
+#ifdef PHONG_SPECULAR_TOON
+    if !(width > 0.0) {
+        return select(0.0, 1.0, h >= 0.5);
+    }
+    return smoothstep(0.5 - 0.5 * width, 0.5 + 0.5 * width, h);
+#else
+    return h;
+#endif
+}
+
+// color ⊙ k_d · f_d(N·L) + specular ⊙ k_s · f_s(H(N, L, V)), for a unit `to_light` (L), with
+// f_d and f_s the material's diffuse and specular modes (`diffuse_factor`,
+// `highlight_factor`; Lambert's max(N·L, 0) and H itself by default). The highlight is zero
+// where N·L ≤ 0; so is the diffuse term but for a wrapped one; both are zero for a surface
+// without a normal.
 fn phong_light(
     surface: PhongSurface,
     to_light: vec3<f32>,
@@ -166,15 +209,23 @@ fn phong_light(
     specular: vec3<f32>,
 ) -> vec3<f32> {
     let n_dot_l = dot(surface.normal, to_light);
+#ifdef PHONG_DIFFUSE_WRAP
+    // Lit past the terminator: only a surface without a normal (or a NaN) is left dark.
+    if all(surface.normal == vec3<f32>(0.0)) || !(n_dot_l > -1.5) {
+        return vec3<f32>(0.0);
+    }
+#else
     if !(n_dot_l > 0.0) {
         return vec3<f32>(0.0);
     }
-    let diffuse = color * surface.diffuse * n_dot_l;
+#endif
+    let diffuse = color * surface.diffuse * diffuse_factor(n_dot_l, surface.style);
 #ifdef PHONG_NO_SPECULAR
     // The material's k_s · strength is zero: the variant without the highlight.
     return diffuse;
 #else
-    return diffuse + specular * surface.specular * highlight(surface, to_light, n_dot_l);
+    let h = highlight_factor(highlight(surface, to_light, n_dot_l), surface.style.w);
+    return diffuse + specular * surface.specular * select(0.0, h, n_dot_l > 0.0);
 #endif
 }
 

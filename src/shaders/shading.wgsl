@@ -17,7 +17,7 @@
 // The surface point `position` with the interpolated mesh normal, seen from `camera`,
 // made of the bound material.
 fn material_surface(position: vec3<f32>, normal: vec3<f32>, camera: vec3<f32>) -> PhongSurface {
-    return phong_surface(
+    var surface = phong_surface(
         position,
         normal,
         camera,
@@ -26,6 +26,8 @@ fn material_surface(position: vec3<f32>, normal: vec3<f32>, camera: vec3<f32>) -
         material.shininess,
         material.flags & 3u,
     );
+    surface.style = material.style;
+    return surface;
 }
 
 // Whether the mesh drawn as `instance_index` receives shadows (it has no
@@ -162,6 +164,7 @@ fn fragment_surface(in: VertexOutput, mapped: MappedMaterial) -> PhongSurface {
     surface.receives_shadows = receives_shadows(in.instance_index);
     surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb) * mapped.occlusion;
     surface.baked_light = mapped.baked_light;
+    surface.style = material.style;
     return surface;
 }
 

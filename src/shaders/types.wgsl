@@ -158,6 +158,8 @@ struct PhongMaterialUniform {
     // With PHONG_BUMP_MAP, how far a height step of 1 between neighbouring texels tilts the
     // normal (1: 45°).
     bump_scale: f32,
+    // The stylized modes' numbers (`PhongSurface.style`).
+    style: vec4<f32>,
 }
 
 // A surface point, ready to be lit.
@@ -185,6 +187,10 @@ struct PhongSurface {
     // Light baked into the material's light map, linear RGB, added to the ambient light
     // before k_d (zero without one).
     baked_light: vec3<f32>,
+    // The stylized modes' numbers: (diffuse wrap, toon bands, toon band smoothing, toon
+    // highlight smoothing); read with PHONG_DIFFUSE_WRAP, PHONG_DIFFUSE_TOON and
+    // PHONG_SPECULAR_TOON only. (0, 1, 0, 0) by default.
+    style: vec4<f32>,
 }
 
 const SPECULAR_MODEL_PHONG: u32 = 0u;

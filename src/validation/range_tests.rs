@@ -273,3 +273,57 @@ fn a_light_direction_of_any_scale_points_where_its_transform_says() {
         );
     }
 }
+
+#[test]
+fn the_stylized_modes_numbers_are_brought_into_their_ranges() {
+    let mut app = test_app(|_| {});
+    let raw = PhongMaterial {
+        diffuse_mode: crate::DiffuseMode::Toon {
+            bands: 0,
+            smoothing: 2.0,
+        },
+        specular_mode: crate::SpecularMode::Toon {
+            smoothing: f32::NAN,
+        },
+        ..PhongMaterial::default()
+    };
+    // The handle is kept: the asset lives as long as it.
+    let handle = app
+        .world_mut()
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(raw.clone());
+    let id = handle.id();
+    app.update();
+    app.update();
+    let warnings = invalid_inputs(&mut app);
+    assert_eq!(
+        fields_of(&warnings, Owner::Material(id)),
+        ["diffuse_mode", "diffuse_mode", "specular_mode"],
+        "{warnings:#?}"
+    );
+    let sanitised = app
+        .world()
+        .resource::<Assets<PhongMaterial>>()
+        .get(id)
+        .unwrap()
+        .clone();
+    assert_eq!(
+        sanitised.diffuse_mode,
+        crate::DiffuseMode::Toon {
+            bands: 1,
+            smoothing: 1.0
+        }
+    );
+    assert_eq!(
+        sanitised.specular_mode,
+        crate::SpecularMode::Toon { smoothing: 0.0 }
+    );
+    assert_eq!(
+        PhongMaterialUniform::from(&raw),
+        PhongMaterialUniform::from(&sanitised)
+    );
+    assert_eq!(
+        reference::Material::from(&raw),
+        reference::Material::from(&sanitised)
+    );
+}

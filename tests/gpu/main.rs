@@ -16,6 +16,7 @@
 //!   maps and Bevy's `Lightmap`, the same way;
 //! - `shading_normals`: bump maps and flat shading, the same way;
 //! - `displacement`: displacement maps, the positions and the lit colors;
+//! - `stylized`: the diffuse and specular modes (wrap, toon), the same way;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
@@ -61,5 +62,6 @@ mod shadows;
 #[path = "../fuzz/shapes.rs"]
 mod shapes;
 mod stress;
+mod stylized;
 mod surface_inputs;
 mod texture_maps;

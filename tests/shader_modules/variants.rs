@@ -11,7 +11,7 @@ use bevy::{
     },
     shader::ShaderDefVal,
 };
-use bevy_phong::{EnvironmentCombine, PhongMaterialKey, UvSet};
+use bevy_phong::{DiffuseKind, EnvironmentCombine, PhongMaterialKey, UvSet};
 use std::collections::BTreeSet;
 
 /// One set of shader defs, with a name that says where it comes from.
@@ -202,6 +202,8 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             camera_environment: false,
             // A vertex-stage switch: `displaced_vertex` composes its shaders.
             displacement: false,
+            diffuse: DiffuseKind::Lambert,
+            toon_specular: false,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
@@ -231,6 +233,10 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             key.environment = Some(EnvironmentCombine::Add);
             (key.refraction, key.camera_environment) = (true, true);
         },
+        |key| key.diffuse = DiffuseKind::Wrap,
+        |key| key.diffuse = DiffuseKind::Toon,
+        |key| (key.specular, key.toon_specular) = (true, true),
+        |key| (key.diffuse, key.specular, key.toon_specular) = (DiffuseKind::Toon, true, true),
     ];
     let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
@@ -249,9 +255,10 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
 /// set (2; on the second they are left out there), an alpha map (1), an environment map
 /// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
-/// the camera's environment mixed in or refracted and added (2), each with no map and every
-/// map, under 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2) * 2 * 3;
+/// the camera's environment mixed in or refracted and added (2), the stylized modes (4: wrap,
+/// toon bands, a toon highlight alone and over toon bands), each with no map and every map,
+/// under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that

@@ -1,0 +1,110 @@
+//! Stylized shading: the diffuse modes (wrap, toon bands) and the specular modes (toon spot,
+//! off), rendered on the render device and compared per pixel with the reference model
+//! (`reference::diffuse_factor`, `reference::highlight_factor`) on each pixel's inputs.
+//!
+//! A hard toon step is a discontinuity: where a light's `N·L` (for bands) or highlight (for
+//! a spot) is within 10⁻⁴ of a step, the device's `f32` may fall on either side, and the pixel
+//! is not judged (`reference::near_a_step`). Tolerance: the frame tests' ([`TOLERANCE`]).
+
+use crate::frames::SIZE;
+use crate::texture_maps::{assert_pixels_follow, expected_color, spawn_map_lights};
+use bevy::prelude::*;
+use bevy_phong::{DiffuseMode, SpecularMode, prelude::*, reference};
+use glam::DVec3;
+
+/// The directions toward every light of `lights` from `position`.
+fn toward_lights(lights: &reference::Lights, position: DVec3) -> Vec<DVec3> {
+    lights
+        .lights
+        .iter()
+        .map(|light| match *light {
+            reference::Light::Directional { direction, .. } => -direction.normalize(),
+            reference::Light::Point { position: at, .. }
+            | reference::Light::Spot { position: at, .. } => (at - position).normalize(),
+        })
+        .collect()
+}
+
+#[test]
+fn stylized_modes_follow_the_reference_model() {
+    let mut harness = bevy_phong_headless::Harness::new(SIZE, SIZE);
+    spawn_map_lights(harness.world_mut());
+    let sphere = || Sphere::new(0.9).mesh().uv(48, 32);
+    let objects = [
+        (
+            Vec3::new(-1.5, 0.8, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.9, 0.6, 0.5),
+                diffuse_mode: DiffuseMode::Wrap(0.5),
+                specular_model: SpecularModel::BlinnPhong,
+                shininess: 60.0,
+                ..default()
+            },
+        ),
+        (
+            Vec3::new(1.5, 0.8, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.4, 0.7, 0.9),
+                diffuse_mode: DiffuseMode::Toon {
+                    bands: 4,
+                    smoothing: 0.0,
+                },
+                specular_mode: SpecularMode::Toon { smoothing: 0.0 },
+                shininess: 30.0,
+                ..default()
+            },
+        ),
+        (
+            Vec3::new(-1.5, -1.2, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.6, 0.9, 0.4),
+                diffuse_mode: DiffuseMode::Toon {
+                    bands: 3,
+                    smoothing: 0.3,
+                },
+                specular_mode: SpecularMode::Toon { smoothing: 0.2 },
+                shininess: 20.0,
+                ..default()
+            },
+        ),
+        (
+            Vec3::new(1.5, -1.2, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.8, 0.8),
+                specular_mode: SpecularMode::Off,
+                ..default()
+            },
+        ),
+    ]
+    .map(|(at, material)| (sphere(), Transform::from_translation(at), material));
+    assert_pixels_follow(
+        harness,
+        objects,
+        "stylized modes",
+        &|material, surface, pixel, inputs, images, lights| {
+            let reference_material = reference::Material::from(material);
+            let normal = reference::normalize_or_zero(surface.normal);
+            let view = reference::normalize_or_zero(surface.camera - surface.position);
+            for to_light in toward_lights(lights, surface.position) {
+                let n_dot_l = normal.dot(to_light);
+                let h = reference::highlight(
+                    reference_material.specular_model,
+                    normal,
+                    to_light,
+                    view,
+                    reference_material.shininess,
+                );
+                if reference::near_a_step(
+                    reference_material.diffuse_mode,
+                    reference_material.specular_mode,
+                    n_dot_l,
+                    h,
+                    1e-4,
+                ) {
+                    return None;
+                }
+            }
+            expected_color(material, surface, pixel, inputs, images, lights)
+        },
+    );
+}
