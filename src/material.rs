@@ -164,6 +164,19 @@ pub struct PhongMaterial {
     /// How each light's highlight is drawn: as computed, as a toon spot, or not at all.
     /// Default [`SpecularMode::Smooth`].
     pub specular_mode: SpecularMode,
+    /// The rim light's color (Godot's rim, a Fresnel-like glow at grazing angles):
+    /// `rim_color · rim_strength · (1 − max(N·V, 0))^rim_power` is added to the surface, or,
+    /// with [`rim_lit_side`](Self::rim_lit_side), to each light's term weighted by its
+    /// `max(N·L, 0)` (SPEC.md, "Stylized shading"). Linear RGB. Default black: no rim (no
+    /// shader work).
+    pub rim_color: LinearRgba,
+    /// Multiplies the rim color, `≥ 0`. Default `1`.
+    pub rim_strength: f32,
+    /// How tightly the rim hugs the silhouette: the exponent on `1 − N·V`, `≥ 0`. Default `2`.
+    pub rim_power: f32,
+    /// Lights the rim only where lights reach the surface, by each light's color, attenuation,
+    /// shadow and `max(N·L, 0)`. Default `false`: the rim glows everywhere.
+    pub rim_lit_side: bool,
     /// Color added without lighting, linear RGB. Default black.
     pub emissive: LinearRgba,
     /// How the output alpha (`base_color.a`, times the base color map's alpha) is used.
@@ -322,6 +335,10 @@ impl Default for PhongMaterial {
             specular_model: SpecularModel::Phong,
             diffuse_mode: DiffuseMode::Lambert,
             specular_mode: SpecularMode::Smooth,
+            rim_color: LinearRgba::BLACK,
+            rim_strength: 1.0,
+            rim_power: 2.0,
+            rim_lit_side: false,
             emissive: LinearRgba::BLACK,
             alpha_mode: AlphaMode::Opaque,
             base_color_texture: None,
@@ -400,6 +417,8 @@ pub struct PhongMaterialUniform {
     /// The stylized modes' numbers: the diffuse wrap, the toon bands (as a float) and their
     /// smoothing, the toon highlight's smoothing ([`Self::style_of`]).
     pub style: Vec4,
+    /// The rim: `rim_color · rim_strength` (linear RGB) and `rim_power`.
+    pub rim: Vec4,
 }
 
 impl PhongMaterialUniform {
@@ -447,6 +466,9 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
                 .map_or(0.0, |ratio| limits::REFRACTION_RATIO.apply(ratio)),
             bump_scale: limits::SIGNED_SCALE.apply(material.bump_scale),
             style: Self::style_of(material.diffuse_mode, material.specular_mode),
+            rim: (limits::INTENSITY.apply_vec3(material.rim_color.to_vec3())
+                * limits::INTENSITY.apply(material.rim_strength))
+            .extend(limits::EXPONENT.apply(material.rim_power)),
         }
     }
 }
@@ -535,7 +557,7 @@ impl From<&UvChannel> for UvSet {
 /// unlit material adds `PHONG_UNLIT` (no lighting code at all), a material without fog
 /// `PHONG_NO_FOG`, flat shading `PHONG_FLAT_SHADING`; the stylized modes
 /// `PHONG_DIFFUSE_WRAP`, `PHONG_DIFFUSE_TOON` and `PHONG_SPECULAR_TOON`
-/// ([`SpecularMode::Off`] is `PHONG_NO_SPECULAR`).
+/// ([`SpecularMode::Off`] is `PHONG_NO_SPECULAR`), a rim light `PHONG_RIM` or `PHONG_RIM_LIT`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PhongMaterialKey {
     /// Whether the material has a specular term.
@@ -544,6 +566,9 @@ pub struct PhongMaterialKey {
     pub diffuse: DiffuseKind,
     /// Whether the highlight is a toon spot (shader def `PHONG_SPECULAR_TOON`).
     pub toon_specular: bool,
+    /// Whether it has a rim light (shader def `PHONG_RIM`), and whether only on the lit side
+    /// (`PHONG_RIM_LIT`).
+    pub rim: Option<bool>,
     /// Whether it has a base color map.
     pub base_color_texture: bool,
     /// Whether it has a specular map (only sampled with a specular term).
@@ -611,6 +636,8 @@ impl From<&PhongMaterial> for PhongMaterialKey {
                 DiffuseMode::Toon { .. } => DiffuseKind::Toon,
             },
             toon_specular: matches!(material.specular_mode, SpecularMode::Toon { .. }),
+            rim: (PhongMaterialUniform::from(material).rim.truncate() != Vec3::ZERO)
+                .then_some(material.rim_lit_side),
             base_color_texture: material.base_color_texture.is_some(),
             specular_texture: specular && material.specular_texture.is_some(),
             emissive_texture: material.emissive_texture.is_some(),
@@ -700,6 +727,11 @@ impl PhongMaterialKey {
         } else if self.toon_specular {
             defs.push("PHONG_SPECULAR_TOON");
         }
+        defs.extend(match self.rim {
+            None => None,
+            Some(false) => Some("PHONG_RIM"),
+            Some(true) => Some("PHONG_RIM_LIT"),
+        });
         defs.extend(match self.diffuse {
             DiffuseKind::Lambert => None,
             DiffuseKind::Wrap => Some("PHONG_DIFFUSE_WRAP"),

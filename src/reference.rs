@@ -46,7 +46,7 @@ pub use environment::{
     camera_environment_direction, environment_direction, environment_lod, with_environment,
 };
 pub use normals::{bumped_normal, face_normal, mapped_normal};
-pub use stylized::{diffuse_factor, highlight_factor, near_a_step};
+pub use stylized::{Rim, diffuse_factor, highlight_factor, near_a_step, rim_factor};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;
 
@@ -98,6 +98,8 @@ pub struct Material {
     pub diffuse_mode: DiffuseMode,
     /// How each light's highlight is drawn (its numbers in their ranges).
     pub specular_mode: SpecularMode,
+    /// The rim light.
+    pub rim: Rim,
 }
 
 /// One light, in world space.
@@ -259,7 +261,10 @@ pub fn shade_baked(
         .lights
         .iter()
         .map(|light| light_contribution(surface, material, light))
-        .fold(material.emissive + ambient, |sum, term| sum + term)
+        .fold(
+            material.emissive + ambient + material.rim.glow(surface),
+            |sum, term| sum + term,
+        )
 }
 
 /// How much of one light reaches a surface point (SPEC.md, "Shadows").
@@ -308,7 +313,10 @@ pub fn shade_shadowed(
             let (diffuse, specular) = shadowing.get(index).unwrap_or(&Shadowing::LIT).factors();
             light_contribution(surface, material, &light.scaled(diffuse, specular))
         })
-        .fold(material.emissive + ambient, |sum, term| sum + term)
+        .fold(
+            material.emissive + ambient + material.rim.glow(surface),
+            |sum, term| sum + term,
+        )
 }
 
 /// One light's `A · S · [diffuse + specular]` at `surface`.
@@ -411,7 +419,13 @@ pub fn phong_light(
     } else {
         0.0
     };
+    let rim = if material.rim.lit_side {
+        color * material.rim.color * rim_factor(normal, view, material.rim.power) * n_dot_l.max(0.0)
+    } else {
+        DVec3::ZERO
+    };
     color * material.diffuse * diffuse_factor(material.diffuse_mode, n_dot_l)
+        + rim
         + specular * material.specular * material.specular_strength * highlight
 }
 
@@ -517,6 +531,14 @@ impl From<&PhongMaterial> for Material {
                     smoothing: limits::FRACTION.apply(smoothing),
                 },
                 mode => mode,
+            },
+            rim: Rim {
+                color: limits::INTENSITY
+                    .apply_vec3(material.rim_color.to_vec3())
+                    .as_dvec3()
+                    * f64::from(limits::INTENSITY.apply(material.rim_strength)),
+                power: limits::EXPONENT.apply(material.rim_power).into(),
+                lit_side: material.rim_lit_side,
             },
         }
     }
@@ -629,6 +651,7 @@ mod tests {
             emissive: DVec3::ZERO,
             diffuse_mode: crate::DiffuseMode::Lambert,
             specular_mode: crate::SpecularMode::Smooth,
+            rim: crate::reference::Rim::NONE,
         }
     }
 
@@ -905,6 +928,7 @@ mod properties {
                         emissive,
                         diffuse_mode: crate::DiffuseMode::Lambert,
                         specular_mode: crate::SpecularMode::Smooth,
+                        rim: crate::reference::Rim::NONE,
                     }
                 },
             )

@@ -312,6 +312,15 @@ impl Checker {
         self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
         self.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
         self.stylized_modes(material);
+        let mut rim: Color = material.rim_color.into();
+        self.color("rim_color", &mut rim);
+        material.rim_color = rim.to_linear();
+        self.scalar(
+            "rim_strength",
+            &mut material.rim_strength,
+            limits::INTENSITY,
+        );
+        self.scalar("rim_power", &mut material.rim_power, limits::EXPONENT);
         let scale = &mut material.displacement_scale;
         self.scalar("displacement_scale", scale, limits::SIGNED_SCALE);
         let bias = &mut material.displacement_bias;

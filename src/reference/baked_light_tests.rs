@@ -14,6 +14,7 @@ fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
         emissive: DVec3::splat(0.125),
         diffuse_mode: crate::DiffuseMode::Lambert,
         specular_mode: crate::SpecularMode::Smooth,
+        rim: crate::reference::Rim::NONE,
     };
     let lights = Lights {
         ambient: DVec3::splat(0.25),

@@ -1,7 +1,48 @@
 //! The stylized diffuse and specular modes in the reference model (SPEC.md, "Stylized
 //! shading"): how each light's `N·L` and highlight are shaped.
 
+use super::{SurfacePoint, normalize_or_zero, power};
 use crate::material::{DiffuseMode, SpecularMode};
+use glam::DVec3;
+
+/// A material's rim light: `color` (the rim color times its strength, linear RGB) times
+/// [`rim_factor`], added everywhere, or with `lit_side` to each light's term.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rim {
+    /// Color times strength.
+    pub color: DVec3,
+    /// The exponent on `1 − N·V`.
+    pub power: f64,
+    /// Whether it is added per light, weighted by the light's `max(N·L, 0)`.
+    pub lit_side: bool,
+}
+
+impl Rim {
+    /// No rim.
+    pub const NONE: Self = Self {
+        color: DVec3::ZERO,
+        power: 2.0,
+        lit_side: false,
+    };
+
+    /// The rim added everywhere at `surface` (zero with `lit_side`).
+    pub fn glow(&self, surface: &SurfacePoint) -> DVec3 {
+        if self.lit_side {
+            return DVec3::ZERO;
+        }
+        let normal = normalize_or_zero(surface.normal);
+        let view = normalize_or_zero(surface.camera - surface.position);
+        self.color * rim_factor(normal, view, self.power)
+    }
+}
+
+/// `(1 − max(N·V, 0))^power` for unit `normal` and `view`, 0 where either has no direction.
+pub fn rim_factor(normal: DVec3, view: DVec3, power_of: f64) -> f64 {
+    if normal == DVec3::ZERO || view == DVec3::ZERO {
+        return 0.0;
+    }
+    power(1.0 - normal.dot(view).max(0.0), power_of)
+}
 
 /// `t` eased from 0 at `1 − width` to 1 at 1 (a smoothstep), 0 throughout for `width = 0`:
 /// how a toon step rises into the next.

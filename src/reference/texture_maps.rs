@@ -54,6 +54,7 @@ mod tests {
             emissive: DVec3::splat(0.1),
             diffuse_mode: crate::DiffuseMode::Lambert,
             specular_mode: crate::SpecularMode::Smooth,
+            rim: crate::reference::Rim::NONE,
         }
     }
 

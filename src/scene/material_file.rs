@@ -50,6 +50,14 @@ pub struct PhongMaterialDescription {
     pub diffuse_mode: DiffuseMode,
     /// `Smooth`, `Toon(smoothing: s)` or `Off`. Default `Smooth`.
     pub specular_mode: SpecularMode,
+    /// The rim light's color. Default black (no rim).
+    pub rim_color: SceneColor,
+    /// Multiplier on the rim color. Default `1`.
+    pub rim_strength: f32,
+    /// Exponent on `1 − N·V`. Default `2`.
+    pub rim_power: f32,
+    /// The rim only where lights reach. Default `false`.
+    pub rim_lit_side: bool,
     /// Unlit color. Default black.
     pub emissive: SceneColor,
     /// `Opaque`, `Mask(cutoff)` or `Blend`. Default `Opaque`.
@@ -215,6 +223,10 @@ impl Default for PhongMaterialDescription {
             specular_model: material.specular_model,
             diffuse_mode: material.diffuse_mode,
             specular_mode: material.specular_mode,
+            rim_color: SceneColor::black(),
+            rim_strength: material.rim_strength,
+            rim_power: material.rim_power,
+            rim_lit_side: material.rim_lit_side,
             emissive: SceneColor::black(),
             alpha_mode: AlphaModeDescription::Opaque,
             base_color_texture: None,
@@ -267,6 +279,7 @@ impl PhongMaterialDescription {
         let base_color = color("base_color", &self.base_color)?;
         let specular_color = color("specular_color", &self.specular_color)?;
         let emissive = color("emissive", &self.emissive)?.to_linear();
+        let rim_color = color("rim_color", &self.rim_color)?.to_linear();
         let mut map = |path: &Option<String>, name: &str, srgb: bool| {
             load_texture(load_context, path.as_deref(), &at(name), srgb)
         };
@@ -279,6 +292,10 @@ impl PhongMaterialDescription {
             specular_model: self.specular_model,
             diffuse_mode: self.diffuse_mode,
             specular_mode: self.specular_mode,
+            rim_color,
+            rim_strength: self.rim_strength,
+            rim_power: self.rim_power,
+            rim_lit_side: self.rim_lit_side,
             emissive,
             alpha_mode: match self.alpha_mode {
                 AlphaModeDescription::Opaque => AlphaMode::Opaque,

@@ -102,7 +102,16 @@ fn phong_surface(
         vec3<f32>(1.0),
         vec3<f32>(0.0),
         vec4<f32>(0.0, 1.0, 0.0, 0.0),
+        vec4<f32>(0.0),
     );
+}
+
+// The rim factor (1 − max(N·V, 0))^power, 0 where N or V has no direction.
+fn rim_factor(surface: PhongSurface) -> f32 {
+    if all(surface.normal == vec3<f32>(0.0)) || all(surface.view == vec3<f32>(0.0)) {
+        return 0.0;
+    }
+    return power_of_one_minus(max(dot(surface.normal, surface.view), 0.0), surface.rim.w);
 }
 
 // A(d) = min(1, 1 / (c + l·d + q·d²)), and 0 past `range`. A denominator at or below 1
@@ -219,7 +228,11 @@ fn phong_light(
         return vec3<f32>(0.0);
     }
 #endif
-    let diffuse = color * surface.diffuse * diffuse_factor(n_dot_l, surface.style);
+    var diffuse = color * surface.diffuse * diffuse_factor(n_dot_l, surface.style);
+#ifdef PHONG_RIM_LIT
+    // The rim on the lit side: this light's color, weighted by max(N·L, 0).
+    diffuse += color * surface.rim.rgb * (rim_factor(surface) * max(n_dot_l, 0.0));
+#endif
 #ifdef PHONG_NO_SPECULAR
     // The material's k_s · strength is zero: the variant without the highlight.
     return diffuse;

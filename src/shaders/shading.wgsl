@@ -2,7 +2,7 @@
 #define_import_path bevy_phong::shading
 
 #import bevy_phong::bindings::material
-#import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface, unshadowed_light}
+#import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface, rim_factor, unshadowed_light}
 #import bevy_phong::scene::{ambient_color, cluster_view_count, cluster_word, clustered_point_count, clustered_spot_count, directional_count, light_at, point_count, spot_count}
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
@@ -27,6 +27,7 @@ fn material_surface(position: vec3<f32>, normal: vec3<f32>, camera: vec3<f32>) -
         material.flags & 3u,
     );
     surface.style = material.style;
+    surface.rim = material.rim;
     return surface;
 }
 
@@ -165,12 +166,18 @@ fn fragment_surface(in: VertexOutput, mapped: MappedMaterial) -> PhongSurface {
     surface.ambient_occlusion = ambient_occlusion(in.position.xy, mapped.base_color.rgb) * mapped.occlusion;
     surface.baked_light = mapped.baked_light;
     surface.style = material.style;
+    surface.rim = material.rim;
     return surface;
 }
 
 // SPEC.md's whole equation: emissive + ambient + Σ lights, with the given emissive color.
 fn lit_color(surface: PhongSurface, emissive: vec3<f32>) -> vec3<f32> {
-    return emissive + ambient_light(surface) + direct_lights(surface);
+    var color = emissive + ambient_light(surface) + direct_lights(surface);
+#ifdef PHONG_RIM
+    // The rim everywhere, added as the emissive color is.
+    color += surface.rim.rgb * rim_factor(surface);
+#endif
+    return color;
 }
 
 // SPEC.md's whole equation for the bound material without its texture maps.

@@ -160,6 +160,8 @@ struct PhongMaterialUniform {
     bump_scale: f32,
     // The stylized modes' numbers (`PhongSurface.style`).
     style: vec4<f32>,
+    // With PHONG_RIM or PHONG_RIM_LIT: the rim's color times strength, and its power.
+    rim: vec4<f32>,
 }
 
 // A surface point, ready to be lit.
@@ -191,6 +193,9 @@ struct PhongSurface {
     // highlight smoothing); read with PHONG_DIFFUSE_WRAP, PHONG_DIFFUSE_TOON and
     // PHONG_SPECULAR_TOON only. (0, 1, 0, 0) by default.
     style: vec4<f32>,
+    // The rim light: color times strength (linear RGB) and power; read with PHONG_RIM and
+    // PHONG_RIM_LIT only. Zero by default.
+    rim: vec4<f32>,
 }
 
 const SPECULAR_MODEL_PHONG: u32 = 0u;

@@ -1,6 +1,7 @@
-//! Stylized shading: the diffuse modes (wrap, toon bands) and the specular modes (toon spot,
-//! off), rendered on the render device and compared per pixel with the reference model
-//! (`reference::diffuse_factor`, `reference::highlight_factor`) on each pixel's inputs.
+//! Stylized shading: the diffuse modes (wrap, toon bands), the specular modes (toon spot,
+//! off) and the rim light (everywhere, on the lit side), rendered on the render device and compared per pixel with the reference model
+//! (`reference::diffuse_factor`, `reference::highlight_factor`, `reference::rim_factor`) on
+//! each pixel's inputs.
 //!
 //! A hard toon step is a discontinuity: where a light's `N·L` (for bands) or highlight (for
 //! a spot) is within 10⁻⁴ of a step, the device's `f32` may fall on either side, and the pixel
@@ -29,10 +30,10 @@ fn toward_lights(lights: &reference::Lights, position: DVec3) -> Vec<DVec3> {
 fn stylized_modes_follow_the_reference_model() {
     let mut harness = bevy_phong_headless::Harness::new(SIZE, SIZE);
     spawn_map_lights(harness.world_mut());
-    let sphere = || Sphere::new(0.9).mesh().uv(48, 32);
+    let sphere = || Sphere::new(0.75).mesh().uv(48, 32);
     let objects = [
         (
-            Vec3::new(-1.5, 0.8, 0.0),
+            Vec3::new(-2.0, 0.8, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.9, 0.6, 0.5),
                 diffuse_mode: DiffuseMode::Wrap(0.5),
@@ -42,7 +43,7 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(1.5, 0.8, 0.0),
+            Vec3::new(0.0, 0.8, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.4, 0.7, 0.9),
                 diffuse_mode: DiffuseMode::Toon {
@@ -55,7 +56,7 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(-1.5, -1.2, 0.0),
+            Vec3::new(2.0, 0.8, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.6, 0.9, 0.4),
                 diffuse_mode: DiffuseMode::Toon {
@@ -68,10 +69,32 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(1.5, -1.2, 0.0),
+            Vec3::new(-2.0, -1.0, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.8, 0.8, 0.8),
                 specular_mode: SpecularMode::Off,
+                ..default()
+            },
+        ),
+        // A rim everywhere, and one on the lit side only.
+        (
+            Vec3::new(0.0, -1.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.5, 0.4, 0.7),
+                rim_color: LinearRgba::rgb(0.3, 0.6, 1.0),
+                rim_strength: 1.5,
+                rim_power: 3.0,
+                ..default()
+            },
+        ),
+        (
+            Vec3::new(2.0, -1.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.7, 0.5, 0.3),
+                diffuse_mode: DiffuseMode::Wrap(0.3),
+                rim_color: LinearRgba::rgb(1.0, 0.9, 0.6),
+                rim_power: 1.5,
+                rim_lit_side: true,
                 ..default()
             },
         ),

@@ -204,6 +204,7 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             displacement: false,
             diffuse: DiffuseKind::Lambert,
             toon_specular: false,
+            rim: None,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
@@ -237,6 +238,8 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         |key| key.diffuse = DiffuseKind::Toon,
         |key| (key.specular, key.toon_specular) = (true, true),
         |key| (key.diffuse, key.specular, key.toon_specular) = (DiffuseKind::Toon, true, true),
+        |key| key.rim = Some(false),
+        |key| key.rim = Some(true),
     ];
     let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
@@ -256,9 +259,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// set (2; on the second they are left out there), an alpha map (1), an environment map
 /// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
 /// the camera's environment mixed in or refracted and added (2), the stylized modes (4: wrap,
-/// toon bands, a toon highlight alone and over toon bands), each with no map and every map,
-/// under 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4) * 2 * 3;
+/// toon bands, a toon highlight alone and over toon bands), a rim everywhere or on the lit
+/// side (2), each with no map and every map, under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
