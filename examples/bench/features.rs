@@ -6,7 +6,10 @@
 //! - baked light: a light map on the second UV set (Phong's `light_map_texture`; Bevy's
 //!   `Lightmap` component) and an AO map (Standard's `occlusion_texture`);
 //! - environment: the camera's `EnvironmentMapLight` reflected (Phong's `camera_environment`
-//!   with `reflectivity` 0.5; Standard at roughness 0.2, metallic 0.5).
+//!   with `reflectivity` 0.5; Standard at roughness 0.2, metallic 0.5);
+//!
+//! and each stylized mode alone, for `PhongMaterial` only (`--stylized`): wrapped diffuse,
+//! toon bands, a toon highlight, a rim everywhere and on the lit side.
 
 use crate::scene::Shading;
 use bevy::{
@@ -21,14 +24,25 @@ use bevy::{
         TextureViewDescriptor, TextureViewDimension,
     },
 };
-use bevy_phong::prelude::*;
+use bevy_phong::{DiffuseMode, SpecularMode, prelude::*};
 
-/// A group of material features.
+/// A group of material features, or one stylized mode (`--stylized`: Phong only, Bevy's
+/// material has none of them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Features {
     SurfaceInputs,
     BakedLight,
     Environment,
+    /// `DiffuseMode::Wrap(0.5)`.
+    Wrap,
+    /// `DiffuseMode::Toon { bands: 3, smoothing: 0.1 }`.
+    ToonBands,
+    /// `SpecularMode::Toon { smoothing: 0.1 }`.
+    ToonHighlight,
+    /// A rim everywhere.
+    Rim,
+    /// A rim on the lit side.
+    RimLitSide,
 }
 
 impl Features {
@@ -37,7 +51,17 @@ impl Features {
             Features::SurfaceInputs => "surface inputs",
             Features::BakedLight => "baked light",
             Features::Environment => "environment",
+            Features::Wrap => "wrap diffuse",
+            Features::ToonBands => "toon bands",
+            Features::ToonHighlight => "toon highlight",
+            Features::Rim => "rim",
+            Features::RimLitSide => "rim on the lit side",
         }
+    }
+
+    /// Whether the group changes the meshes (vertex colors, a second UV set, tangents).
+    fn changes_meshes(self) -> bool {
+        matches!(self, Features::SurfaceInputs | Features::BakedLight)
     }
 }
 
@@ -200,7 +224,7 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
         .map(|(entity, mesh)| (entity, mesh.0.clone()))
         .collect();
     for (entity, mesh) in meshes {
-        if features != Features::Environment {
+        if features.changes_meshes() {
             let mut assets = world.resource_mut::<Assets<Mesh>>();
             let featured = featured_mesh(assets.get(&mesh).expect("a spawned mesh").clone());
             let featured = assets.add(featured);
@@ -232,6 +256,20 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                     material.camera_environment = true;
                     material.reflectivity = 0.5;
                 }
+                Features::Wrap => material.diffuse_mode = DiffuseMode::Wrap(0.5),
+                Features::ToonBands => {
+                    material.diffuse_mode = DiffuseMode::Toon {
+                        bands: 3,
+                        smoothing: 0.1,
+                    };
+                }
+                Features::ToonHighlight => {
+                    material.specular_mode = SpecularMode::Toon { smoothing: 0.1 };
+                }
+                Features::Rim | Features::RimLitSide => {
+                    material.rim_color = LinearRgba::rgb(0.3, 0.5, 0.9);
+                    material.rim_lit_side = features == Features::RimLitSide;
+                }
             }
         }
         if let Some(handle) = world.get::<MeshMaterial3d<StandardMaterial>>(entity) {
@@ -249,6 +287,7 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                     material.perceptual_roughness = 0.2;
                     material.metallic = 0.5;
                 }
+                _ => {}
             }
         }
     }

@@ -13,10 +13,11 @@
 //! cargo run --example bench -- --ablation # only the shader ablation (--size N: at N²)
 //! cargo run --example bench -- --growth   # only how frame time grows with lights and size
 //! cargo run --example bench -- --materials  # only the material features (see features.rs)
+//! cargo run --example bench -- --stylized   # only the stylized modes (see features.rs)
 //! ```
 //!
 //! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`,
-//! `--materials`)
+//! `--materials`, `--stylized`)
 //! combine: with any of them, the run measures those tables and no other.
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -213,6 +214,8 @@ struct Tables {
     growth: bool,
     /// The material feature groups.
     materials: bool,
+    /// The stylized modes.
+    stylized: bool,
 }
 
 impl Tables {
@@ -223,6 +226,7 @@ impl Tables {
         ablation: true,
         growth: true,
         materials: true,
+        stylized: true,
     };
 
     /// The tables whose flags are in `args`, or all of them when none is.
@@ -235,13 +239,15 @@ impl Tables {
             ablation: named("--ablation"),
             growth: named("--growth"),
             materials: named("--materials"),
+            stylized: named("--stylized"),
         };
         let any = picked.frame_times
             || picked.shadows
             || picked.fallback
             || picked.ablation
             || picked.growth
-            || picked.materials;
+            || picked.materials
+            || picked.stylized;
         if any { picked } else { Self::ALL }
     }
 }
@@ -336,6 +342,9 @@ fn main() {
     }
     if tables.materials {
         material_costs(&options, directory);
+    }
+    if tables.stylized {
+        stylized_costs(&options, directory);
     }
 }
 
@@ -568,6 +577,57 @@ fn material_costs(options: &Options, directory: &Path) {
         options.rounds
     );
     write(&directory.join("materials.csv"), &csv);
+}
+
+/// The showcase drawn with each stylized mode beside the default material, Phong only, at
+/// the shadow table's size, the rows taking turns over the rounds.
+fn stylized_costs(options: &Options, directory: &Path) {
+    use features::Features;
+    let size = options.shadow_size;
+    let modes = [
+        None,
+        Some(Features::Wrap),
+        Some(Features::ToonBands),
+        Some(Features::ToonHighlight),
+        Some(Features::Rim),
+        Some(Features::RimLitSide),
+    ];
+    let scene = |mode: Option<Features>| mode.map_or(Scene::Showcase, Scene::Featured);
+    let phong = Shading::Phong(Some(SpecularModel::Phong));
+    let mut csv = String::from("size,scene,round,median_ms\n");
+    let mut pictures: [Vec<u8>; 6] = [const { Vec::new() }; 6];
+    let times: [f64; 6] = alternating_medians(options.rounds, |row, round| {
+        let scene = scene(modes[row]);
+        let (median, picture) =
+            median_frame_time_and_picture(scene, size, phong, options.culling, options.frames, &[]);
+        let median = ms(median);
+        if round == 0 {
+            pictures[row] = picture;
+        }
+        let _ = writeln!(csv, "{size},{},{round},{median:.3}", scene.name());
+        eprintln!(
+            "{} {size}² Phong, round {round}: {median:.1} ms",
+            scene.name()
+        );
+        median
+    });
+    let mut table =
+        String::from("| scene | Phong ms | × the default | pixels changed |\n|---|---|---|---|\n");
+    for (row, mode) in modes.iter().enumerate() {
+        let _ = writeln!(
+            table,
+            "| {} | {:.1} | {:.2} | {:.0} % |",
+            scene(*mode).name(),
+            times[row],
+            times[row] / times[0],
+            ablation::changed_percent(&pictures[0], &pictures[row]),
+        );
+    }
+    println!(
+        "\nStylized modes, median ms at {size}² (the median of {} rounds):\n\n{table}",
+        options.rounds
+    );
+    write(&directory.join("stylized.csv"), &csv);
 }
 
 /// Phong beside Standard and the constant-color floor, each scene at each size.
