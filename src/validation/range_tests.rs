@@ -182,19 +182,10 @@ fn hostile_material() -> PhongMaterial {
 
 #[test]
 fn validation_the_uniform_and_the_reference_apply_the_same_material_ranges() {
-    let mut app = test_app(|_| {});
     let raw = hostile_material();
-    let handle = app
-        .world_mut()
-        .resource_mut::<Assets<PhongMaterial>>()
-        .add(raw.clone());
-    let id = handle.id();
-    // The asset's `Added` event is sent at the end of the first frame, read in the second.
-    app.update();
-    app.update();
-    let warnings = invalid_inputs(&mut app);
+    let ((mut app, _handle), fields, sanitised) = validated(&raw);
     assert_eq!(
-        fields_of(&warnings, Owner::Material(id)),
+        fields,
         [
             "base_color",
             "specular_color",
@@ -203,15 +194,8 @@ fn validation_the_uniform_and_the_reference_apply_the_same_material_ranges() {
             "ambient_factor",
             "emissive",
             "alpha_mode"
-        ],
-        "{warnings:#?}"
+        ]
     );
-    let sanitised = app
-        .world()
-        .resource::<Assets<PhongMaterial>>()
-        .get(id)
-        .unwrap()
-        .clone();
     // The uniform of the raw material (what a frame drawn before validation would use)
     // equals the uniform of the sanitised one, and the reference model reads both the same.
     let uniform = PhongMaterialUniform::from(&raw);
@@ -276,7 +260,6 @@ fn a_light_direction_of_any_scale_points_where_its_transform_says() {
 
 #[test]
 fn the_stylized_modes_numbers_are_brought_into_their_ranges() {
-    let mut app = test_app(|_| {});
     let raw = PhongMaterial {
         diffuse_mode: crate::DiffuseMode::Toon {
             bands: 0,
@@ -287,26 +270,8 @@ fn the_stylized_modes_numbers_are_brought_into_their_ranges() {
         },
         ..PhongMaterial::default()
     };
-    // The handle is kept: the asset lives as long as it.
-    let handle = app
-        .world_mut()
-        .resource_mut::<Assets<PhongMaterial>>()
-        .add(raw.clone());
-    let id = handle.id();
-    app.update();
-    app.update();
-    let warnings = invalid_inputs(&mut app);
-    assert_eq!(
-        fields_of(&warnings, Owner::Material(id)),
-        ["diffuse_mode", "diffuse_mode", "specular_mode"],
-        "{warnings:#?}"
-    );
-    let sanitised = app
-        .world()
-        .resource::<Assets<PhongMaterial>>()
-        .get(id)
-        .unwrap()
-        .clone();
+    let (_, fields, sanitised) = validated(&raw);
+    assert_eq!(fields, ["diffuse_mode", "diffuse_mode", "specular_mode"]);
     assert_eq!(
         sanitised.diffuse_mode,
         crate::DiffuseMode::Toon {
@@ -326,4 +291,33 @@ fn the_stylized_modes_numbers_are_brought_into_their_ranges() {
         reference::Material::from(&raw),
         reference::Material::from(&sanitised)
     );
+}
+
+/// Validates `raw` in a test app: the app and the material's handle (which keeps it alive),
+/// the fields warned about, and the material as validation left it.
+fn validated(
+    raw: &PhongMaterial,
+) -> (
+    (bevy::app::App, bevy::asset::Handle<PhongMaterial>),
+    Vec<&'static str>,
+    PhongMaterial,
+) {
+    let mut app = test_app(|_| {});
+    // The handle is kept: the asset lives as long as it.
+    let handle = app
+        .world_mut()
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(raw.clone());
+    // The asset's `Added` event is sent at the end of the first frame, read in the second.
+    app.update();
+    app.update();
+    let warnings = invalid_inputs(&mut app);
+    let fields = fields_of(&warnings, Owner::Material(handle.id()));
+    let sanitised = app
+        .world()
+        .resource::<Assets<PhongMaterial>>()
+        .get(&handle)
+        .expect("the validated material")
+        .clone();
+    ((app, handle), fields, sanitised)
 }

@@ -4,21 +4,15 @@
 //! positions; the prepass tests (`game_features::prepasses`) check that the prepasses move
 //! the vertices alike.
 //!
-//! The map has two texels, read nearest; each sphere's UV transform squeezes its UVs into one
-//! of them, so every vertex moves by one known distance. A UV sphere's flat triangles lie
+//! The map has two heights, a half each, read nearest; each sphere's UV transform squeezes its
+//! UVs into one half, so every vertex moves by one known distance. A UV sphere's flat triangles lie
 //! inside its vertices' sphere by at most `1 − cos(θ)` of its radius (θ the angle from a
 //! grid cell's middle to its corners, under 0.14 rad here): the radius is judged within
 //! [`SAG`] below and `f32` rounding (10⁻⁵) above.
 
 use crate::frames::{SIZE, TOLERANCE};
-use crate::texture_maps::{expected_color, loaded_images, spawn_map_lights};
-use bevy::{
-    asset::RenderAssetUsages,
-    image::{Image, ImageSampler},
-    math::Affine2,
-    prelude::*,
-    render::render_resource::{Extent3d, TextureDimension, TextureFormat},
-};
+use crate::texture_maps::{expected_color, float_map, loaded_images, spawn_map_lights};
+use bevy::{math::Affine2, prelude::*};
 use bevy_phong::prelude::*;
 use bevy_phong_headless::Harness;
 
@@ -29,25 +23,16 @@ const SAG: f64 = 0.01;
 /// The map's two texels' red values, as stored (8 bits).
 const HEIGHTS: [u8; 2] = [51, 204];
 
-/// A 2 × 1 map, nearest-sampled: left texel `HEIGHTS[0]`, right `HEIGHTS[1]`.
-fn two_texel_map() -> Image {
-    let data = HEIGHTS.iter().flat_map(|&red| [red, 0, 0, 255]).collect();
-    let mut image = Image::new(
-        Extent3d {
-            width: 2,
-            height: 1,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        data,
-        TextureFormat::Rgba8Unorm,
-        RenderAssetUsages::default(),
-    );
-    image.sampler = ImageSampler::nearest();
-    image
+/// A map whose left half (texel columns 0–1) holds `HEIGHTS[0]` in red and right half
+/// `HEIGHTS[1]`, nearest-sampled.
+fn two_height_map() -> Image {
+    float_map(|x, _| {
+        let red = f32::from(HEIGHTS[(x / 2) as usize]) / 255.0;
+        [red, 0.0, 0.0, 1.0]
+    })
 }
 
-/// UVs squeezed into the map's texel `texel` (0 left, 1 right).
+/// UVs squeezed into the map's half `texel` (0 left, 1 right).
 fn into_texel(texel: usize) -> Affine2 {
     Affine2::from_scale_angle_translation(
         Vec2::splat(0.3),
@@ -61,7 +46,7 @@ fn displaced_vertices_move_along_their_normals_by_the_map() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     spawn_map_lights(world);
-    let map = world.resource_mut::<Assets<Image>>().add(two_texel_map());
+    let map = world.resource_mut::<Assets<Image>>().add(two_height_map());
     // (center, radius, texel, scale, bias); the last one is not displaced.
     let spheres = [
         (Vec3::new(-1.6, 0.3, 0.0), 0.9, 0, 0.5, 0.1),
