@@ -626,8 +626,10 @@ pub struct PhongMaterialKey {
 
 impl From<&PhongMaterial> for PhongMaterialKey {
     fn from(material: &PhongMaterial) -> Self {
-        let specular = PhongMaterialUniform::from(material).specular != Vec3::ZERO
-            && material.specular_mode != SpecularMode::Off;
+        // The values in their ranges, as the shader reads them.
+        let uniform = PhongMaterialUniform::from(material);
+        let specular =
+            uniform.specular != Vec3::ZERO && material.specular_mode != SpecularMode::Off;
         Self {
             specular,
             diffuse: match material.diffuse_mode {
@@ -636,8 +638,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
                 DiffuseMode::Toon { .. } => DiffuseKind::Toon,
             },
             toon_specular: matches!(material.specular_mode, SpecularMode::Toon { .. }),
-            rim: (PhongMaterialUniform::from(material).rim.truncate() != Vec3::ZERO)
-                .then_some(material.rim_lit_side),
+            rim: (uniform.rim.truncate() != Vec3::ZERO).then_some(material.rim_lit_side),
             base_color_texture: material.base_color_texture.is_some(),
             specular_texture: specular && material.specular_texture.is_some(),
             emissive_texture: material.emissive_texture.is_some(),
