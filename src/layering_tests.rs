@@ -30,7 +30,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "displacement",
             "quoting",
             "schedule",
-            "shadow_presence",
+            "scene_variants",
             "storage_buffer",
             "view_key",
         ],

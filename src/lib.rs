@@ -92,8 +92,8 @@
 //!
 //! 1. foundations, which use nothing of the crate: `limits`, `direction`, `displacement`
 //!    (the displaced vertex stages), `quoting`,
-//!    `schedule` (the [`PhongSystems`] sets), `shadow_presence` (whether the scene casts
-//!    shadows, read by the material key), `storage_buffer` (the growable GPU buffer),
+//!    `schedule` (the [`PhongSystems`] sets), `scene_variants` (whether the scene casts
+//!    shadows or has a hemisphere light, read by the material key), `storage_buffer` (the growable GPU buffer),
 //!    `view_key` (how a fragment finds its view's clusters and cascades);
 //! 2. the data model: `lights` (with the rule of which lights give light), `material`,
 //!    `culling`;
@@ -124,8 +124,8 @@ mod quoting;
 pub mod reference;
 pub mod render;
 pub mod scene;
+mod scene_variants;
 mod schedule;
-mod shadow_presence;
 pub mod shadows;
 mod storage_buffer;
 mod surface_inputs;
@@ -143,8 +143,8 @@ pub use displacement::DisplacementUniform;
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
 pub use lights::{
-    Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight, PhongShadows,
-    PhongSpotLight,
+    Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
+    PhongPointLight, PhongShadows, PhongSpotLight,
 };
 pub use material::{
     DiffuseKind, DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialKey,
@@ -161,8 +161,9 @@ pub use surface_inputs::{
 pub mod prelude {
     pub use crate::{
         Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
-        PhongLightCulling, PhongMaterial, PhongMaterialAppExt, PhongPlugin, PhongPointLight,
-        PhongShadows, PhongSpotLight, PhongViewClusters, SpecularMode, SpecularModel,
+        PhongHemisphereLight, PhongLightCulling, PhongMaterial, PhongMaterialAppExt, PhongPlugin,
+        PhongPointLight, PhongShadows, PhongSpotLight, PhongViewClusters, SpecularMode,
+        SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 

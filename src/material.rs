@@ -2,7 +2,9 @@
 
 use crate::displacement::DisplacementUniform;
 use crate::limits;
-use crate::shadow_presence::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
+use crate::scene_variants::{
+    SCENE_CASTS_SHADOWS, SCENE_HAS_HEMISPHERE_LIGHT, SCENE_HAS_SOFT_SHADOWS,
+};
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
@@ -161,6 +163,15 @@ pub struct PhongMaterial {
     /// How each light's diffuse term is shaped from `N·L`: Lambert's, wrapped, or in toon
     /// bands. Default [`DiffuseMode::Lambert`].
     pub diffuse_mode: DiffuseMode,
+    /// A toon ramp (three.js's `gradientMap`): with [`DiffuseMode::Toon`], each light's
+    /// diffuse factor is this image's red channel, read nearest (no filtering) along its
+    /// middle row at `u = (1 + N·L) / 2` and clamped to `[0, 1]`, in place of the bands (SPEC.md,
+    /// "Stylized shading"). A ramp whose left half is not black lights the surface past the
+    /// terminator. Load it as linear data (`is_srgb: false`) to read its bytes as they are.
+    /// Ignored with another diffuse mode; left out under WebGL2
+    /// ([`crate::render::binds_every_map`]), where the bands are drawn. Default none.
+    #[dependency]
+    pub toon_ramp_texture: Option<Handle<Image>>,
     /// How each light's highlight is drawn: as computed, as a toon spot, or not at all.
     /// Default [`SpecularMode::Smooth`].
     pub specular_mode: SpecularMode,
@@ -334,6 +345,7 @@ impl Default for PhongMaterial {
             shininess: 32.0,
             specular_model: SpecularModel::Phong,
             diffuse_mode: DiffuseMode::Lambert,
+            toon_ramp_texture: None,
             specular_mode: SpecularMode::Smooth,
             rim_color: LinearRgba::BLACK,
             rim_strength: 1.0,
@@ -513,8 +525,10 @@ pub enum DiffuseKind {
     Lambert,
     /// [`DiffuseMode::Wrap`].
     Wrap,
-    /// [`DiffuseMode::Toon`].
+    /// [`DiffuseMode::Toon`] in bands.
     Toon,
+    /// [`DiffuseMode::Toon`] through the material's `toon_ramp_texture`.
+    ToonRamp,
 }
 
 /// The UV set a map is read at, as [`PhongMaterialKey`] holds Bevy's [`UvChannel`].
@@ -562,7 +576,9 @@ impl From<&UvChannel> for UvSet {
 pub struct PhongMaterialKey {
     /// Whether the material has a specular term.
     pub specular: bool,
-    /// The diffuse mode's kind (shader defs `PHONG_DIFFUSE_WRAP`, `PHONG_DIFFUSE_TOON`).
+    /// The diffuse mode's kind (shader defs `PHONG_DIFFUSE_WRAP`, `PHONG_DIFFUSE_TOON`, and
+    /// for a ramp `PHONG_TOON_RAMP` beside it; `PHONG_LIT_PAST_TERMINATOR` for the two
+    /// that may light where `N·L ≤ 0`).
     pub diffuse: DiffuseKind,
     /// Whether the highlight is a toon spot (shader def `PHONG_SPECULAR_TOON`).
     pub toon_specular: bool,
@@ -622,6 +638,10 @@ pub struct PhongMaterialKey {
     /// `PHONG_SOFT_SHADOWS`); hard shadows take one bilinear comparison. Process-wide, as
     /// `shadows`.
     pub soft_shadows: bool,
+    /// Whether the scene has a [`PhongHemisphereLight`](crate::PhongHemisphereLight): only
+    /// then is its term compiled in (shader def `PHONG_HEMISPHERE`). Process-wide, as
+    /// `shadows`.
+    pub hemisphere: bool,
 }
 
 impl From<&PhongMaterial> for PhongMaterialKey {
@@ -635,6 +655,9 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             diffuse: match material.diffuse_mode {
                 DiffuseMode::Lambert => DiffuseKind::Lambert,
                 DiffuseMode::Wrap(_) => DiffuseKind::Wrap,
+                DiffuseMode::Toon { .. } if material.toon_ramp_texture.is_some() => {
+                    DiffuseKind::ToonRamp
+                }
                 DiffuseMode::Toon { .. } => DiffuseKind::Toon,
             },
             toon_specular: matches!(material.specular_mode, SpecularMode::Toon { .. }),
@@ -668,6 +691,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
                 .map(|_| UvSet::from(&material.ao_map_channel)),
             shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
             soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
+            hemisphere: SCENE_HAS_HEMISPHERE_LIGHT.load(Ordering::Relaxed),
         }
     }
 }
@@ -734,9 +758,14 @@ impl PhongMaterialKey {
             Some(true) => Some("PHONG_RIM_LIT"),
         });
         defs.extend(match self.diffuse {
-            DiffuseKind::Lambert => None,
-            DiffuseKind::Wrap => Some("PHONG_DIFFUSE_WRAP"),
-            DiffuseKind::Toon => Some("PHONG_DIFFUSE_TOON"),
+            DiffuseKind::Lambert => &[][..],
+            DiffuseKind::Wrap => &["PHONG_DIFFUSE_WRAP", "PHONG_LIT_PAST_TERMINATOR"],
+            DiffuseKind::Toon => &["PHONG_DIFFUSE_TOON"],
+            DiffuseKind::ToonRamp => &[
+                "PHONG_DIFFUSE_TOON",
+                "PHONG_TOON_RAMP",
+                "PHONG_LIT_PAST_TERMINATOR",
+            ],
         });
         if self.unlit {
             defs.push("PHONG_UNLIT");
@@ -763,6 +792,9 @@ impl PhongMaterialKey {
         }
         if self.alpha_mask {
             defs.push("PHONG_ALPHA_MASK");
+        }
+        if self.hemisphere {
+            defs.push("PHONG_HEMISPHERE");
         }
         if self.shadows {
             defs.push("PHONG_SHADOWS");

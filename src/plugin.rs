@@ -4,8 +4,8 @@
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
-        PhongShadows, PhongSpotLight,
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
+        PhongPointLight, PhongShadows, PhongSpotLight,
     },
     material::{PhongMaterial, SpecularModel},
     render::{
@@ -19,7 +19,10 @@ use crate::{
     schedule::{PhongSystems, configure_phong_systems},
     shadows::PhongLit,
     storage_buffer::{LightBufferResized, init_shader_buffers},
-    validation::{InvalidInput, validate_ambient_light, validate_lights, validate_materials},
+    validation::{
+        InvalidInput, validate_ambient_light, validate_hemisphere_light, validate_lights,
+        validate_materials,
+    },
 };
 use bevy::{
     app::{App, Plugin, PostUpdate, PreUpdate},
@@ -52,6 +55,7 @@ impl Plugin for PhongPlugin {
             .init_resource::<PhongLightClusters>()
             .add_message::<LightBufferResized>()
             .register_type::<PhongAmbientLight>()
+            .register_type::<PhongHemisphereLight>()
             .register_type::<PhongLightCulling>()
             .register_type::<PhongViewClusters>()
             .register_type::<PhongDirectionalLight>()
@@ -75,6 +79,7 @@ impl Plugin for PhongPlugin {
                     validate_lights::<PhongPointLight>,
                     validate_lights::<PhongSpotLight>,
                     validate_ambient_light,
+                    validate_hemisphere_light,
                     validate_materials,
                 )
                     .in_set(PhongSystems::Validate),
@@ -109,6 +114,7 @@ impl Plugin for PhongPlugin {
             embedded_asset!(app, "shaders/phong_prepass.wgsl");
             embedded_asset!(app, "shaders/shadow_caster.wgsl");
             load_shader_library!(app, "shaders/displacement.wgsl");
+            load_shader_library!(app, "shaders/toon_ramp.wgsl");
             load_internal_asset!(
                 app,
                 crate::displacement::PHONG_VERTEX_SHADER,

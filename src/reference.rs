@@ -37,6 +37,7 @@ use glam::DVec3;
 
 mod camera_effects;
 mod environment;
+mod hemisphere;
 mod normals;
 mod stylized;
 mod surface_inputs;
@@ -45,8 +46,9 @@ pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use environment::{
     camera_environment_direction, environment_direction, environment_lod, with_environment,
 };
+pub use hemisphere::Hemisphere;
 pub use normals::{bumped_normal, face_normal, mapped_normal};
-pub use stylized::{Rim, diffuse_factor, highlight_factor, near_a_step, rim_factor};
+pub use stylized::{Rim, ToonRamp, diffuse_factor, highlight_factor, near_a_step, rim_factor};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;
 
@@ -78,7 +80,7 @@ pub struct SurfacePoint {
 }
 
 /// The material terms of the equation.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// `k_d`, linear RGB.
     pub diffuse: DVec3,
@@ -96,6 +98,8 @@ pub struct Material {
     pub emissive: DVec3,
     /// How each light's `N·L` is shaped (its numbers in their ranges).
     pub diffuse_mode: DiffuseMode,
+    /// The toon ramp that replaces a toon mode's bands, if the material has one bound.
+    pub toon_ramp: Option<ToonRamp>,
     /// How each light's highlight is drawn (its numbers in their ranges).
     pub specular_mode: SpecularMode,
     /// The rim light.
@@ -150,11 +154,13 @@ pub enum Light {
     },
 }
 
-/// Everything that lights a point: the ambient light and the other lights.
+/// Everything that lights a point: the ambient and hemisphere lights and the other lights.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Lights {
     /// The ambient light, linear RGB.
     pub ambient: DVec3,
+    /// The hemisphere light, if the scene has one.
+    pub hemisphere: Option<Hemisphere>,
     /// Directional, point and spot lights.
     pub lights: Vec<Light>,
 }
@@ -206,8 +212,18 @@ impl Lights {
             .collect();
         Lights {
             ambient: self.ambient,
+            hemisphere: self.hemisphere,
             lights,
         }
+    }
+
+    /// The light that reaches a surface with `normal` from every direction: the ambient
+    /// light plus the hemisphere light's [`Hemisphere::irradiance`].
+    pub fn indirect(&self, normal: DVec3) -> DVec3 {
+        self.ambient
+            + self
+                .hemisphere
+                .map_or(DVec3::ZERO, |hemisphere| hemisphere.irradiance(normal))
     }
 }
 
@@ -255,7 +271,7 @@ pub fn shade_baked(
     lights: &Lights,
     baked: &BakedLight,
 ) -> DVec3 {
-    let indirect = lights.ambient * material.ambient_factor + baked.light_map;
+    let indirect = lights.indirect(surface.normal) * material.ambient_factor + baked.light_map;
     let ambient = indirect * material.diffuse * baked.occlusion;
     lights
         .lights
@@ -304,7 +320,7 @@ pub fn shade_shadowed(
     lights: &Lights,
     shadowing: &[Shadowing],
 ) -> DVec3 {
-    let ambient = lights.ambient * material.ambient_factor * material.diffuse;
+    let ambient = lights.indirect(surface.normal) * material.ambient_factor * material.diffuse;
     lights
         .lights
         .iter()
@@ -401,8 +417,13 @@ pub fn phong_light(
 ) -> DVec3 {
     let normal = normalize_or_zero(surface.normal);
     let n_dot_l = normal.dot(to_light);
-    // Nothing on the far side (but for a wrapped diffuse term), nor without a normal.
-    let wrapped = matches!(material.diffuse_mode, DiffuseMode::Wrap(_));
+    // Nothing on the far side (but for a wrapped diffuse term or a toon ramp), nor without a
+    // normal.
+    let ramp = match material.diffuse_mode {
+        DiffuseMode::Toon { .. } => material.toon_ramp.as_ref(),
+        _ => None,
+    };
+    let wrapped = matches!(material.diffuse_mode, DiffuseMode::Wrap(_)) || ramp.is_some();
     if n_dot_l.is_nan() || normal == DVec3::ZERO || (!wrapped && n_dot_l <= 0.0) {
         return DVec3::ZERO;
     }
@@ -424,7 +445,11 @@ pub fn phong_light(
     } else {
         DVec3::ZERO
     };
-    color * material.diffuse * diffuse_factor(material.diffuse_mode, n_dot_l)
+    let diffuse = ramp.map_or_else(
+        || diffuse_factor(material.diffuse_mode, n_dot_l),
+        |ramp| ramp.factor(n_dot_l),
+    );
+    color * material.diffuse * diffuse
         + rim
         + specular * material.specular * material.specular_strength * highlight
 }
@@ -526,6 +551,7 @@ impl From<&PhongMaterial> for Material {
             specular_model: material.specular_model,
             emissive: channels(material.emissive.into()),
             diffuse_mode: clamped_diffuse(material.diffuse_mode),
+            toon_ramp: None,
             specular_mode: match material.specular_mode {
                 SpecularMode::Toon { smoothing } => SpecularMode::Toon {
                     smoothing: limits::FRACTION.apply(smoothing),
@@ -642,6 +668,7 @@ mod tests {
 
     fn matte(diffuse: DVec3) -> Material {
         Material {
+            toon_ramp: None,
             diffuse,
             ambient_factor: 1.0,
             specular: DVec3::ONE,
@@ -669,6 +696,7 @@ mod tests {
             ..matte(DVec3::splat(0.5))
         };
         let lights = Lights {
+            hemisphere: None,
             ambient: DVec3::splat(0.1),
             lights: vec![Light::Directional {
                 direction: DVec3::new(-1.0, -1.0, 0.0),
@@ -678,7 +706,7 @@ mod tests {
         };
         let diffuse_only = Material {
             specular_strength: 0.0,
-            ..material
+            ..material.clone()
         };
         let base = material.emissive + lights.ambient * 0.5;
         let diffuse = shade(&surface, &diffuse_only, &lights) - base;
@@ -832,6 +860,7 @@ mod tests {
             ..matte(DVec3::new(0.5, 0.25, 1.0))
         };
         let lights = Lights {
+            hemisphere: None,
             ambient: DVec3::splat(0.2),
             lights: vec![Light::Directional {
                 direction: DVec3::new(0.0, -1.0, -1.0),
@@ -861,6 +890,7 @@ mod tests {
             range: None,
         };
         let lights = Lights {
+            hemisphere: None,
             ambient: DVec3::ONE,
             lights: vec![light_at_origin],
         };
@@ -919,6 +949,7 @@ mod properties {
             .prop_map(
                 |(diffuse, specular, specular_strength, shininess, specular_model, emissive)| {
                     Material {
+                        toon_ramp: None,
                         diffuse,
                         ambient_factor: 1.0,
                         specular,
@@ -1007,7 +1038,7 @@ mod properties {
             material in material(), light in light(), ambient in color(),
         ) {
             let surface = SurfacePoint { position, normal, camera };
-            let lights = Lights { ambient, lights: vec![light] };
+            let lights = Lights { ambient, hemisphere: None, lights: vec![light] };
             let color = shade(&surface, &material, &lights);
             prop_assert!(color.min_element() >= 0.0, "{color}");
         }
@@ -1058,7 +1089,7 @@ mod properties {
                 ..material
             };
             let light = Light::Directional { direction: -to_light, color, specular: color };
-            let phong = light_contribution(&surface, &Material { specular_model: SpecularModel::Phong, ..material }, &light);
+            let phong = light_contribution(&surface, &Material { specular_model: SpecularModel::Phong, ..material.clone() }, &light);
             let blinn = light_contribution(&surface, &Material { specular_model: SpecularModel::BlinnPhong, ..material }, &light);
             prop_assert!((phong - blinn).abs().max_element() <= 1e-9 * phong.max_element().max(1.0));
         }

@@ -24,8 +24,8 @@
 
 use crate::{
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
-        PhongShadows, PhongSpotLight,
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
+        PhongPointLight, PhongShadows, PhongSpotLight,
     },
     limits::{self, Limits},
     material::{DiffuseMode, PhongMaterial, SpecularMode},
@@ -44,6 +44,7 @@ use bevy::{
         world::Ref,
     },
     log::warn,
+    math::Vec3,
     prelude::AlphaMode,
     transform::components::GlobalTransform,
 };
@@ -441,6 +442,30 @@ pub fn validate_ambient_light(
     }
     let mut checker = Checker::new(Owner::Resource, "PhongAmbientLight");
     checker.color("color", &mut ambient.bypass_change_detection().color);
+    checker.report(&mut messages);
+}
+
+/// Replaces the hemisphere light's invalid colors and an `up` without a direction (by `+Y`)
+/// when the resource was inserted or changed.
+pub fn validate_hemisphere_light(
+    hemisphere: Option<ResMut<PhongHemisphereLight>>,
+    mut messages: MessageWriter<InvalidInput>,
+) {
+    let Some(mut hemisphere) = hemisphere.filter(|hemisphere| hemisphere.is_changed()) else {
+        return;
+    };
+    let hemisphere = hemisphere.bypass_change_detection();
+    let mut checker = Checker::new(Owner::Resource, "PhongHemisphereLight");
+    checker.color("sky_color", &mut hemisphere.sky_color);
+    checker.color("ground_color", &mut hemisphere.ground_color);
+    if crate::direction::normalize_or_zero(hemisphere.up) == Vec3::ZERO {
+        checker.replace(
+            "up",
+            format!("{:?}", hemisphere.up),
+            "(0.0, 1.0, 0.0): it has no direction".into(),
+        );
+        hemisphere.up = Vec3::Y;
+    }
     checker.report(&mut messages);
 }
 

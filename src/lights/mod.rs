@@ -1,4 +1,4 @@
-//! The light entities and the ambient light resource.
+//! The light entities and the ambient and hemisphere light resources.
 //!
 //! Each light is a component that requires [`Transform`](bevy::prelude::Transform) and
 //! [`Visibility`](bevy::prelude::Visibility): spawn it with a transform and it lights every
@@ -9,6 +9,7 @@
 mod ambient;
 mod decay;
 mod directional;
+mod hemisphere;
 mod lit;
 mod point;
 mod shadows;
@@ -17,6 +18,7 @@ mod spot;
 pub use ambient::PhongAmbientLight;
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
+pub use hemisphere::PhongHemisphereLight;
 pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights};
 pub use lit::{is_finite_transform, light_direction};
 pub use point::PhongPointLight;

@@ -5,6 +5,7 @@ use super::*;
 #[test]
 fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
     let material = Material {
+        toon_ramp: None,
         diffuse: DVec3::new(0.5, 0.25, 1.0),
         ambient_factor: 2.0,
         specular: DVec3::ONE,
@@ -17,6 +18,7 @@ fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
         rim: crate::reference::Rim::NONE,
     };
     let lights = Lights {
+        hemisphere: None,
         ambient: DVec3::splat(0.25),
         lights: Vec::new(),
     };

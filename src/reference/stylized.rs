@@ -3,6 +3,7 @@
 
 use super::{SurfacePoint, normalize_or_zero, power};
 use crate::material::{DiffuseMode, SpecularMode};
+use bevy::image::Image;
 use glam::DVec3;
 
 /// A material's rim light: `color` (the rim color times its strength, linear RGB) times
@@ -69,6 +70,46 @@ pub fn diffuse_factor(mode: DiffuseMode, n_dot_l: f64) -> f64 {
             let steps = n_dot_l.max(0.0) * bands;
             (steps.floor() + step_rise(steps.fract(), smoothing.into())) / bands
         }
+    }
+}
+
+/// A toon ramp (`PhongMaterial::toon_ramp_texture`): the red channel of its image's middle
+/// row, linear, from left to right.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ToonRamp {
+    /// The texels' red values.
+    pub red: Vec<f64>,
+}
+
+impl ToonRamp {
+    /// The ramp of `image`, its texels decoded as a GPU samples them (sRGB formats to
+    /// linear); `None` for an empty image or a format whose texels cannot be read here.
+    pub fn from_image(image: &Image) -> Option<Self> {
+        let (width, height) = (image.width(), image.height());
+        let red = (0..width)
+            .map(|x| {
+                Some(f64::from(
+                    image.get_color_at(x, height / 2).ok()?.to_linear().red,
+                ))
+            })
+            .collect::<Option<Vec<f64>>>()?;
+        (!red.is_empty()).then_some(Self { red })
+    }
+
+    /// The diffuse factor at `n_dot_l`: the texel at `u = (1 + N·L) / 2`, column
+    /// `min(⌊u·width⌋, width − 1)`, clamped to `[0, 1]`.
+    pub fn factor(&self, n_dot_l: f64) -> f64 {
+        let u = ((1.0 + n_dot_l) / 2.0).clamp(0.0, 1.0);
+        let column = ((u * self.red.len() as f64) as usize).min(self.red.len() - 1);
+        self.red[column].clamp(0.0, 1.0)
+    }
+
+    /// Whether `n_dot_l` lies within `margin` (in units of `u`'s texels) of a texel's edge,
+    /// where a shader's `f32` may read the neighbour.
+    pub fn near_an_edge(&self, n_dot_l: f64, margin: f64) -> bool {
+        let position = (1.0 + n_dot_l) / 2.0 * self.red.len() as f64;
+        let fraction = position.fract();
+        fraction < margin || fraction > 1.0 - margin
     }
 }
 

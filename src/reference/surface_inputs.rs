@@ -10,7 +10,7 @@ impl Material {
     pub fn with_vertex_color(&self, color: DVec4) -> Material {
         Material {
             diffuse: self.diffuse * color.truncate(),
-            ..*self
+            ..self.clone()
         }
     }
 
@@ -35,6 +35,7 @@ mod tests {
     #[test]
     fn a_vertex_color_multiplies_only_the_diffuse_color() {
         let material = Material {
+            toon_ramp: None,
             diffuse: DVec3::new(0.5, 0.6, 0.8),
             ambient_factor: 1.0,
             specular: DVec3::ONE,

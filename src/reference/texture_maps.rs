@@ -33,7 +33,7 @@ impl Material {
             diffuse: times(self.diffuse, texels.base_color.map(|t| t.truncate())),
             specular: times(self.specular, texels.specular),
             emissive: times(self.emissive, texels.emissive),
-            ..*self
+            ..self.clone()
         }
     }
 }
@@ -45,6 +45,7 @@ mod tests {
 
     fn material() -> Material {
         Material {
+            toon_ramp: None,
             diffuse: DVec3::new(0.5, 0.6, 0.7),
             ambient_factor: 1.0,
             specular: DVec3::ONE,

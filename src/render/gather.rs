@@ -5,14 +5,15 @@ use super::{
     PHONG_LIGHT_BUFFER,
     clusters::has_finite_reach,
     gpu_types::{GpuLight, GpuLightsHeader},
-    light_records::{BuiltInLight, linear_rgb},
+    light_records::{BuiltInLight, indirect_light},
     record_cache::RecordCache,
 };
 use crate::culling::PhongLightCulling;
 use crate::lights::{
-    LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
-    TrackedLightQuery, lit_lights, lit_tracked_lights,
+    LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongPointLight,
+    PhongSpotLight, TrackedLightQuery, lit_lights, lit_tracked_lights,
 };
+use crate::scene_variants::SCENE_HAS_HEMISPHERE_LIGHT;
 use crate::shadows::ShadowSlots;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
@@ -30,6 +31,7 @@ use bevy::{
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
+use core::sync::atomic::Ordering;
 
 /// The built-in lights' buffer, and the scratch space the gather system fills it from (kept
 /// between frames: no allocation once the scene's size is reached).
@@ -44,6 +46,8 @@ pub struct PhongLightBuffer {
     per_light_epsilon: f32,
     point_cache: RecordCache<PhongPointLight>,
     spot_cache: RecordCache<PhongSpotLight>,
+    /// Whether the last gather had a hemisphere light.
+    hemisphere: bool,
 }
 
 impl Default for PhongLightBuffer {
@@ -56,6 +60,7 @@ impl Default for PhongLightBuffer {
             per_light_epsilon: f32::NAN,
             point_cache: RecordCache::default(),
             spot_cache: RecordCache::default(),
+            hemisphere: false,
         }
     }
 }
@@ -208,11 +213,14 @@ fn order_by_reach(
 
 /// Writes every visible built-in light into [`PhongLightBuffer`], those of finite reach
 /// last for the clusters ([`assign_lights_to_clusters`](super::assign_lights_to_clusters)),
-/// when any of them, the ambient light or [`PhongLightCulling`] changed (and on the first
-/// run); otherwise it touches nothing, so no GPU buffer is uploaded again.
+/// when any of them, the ambient or hemisphere light or [`PhongLightCulling`] changed (and on
+/// the first run); otherwise it touches nothing, so no GPU buffer is uploaded again. When
+/// the hemisphere light comes or goes, every Phong material is prepared again (with or
+/// without its shader variant).
 #[allow(clippy::too_many_arguments)]
 pub fn gather_lights(
     ambient: Res<PhongAmbientLight>,
+    hemisphere: Option<Res<PhongHemisphereLight>>,
     culling: Res<PhongLightCulling>,
     directional: LightQuery<PhongDirectionalLight>,
     point: TrackedLightQuery<PhongPointLight>,
@@ -231,6 +239,8 @@ pub fn gather_lights(
         point_changes.any(),
         spot_changes.any(),
         ambient.is_changed(),
+        hemisphere.as_ref().is_some_and(DetectChanges::is_changed),
+        hemisphere.is_some() != state.hemisphere,
         culling.is_changed(),
         slots.is_changed(),
         state.capacity() == 0,
@@ -293,17 +303,27 @@ pub fn gather_lights(
         clustered_spot_count,
     ] = order_by_reach(records, first_point, pushed, &mut state.scratch, clustered);
 
+    let [ambient, hemisphere_up, hemisphere_half_difference] =
+        indirect_light(&ambient, hemisphere.as_deref());
     state.header = GpuLightsHeader {
-        ambient: linear_rgb(ambient.color),
+        ambient,
         directional_count,
         point_count,
         spot_count,
         clustered_point_count,
         clustered_spot_count,
+        hemisphere_up,
+        padding_up: 0,
+        hemisphere_half_difference,
+        padding_difference: 0,
     };
+    state.hemisphere = hemisphere.is_some();
+    let variant_changed =
+        SCENE_HAS_HEMISPHERE_LIGHT.swap(state.hemisphere, Ordering::Relaxed) != state.hemisphere;
     if state
         .buffer
         .write(&mut buffers, &state.header, &state.records)
+        || variant_changed
     {
         resized.write(LightBufferResized {
             buffer: state.buffer.handle().clone(),
@@ -401,6 +421,33 @@ mod tests {
             [0.0; 3]
         );
         assert!(!built_in_buffer_bytes(&app).is_empty());
+    }
+
+    #[test]
+    fn a_hemisphere_light_adds_its_mean_to_the_ambient_and_its_half_difference_along_up() {
+        let mut app = test_app(|_| {});
+        app.world_mut().resource_mut::<PhongAmbientLight>().color =
+            bevy::color::Color::linear_rgb(0.1, 0.1, 0.1);
+        uploads_in_next_frame(&mut app);
+        app.world_mut().insert_resource(PhongHemisphereLight {
+            sky_color: bevy::color::Color::linear_rgb(0.5, 0.25, 1.0),
+            ground_color: bevy::color::Color::linear_rgb(0.25, 0.5, 0.0),
+            up: Vec3::new(0.0, 0.0, -4.0),
+        });
+        assert_eq!(uploads_in_next_frame(&mut app), 1, "inserted: uploaded");
+        let header = *app.world().resource::<PhongLightBuffer>().header();
+        // Exact in binary: 0.1 + 0.375 and the others are each rounded once.
+        assert_eq!(header.ambient, [0.475, 0.475, 0.6].map(|x: f64| x as f32));
+        assert_eq!(header.hemisphere_up, [0.0, 0.0, -1.0]);
+        assert_eq!(header.hemisphere_half_difference, [0.125, -0.125, 0.5]);
+        assert_eq!(uploads_in_next_frame(&mut app), 0, "unchanged: no upload");
+
+        app.world_mut().remove_resource::<PhongHemisphereLight>();
+        assert_eq!(uploads_in_next_frame(&mut app), 1, "removed: uploaded");
+        let header = *app.world().resource::<PhongLightBuffer>().header();
+        assert_eq!(header.ambient, [0.1; 3]);
+        assert_eq!(header.hemisphere_up, [0.0; 3]);
+        assert_eq!(header.hemisphere_half_difference, [0.0; 3]);
     }
 
     /// The records a gather must write for the lights in `app`, made afresh (no cache):

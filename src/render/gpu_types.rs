@@ -38,7 +38,7 @@ pub struct GpuLight {
 }
 
 /// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its
-/// `lights` array): 32 bytes.
+/// `lights` array): 64 bytes.
 ///
 /// The array that follows holds `directional_count` directional lights, then `point_count`
 /// point lights and `spot_count` spot lights of unlimited reach (every fragment loops over
@@ -49,7 +49,8 @@ pub struct GpuLight {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightsHeader {
-    /// The ambient light, linear RGB.
+    /// The ambient light plus the mean of the hemisphere light's sky and ground colors, linear
+    /// RGB: the light a surface receives from them without its `N·up` share.
     pub ambient: [f32; 3],
     /// Number of directional lights at the start of the array.
     pub directional_count: u32,
@@ -61,6 +62,15 @@ pub struct GpuLightsHeader {
     pub clustered_point_count: u32,
     /// Number of spot lights of finite reach at the end of the array (clustered).
     pub clustered_spot_count: u32,
+    /// The hemisphere light's unit `up` direction (zero without one).
+    pub hemisphere_up: [f32; 3],
+    /// Unused.
+    pub padding_up: u32,
+    /// Half the hemisphere light's sky color minus its ground color, linear RGB: what
+    /// `N·up` scales (zero without one).
+    pub hemisphere_half_difference: [f32; 3],
+    /// Unused.
+    pub padding_difference: u32,
 }
 
 impl GpuLightsHeader {
@@ -111,5 +121,5 @@ impl Default for GpuClustersHeader {
 }
 
 const _: () = assert!(size_of::<GpuLight>() == 80);
-const _: () = assert!(size_of::<GpuLightsHeader>() == 32);
+const _: () = assert!(size_of::<GpuLightsHeader>() == 64);
 const _: () = assert!(size_of::<GpuClustersHeader>() == 16);

@@ -27,7 +27,7 @@ use bevy::{
 /// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
 /// alpha map, 20, 21 the environment cube map and 22, 23 the bump map, each followed by its
 /// sampler; 24 to 26 the displacement map, its sampler and its uniform, read in the vertex
-/// stage.
+/// stage; 27 the toon ramp (read texel by texel: no sampler).
 #[derive(AsBindGroup)]
 struct SurfaceBindings {
     #[uniform(0)]
@@ -64,6 +64,8 @@ struct SurfaceBindings {
     displacement_map: Option<Handle<Image>>,
     #[uniform(26)]
     displacement: DisplacementUniform,
+    #[texture(27)]
+    toon_ramp_texture: Option<Handle<Image>>,
 }
 
 impl From<&PhongMaterial> for SurfaceBindings {
@@ -81,6 +83,7 @@ impl From<&PhongMaterial> for SurfaceBindings {
             bump_map_texture: material.bump_map_texture.clone(),
             displacement_map: material.displacement_map.clone(),
             displacement: material.into(),
+            toon_ramp_texture: material.toon_ramp_texture.clone(),
         }
     }
 }
@@ -233,15 +236,17 @@ impl PhongSceneBindings<'_> {
     }
 }
 
-/// The bindings of the alpha map, the environment map and the bump map (18 to 23), which a device with
-/// fewer storage buffers than the scene data needs (WebGL2) leaves out: there a fragment
-/// stage has 16 textures, which Bevy's view (its shadow maps, prepass textures and lookup
-/// tables) shares with the material, and every other map of the material fits beside them.
-const MAPS_OF_FULL_DEVICES: core::ops::RangeInclusive<u32> = 18..=23;
+/// The bindings of the alpha map, the environment map, the bump map (18 to 23) and the toon
+/// ramp (27), which a device with fewer storage buffers than the scene data needs (WebGL2)
+/// leaves out: there a fragment stage has 16 textures, which Bevy's view (its shadow maps,
+/// prepass textures and lookup tables) shares with the material, and every other map of the
+/// material fits beside them.
+const MAPS_OF_FULL_DEVICES: [u32; 7] = [18, 19, 20, 21, 22, 23, 27];
 
 /// Whether `render_device` binds every map of a [`PhongMaterial`]; where it does not
-/// (WebGL2), the alpha map, the environment map and the bump map are left out, with a
-/// warning, and the material is drawn without them.
+/// (WebGL2), the alpha map, the environment map, the bump map and the toon ramp are left
+/// out, with a warning, and the material is drawn without them (a toon ramp's material in
+/// its bands).
 pub fn binds_every_map(render_device: &RenderDevice) -> bool {
     !crate::render::needs_scene_texture(render_device)
 }
@@ -287,11 +292,12 @@ impl AsBindGroup for PhongMaterial {
             if self.alpha_map_texture.is_some()
                 || self.environment_map.is_some()
                 || self.bump_map_texture.is_some()
+                || self.toon_ramp_texture.is_some()
             {
                 bevy::log::warn_once!(
-                    "PhongMaterial.alpha_map_texture, environment_map and bump_map_texture are \
-                     left out on this device (WebGL2's 16 textures a shader stage): drawn \
-                     without them"
+                    "PhongMaterial.alpha_map_texture, environment_map, bump_map_texture and \
+                     toon_ramp_texture are left out on this device (WebGL2's 16 textures a \
+                     shader stage): drawn without them (a toon ramp's material in its bands)"
                 );
             }
         }

@@ -226,18 +226,18 @@ mod tests {
         let clusters = [2u8; 36];
         let views = [3u8; 16];
         let packed = pack(&lights, &clusters, &views, usize::MAX);
-        // Directory, 2 texels of header and 5 of one light (spare capacity left out), 3 of
+        // Directory, 4 texels of header and 5 of one light (spare capacity left out), 3 of
         // clusters (36 bytes rounded up), 1 of views.
-        assert_eq!(&packed.words[..4], &[1, 8, 11, 0]);
-        assert_eq!(packed.words.len(), 4 * 12);
+        assert_eq!(&packed.words[..4], &[1, 10, 13, 0]);
+        assert_eq!(packed.words.len(), 4 * 14);
         assert_eq!(packed.words[4 + 3], 1, "directional count");
-        assert_eq!(packed.words[8 * 4], u32::from_le_bytes([2; 4]));
+        assert_eq!(packed.words[10 * 4], u32::from_le_bytes([2; 4]));
         assert_eq!(
-            packed.words[8 * 4 + 9],
+            packed.words[10 * 4 + 9],
             0,
             "the clusters' last texel is zero-padded"
         );
-        assert_eq!(packed.words[11 * 4], u32::from_le_bytes([3; 4]));
+        assert_eq!(packed.words[13 * 4], u32::from_le_bytes([3; 4]));
         assert_eq!(packed.left_out, 0);
     }
 
@@ -248,13 +248,13 @@ mod tests {
         let views = [0u8; 16];
         let header_of = |packed: &Packed| -> GpuLightsHeader {
             let start = packed.words[0] as usize * 4;
-            bytemuck::pod_read_unaligned(bytemuck::cast_slice(&packed.words[start..start + 8]))
+            bytemuck::pod_read_unaligned(bytemuck::cast_slice(&packed.words[start..start + 16]))
         };
-        // Everything: 1 + 2 + 5 · 14 + 10 + 1 = 84 texels.
-        assert_eq!(pack(&lights, &clusters, &views, 84).left_out, 0);
+        // Everything: 1 + 4 + 5 · 14 + 10 + 1 = 86 texels.
+        assert_eq!(pack(&lights, &clusters, &views, 86).left_out, 0);
         // One texel short: the clusters and their 5 lights go; the clusters' region is an
         // empty header.
-        let packed = pack(&lights, &clusters, &views, 83);
+        let packed = pack(&lights, &clusters, &views, 85);
         assert_eq!(packed.left_out, 5);
         let header = header_of(&packed);
         assert_eq!(
@@ -271,9 +271,9 @@ mod tests {
             &[0, 0, 0, 0],
             "no views"
         );
-        // Room for 26 texels, 1 + 2 + 5 · 4 + 1 + 1 = 25 used (an empty clusters header is one
+        // Room for 28 texels, 1 + 4 + 5 · 4 + 1 + 1 = 27 used (an empty clusters header is one
         // texel): the 4 spots go, then a point light.
-        let packed = pack(&lights, &clusters, &views, 26);
+        let packed = pack(&lights, &clusters, &views, 28);
         assert_eq!(packed.left_out, 10);
         let header = header_of(&packed);
         assert_eq!(
@@ -285,7 +285,7 @@ mod tests {
             (2, 2, 0)
         );
         // The records kept are the first ones, unchanged (`range` is word 3 of 20).
-        let first = packed.words[0] as usize * 4 + 8;
+        let first = packed.words[0] as usize * 4 + 16;
         assert_eq!(f32::from_bits(packed.words[first + 3]), 0.0);
         assert_eq!(f32::from_bits(packed.words[first + 3 * 20 + 3]), 3.0);
         // No room at all: every light is left out, never a panic.

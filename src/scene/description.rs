@@ -34,10 +34,31 @@ pub struct PhongSceneDescription {
     /// The ambient light (the `PhongAmbientLight` resource is set to it when the scene is
     /// spawned). Default linear gray `0.1`, as `PhongAmbientLight::default()`.
     pub ambient: Option<SceneColor>,
+    /// A hemisphere light (the `PhongHemisphereLight` resource is inserted when the scene is
+    /// spawned). Default none.
+    pub hemisphere: Option<HemisphereDescription>,
     /// The lights.
     pub lights: Vec<LightDescription>,
     /// The objects.
     pub objects: Vec<ObjectDescription>,
+}
+
+/// A hemisphere light: `(sky_color: Linear(0.3, 0.35, 0.4), ground_color: Srgb(0.2, 0.15,
+/// 0.1))`, `up` optional.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HemisphereDescription {
+    /// The light from above.
+    pub sky_color: SceneColor,
+    /// The light from below.
+    pub ground_color: SceneColor,
+    /// The direction of the sky. Default `(0.0, 1.0, 0.0)`.
+    #[serde(default = "default_up")]
+    pub up: Vec3,
+}
+
+fn default_up() -> Vec3 {
+    Vec3::Y
 }
 
 /// A perspective camera.

@@ -7,7 +7,10 @@ use super::{
 };
 use crate::{
     direction,
-    lights::{PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    lights::{
+        PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongPointLight,
+        PhongSpotLight,
+    },
     material::PhongMaterial,
 };
 use bevy::{
@@ -25,6 +28,8 @@ pub struct PhongScene {
     pub camera: Option<(Transform, f32)>,
     /// The ambient light, if the file sets one.
     pub ambient: Option<PhongAmbientLight>,
+    /// The hemisphere light, if the file has one.
+    pub hemisphere: Option<PhongHemisphereLight>,
     /// Each light with where it is.
     pub lights: Vec<(SceneLight, Transform)>,
     /// Each object's mesh, material and transform.
@@ -82,6 +87,18 @@ fn build_scene(
             color: scene_color(load_context, color, "ambient")?,
         }),
     };
+    let hemisphere = match &description.hemisphere {
+        None => None,
+        Some(hemisphere) => Some(PhongHemisphereLight {
+            sky_color: scene_color(load_context, &hemisphere.sky_color, "hemisphere.sky_color")?,
+            ground_color: scene_color(
+                load_context,
+                &hemisphere.ground_color,
+                "hemisphere.ground_color",
+            )?,
+            up: hemisphere.up,
+        }),
+    };
     let lights = description
         .lights
         .iter()
@@ -115,6 +132,7 @@ fn build_scene(
     Ok(PhongScene {
         camera,
         ambient,
+        hemisphere,
         lights,
         objects,
     })

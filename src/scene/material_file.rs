@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 /// ```
 ///
 /// Texture paths are relative to the file that names them. Specular, normal, bump,
-/// displacement, AO and alpha maps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
+/// displacement, AO and alpha maps and toon ramps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
 /// as sRGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -48,6 +48,9 @@ pub struct PhongMaterialDescription {
     pub specular_model: SpecularModel,
     /// `Lambert`, `Wrap(w)` or `Toon(bands: n, smoothing: s)`. Default `Lambert`.
     pub diffuse_mode: DiffuseMode,
+    /// Path of the toon ramp (red channel, read nearest, loaded as linear data), used with a
+    /// `Toon` diffuse mode. Default none.
+    pub toon_ramp_texture: Option<String>,
     /// `Smooth`, `Toon(smoothing: s)` or `Off`. Default `Smooth`.
     pub specular_mode: SpecularMode,
     /// The rim light's color. Default black (no rim).
@@ -222,6 +225,7 @@ impl Default for PhongMaterialDescription {
             shininess: material.shininess,
             specular_model: material.specular_model,
             diffuse_mode: material.diffuse_mode,
+            toon_ramp_texture: None,
             specular_mode: material.specular_mode,
             rim_color: SceneColor::black(),
             rim_strength: material.rim_strength,
@@ -309,6 +313,7 @@ impl PhongMaterialDescription {
             normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
             flip_normal_map_y: self.flip_normal_map_y,
             bump_map_texture: map(&self.bump_map_texture, "bump_map_texture", false)?,
+            toon_ramp_texture: map(&self.toon_ramp_texture, "toon_ramp_texture", false)?,
             bump_scale: self.bump_scale,
             displacement_map: map(&self.displacement_map, "displacement_map", false)?,
             displacement_scale: self.displacement_scale,

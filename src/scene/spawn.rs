@@ -27,7 +27,8 @@ use bevy::{
 /// ```
 ///
 /// The scene's camera (if it has one) is spawned with [`PhongSceneCamera`]; its ambient
-/// light replaces the [`PhongAmbientLight`] resource.
+/// light replaces the [`PhongAmbientLight`] resource, and its hemisphere light (if it has
+/// one) is inserted as the [`PhongHemisphereLight`](crate::PhongHemisphereLight) resource.
 #[derive(Component, Clone, Debug, Default, Reflect)]
 #[require(Transform, bevy::camera::visibility::Visibility)]
 pub struct PhongSceneRoot(pub Handle<PhongScene>);
@@ -90,6 +91,9 @@ fn spawn_scene(
 ) {
     if let Some(scene_ambient) = &scene.ambient {
         *ambient = scene_ambient.clone();
+    }
+    if let Some(hemisphere) = &scene.hemisphere {
+        commands.insert_resource(hemisphere.clone());
     }
     commands.entity(root).with_children(|parent| {
         if let Some((transform, fov)) = scene.camera {

@@ -101,6 +101,7 @@ pub(super) fn spawned(app: &mut App) -> [usize; 5] {
 const GOOD_SCENE: &str = r##"(
     camera: Some((position: (0.0, 2.5, 7.0))),
     ambient: Some(Srgb(0.1, 0.1, 0.2)),
+    hemisphere: Some((sky_color: Linear(0.3, 0.4, 0.5), ground_color: Srgb(0.2, 0.1, 0.0))),
     lights: [
         Directional(direction: (-1.0, -1.0, -1.0)),
         Point(position: (0.0, 3.0, 0.0), decay: (constant: 1.0, linear: 0.09, quadratic: 0.032)),
@@ -137,6 +138,15 @@ fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
     );
     let ambient = app.world().resource::<crate::PhongAmbientLight>().color;
     assert_eq!(ambient, Color::srgb(0.1, 0.1, 0.2));
+    let hemisphere = app.world().resource::<crate::PhongHemisphereLight>();
+    assert_eq!(
+        (hemisphere.sky_color, hemisphere.ground_color, hemisphere.up),
+        (
+            Color::linear_rgb(0.3, 0.4, 0.5),
+            Color::srgb(0.2, 0.1, 0.0),
+            bevy::math::Vec3::Y
+        )
+    );
     // The material file's values arrive once it has loaded.
     assert!(run_until(&mut app, Duration::from_secs(20), |app| {
         let world = app.world_mut();

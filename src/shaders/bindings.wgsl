@@ -1,5 +1,5 @@
 // The bindings of `PhongMaterial` in the material bind group: the material's own (0, 3–10,
-// 14–23)
+// 14–23, 27; 24–26 in the vertex stage: bevy_phong::displacement)
 // and the plugin's scene data (1, 2, 11–13; `PhongSceneBindings`).
 #define_import_path bevy_phong::bindings
 
@@ -38,6 +38,8 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(21) var environment_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(22) var bump_map_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(23) var bump_map_sampler: sampler;
+// Read texel by texel (nearest, as three.js's `gradientMap`): no sampler.
+@group(#{MATERIAL_BIND_GROUP}) @binding(27) var toon_ramp_texture: texture_2d<f32>;
 #endif
 @group(#{MATERIAL_BIND_GROUP}) @binding(12) var shadow_maps: texture_depth_2d_array;
 @group(#{MATERIAL_BIND_GROUP}) @binding(13) var shadow_sampler: sampler_comparison;

@@ -3,6 +3,9 @@
 #define_import_path bevy_phong::lighting
 
 #import bevy_phong::types::{PhongLight, PhongSurface, SPECULAR_MODEL_BLINN_PHONG}
+#ifdef PHONG_TOON_RAMP
+#import bevy_phong::toon_ramp::toon_ramp
+#endif
 
 // A vector whose largest component is below this has no direction: f32's smallest normal
 // number (GPUs may flush smaller ones to zero). The rule of src/direction.rs and SPEC.md.
@@ -179,12 +182,19 @@ fn step_rise(t: f32, width: f32) -> f32 {
 
 // The diffuse factor of `n_dot_l` (N·L) in the material's mode: max(N·L, 0) (Lambert),
 // max((N·L + w) / (1 + w), 0) (PHONG_DIFFUSE_WRAP), or (⌊x·n⌋ + rise(fract(x·n))) / n with
-// x = max(N·L, 0) (PHONG_DIFFUSE_TOON), the numbers from `style` (PhongSurface.style).
+// x = max(N·L, 0) (PHONG_DIFFUSE_TOON), the numbers from `style` (PhongSurface.style); with
+// PHONG_TOON_RAMP, the material's ramp at N·L (`bevy_phong::toon_ramp`) where it is bound.
 fn diffuse_factor(n_dot_l: f32, style: vec4<f32>) -> f32 {
 #ifdef PHONG_DIFFUSE_WRAP
     return max((n_dot_l + style.x) / (1.0 + style.x), 0.0);
 #else
 #ifdef PHONG_DIFFUSE_TOON
+#ifdef PHONG_TOON_RAMP
+    let ramp = toon_ramp(n_dot_l);
+    if ramp >= 0.0 {
+        return ramp;
+    }
+#endif
     let steps = max(n_dot_l, 0.0) * style.y;
     return (floor(steps) + step_rise(fract(steps), style.z)) / style.y;
 #else
@@ -209,8 +219,8 @@ fn highlight_factor(h: f32, width: f32) -> f32 {
 // color ⊙ k_d · f_d(N·L) + specular ⊙ k_s · f_s(H(N, L, V)), for a unit `to_light` (L), with
 // f_d and f_s the material's diffuse and specular modes (`diffuse_factor`,
 // `highlight_factor`; Lambert's max(N·L, 0) and H itself by default). The highlight is zero
-// where N·L ≤ 0; so is the diffuse term but for a wrapped one; both are zero for a surface
-// without a normal.
+// where N·L ≤ 0; so is the diffuse term but for a wrapped one or a toon ramp
+// (PHONG_LIT_PAST_TERMINATOR); both are zero for a surface without a normal.
 fn phong_light(
     surface: PhongSurface,
     to_light: vec3<f32>,
@@ -218,7 +228,7 @@ fn phong_light(
     specular: vec3<f32>,
 ) -> vec3<f32> {
     let n_dot_l = dot(surface.normal, to_light);
-#ifdef PHONG_DIFFUSE_WRAP
+#ifdef PHONG_LIT_PAST_TERMINATOR
     // Lit past the terminator: only a surface without a normal (or a NaN) is left dark.
     if all(surface.normal == vec3<f32>(0.0)) || !(n_dot_l > -1.5) {
         return vec3<f32>(0.0);

@@ -26,10 +26,18 @@ fn region_start(region: u32) -> u32 {
 // The lights' region always follows the directory texel.
 const LIGHTS_START: u32 = 1u;
 
-// The light buffer's header is texels 0–1 of its region (`GpuLightsHeader`), its records 5
-// texels each from texel 2.
+// The light buffer's header is texels 0–3 of its region (`GpuLightsHeader`), its records 5
+// texels each from texel 4.
 fn ambient_color() -> vec3<f32> {
     return bitcast<vec3<f32>>(texel(LIGHTS_START).xyz);
+}
+
+fn hemisphere_up() -> vec3<f32> {
+    return bitcast<vec3<f32>>(texel(LIGHTS_START + 2u).xyz);
+}
+
+fn hemisphere_half_difference() -> vec3<f32> {
+    return bitcast<vec3<f32>>(texel(LIGHTS_START + 3u).xyz);
 }
 
 fn directional_count() -> u32 {
@@ -53,7 +61,7 @@ fn clustered_spot_count() -> u32 {
 }
 
 fn light_at(index: u32) -> PhongLight {
-    return data_light(scene_data, LIGHTS_START + 2u + 5u * index);
+    return data_light(scene_data, LIGHTS_START + 4u + 5u * index);
 }
 
 // The clusters' header is texel 0 of its region (`GpuClustersHeader`), its words four to
@@ -105,9 +113,20 @@ fn shadow_view_at(index: u32) -> PhongShadowView {
     );
 }
 #else
-// The ambient light, linear RGB.
+// The ambient light plus the mean of the hemisphere light's sky and ground colors, linear
+// RGB.
 fn ambient_color() -> vec3<f32> {
     return lights.ambient;
+}
+
+// The hemisphere light's unit up direction (zero without one).
+fn hemisphere_up() -> vec3<f32> {
+    return lights.hemisphere_up;
+}
+
+// Half the hemisphere light's sky color minus its ground color (zero without one).
+fn hemisphere_half_difference() -> vec3<f32> {
+    return lights.hemisphere_half_difference;
 }
 
 // How many directional, point and spot lights of unlimited reach the light buffer holds, in

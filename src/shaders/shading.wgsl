@@ -3,7 +3,7 @@
 
 #import bevy_phong::bindings::material
 #import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface, rim_factor, unshadowed_light}
-#import bevy_phong::scene::{ambient_color, cluster_view_count, cluster_word, clustered_point_count, clustered_spot_count, directional_count, light_at, point_count, spot_count}
+#import bevy_phong::scene::{ambient_color, hemisphere_half_difference, hemisphere_up, cluster_view_count, cluster_word, clustered_point_count, clustered_spot_count, directional_count, light_at, point_count, spot_count}
 #import bevy_phong::shadows::shadow_factors
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_view_bindings::view
@@ -37,9 +37,14 @@ fn receives_shadows(instance_index: u32) -> bool {
     return (mesh[instance_index].flags & MESH_FLAGS_SHADOW_RECEIVER_BIT) != 0u;
 }
 
-// ambient ⊙ k_a ⊙ k_d, times the surface's ambient occlusion
+// (ambient + hemisphere(N)) ⊙ k_a ⊙ k_d, times the surface's ambient occlusion
 fn ambient_light(surface: PhongSurface) -> vec3<f32> {
-    let indirect = ambient_color() * material.ambient_factor + surface.baked_light;
+    var ambient = ambient_color();
+#ifdef PHONG_HEMISPHERE
+    // The hemisphere light's `ground + (sky − ground)·(1 + N·up)/2`, its mean in `ambient`.
+    ambient += hemisphere_half_difference() * dot(surface.normal, hemisphere_up());
+#endif
+    let indirect = ambient * material.ambient_factor + surface.baked_light;
     return indirect * surface.diffuse * surface.ambient_occlusion;
 }
 

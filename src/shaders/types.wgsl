@@ -43,19 +43,23 @@ fn light_from_words(a: vec4<u32>, b: vec4<u32>, c: vec4<u32>, d: vec4<u32>, e: v
     );
 }
 
-// The light buffer (`GpuLightsHeader` in src/render/gpu_types.rs): the ambient light, then
-// `directional_count` directional lights,
-// `point_count` point lights and `spot_count` spot lights of unlimited reach (every fragment
+// The light buffer (`GpuLightsHeader` in src/render/gpu_types.rs): the ambient and hemisphere
+// lights, then `directional_count` directional lights, `point_count` point lights and `spot_count` spot lights of unlimited reach (every fragment
 // loops over them), then `clustered_point_count` point lights and `clustered_spot_count`
 // spot lights of finite reach (fragments find these through their view's clusters), in that
 // order. No shadow-casting light is clustered.
 struct PhongLights {
+    // The ambient light plus the mean of the hemisphere light's sky and ground colors.
     ambient: vec3<f32>,
     directional_count: u32,
     point_count: u32,
     spot_count: u32,
     clustered_point_count: u32,
     clustered_spot_count: u32,
+    // The hemisphere light's unit up direction, and half its sky minus its ground color
+    // (both zero without one): it adds `hemisphere_half_difference · N·up`.
+    hemisphere_up: vec3<f32>,
+    hemisphere_half_difference: vec3<f32>,
     // Each light's `PhongLight` as five 16-byte words (`light_from_words`).
     lights: array<array<vec4<u32>, 5>>,
 }

@@ -16,7 +16,7 @@ use super::{
 use crate::lights::PhongShadows;
 use crate::limits;
 use crate::material::PhongMaterial;
-use crate::shadow_presence::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
+use crate::scene_variants::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::{AssetId, Assets, Handle, uuid_handle},

@@ -73,8 +73,8 @@ pub const MAX_SHADOW_VIEWS: usize = 256;
 
 use crate::{
     lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight},
+    scene_variants::SCENE_CASTS_SHADOWS,
     schedule::PhongSystems,
-    shadow_presence::SCENE_CASTS_SHADOWS,
 };
 use bevy::{
     app::{App, PostUpdate},

@@ -166,6 +166,32 @@ fn a_nan_alpha_does_not_survive_sanitising() {
     );
 }
 
+#[test]
+fn a_hemisphere_light_gets_finite_colors_and_an_up_with_a_direction() {
+    let mut app = test_app(|_| {});
+    app.world_mut().insert_resource(PhongHemisphereLight {
+        sky_color: Color::linear_rgb(f32::NAN, 0.5, 3e38),
+        ground_color: Color::linear_rgb(0.1, 0.2, 0.3),
+        up: Vec3::ZERO,
+    });
+    app.update();
+    let warnings = invalid_inputs(&mut app);
+    assert_eq!(fields_of(&warnings, Owner::Resource), ["sky_color", "up"]);
+    let hemisphere = app.world().resource::<PhongHemisphereLight>();
+    assert_eq!(hemisphere.up, Vec3::Y);
+    assert!(
+        hemisphere
+            .sky_color
+            .to_linear()
+            .to_vec3()
+            .cmple(Vec3::splat(limits::MAX_INTENSITY))
+            .all()
+    );
+    let header = app.world().resource::<PhongLightBuffer>().header();
+    assert!(header.ambient.iter().all(|channel| channel.is_finite()));
+    assert_eq!(header.hemisphere_up, [0.0, 1.0, 0.0]);
+}
+
 /// A material with every float invalid in some way.
 fn hostile_material() -> PhongMaterial {
     PhongMaterial {

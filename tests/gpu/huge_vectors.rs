@@ -77,6 +77,7 @@ fn reference_direction_lights(ambient: DVec3) -> reference::Lights {
         };
     reference::Lights {
         ambient,
+        hemisphere: None,
         lights: vec![
             Light::Directional {
                 direction: DVec3::from_array(HUGE_DIRECTIONAL),
@@ -136,6 +137,7 @@ fn directly_lit(
     let lit = std::cell::Cell::new(0);
     let unlit = reference::Lights {
         ambient: lights.ambient,
+        hemisphere: None,
         lights: Vec::new(),
     };
     harness.compare_with(rendered, inputs, |material, surface| {
@@ -225,6 +227,7 @@ fn huge_and_tiny_light_directions_light_the_scene_as_their_unit_vectors() {
     let linear = DVec3::new(0.7, 0.6, 0.5);
     let lights = reference::Lights {
         ambient,
+        hemisphere: None,
         lights: vec![
             Light::Directional {
                 direction: axis(&directional),
@@ -294,6 +297,7 @@ fn colors_past_the_bound_are_clamped_to_it_and_render_finite() {
     let clamped = DVec3::splat(bound);
     let lights = reference::Lights {
         ambient: clamped,
+        hemisphere: None,
         lights: vec![Light::Point {
             position: DVec3::new(1.0, 3.0, 3.0),
             color: clamped,
@@ -309,7 +313,7 @@ fn colors_past_the_bound_are_clamped_to_it_and_render_finite() {
         specular_strength: bound,
         ambient_factor: bound,
         shininess: 50.0,
-        ..defaults
+        ..defaults.clone()
     };
     let cube = reference::Material {
         diffuse: clamped,

@@ -16,7 +16,8 @@
 //!   maps and Bevy's `Lightmap`, the same way;
 //! - `shading_normals`: bump maps and flat shading, the same way;
 //! - `displacement`: displacement maps, the positions and the lit colors;
-//! - `stylized`: the diffuse and specular modes (wrap, toon), the same way;
+//! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
+//!   hemisphere light, the same way;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,

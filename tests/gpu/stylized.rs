@@ -1,14 +1,18 @@
-//! Stylized shading: the diffuse modes (wrap, toon bands), the specular modes (toon spot,
-//! off) and the rim light (everywhere, on the lit side), rendered on the render device and compared per pixel with the reference model
-//! (`reference::diffuse_factor`, `reference::highlight_factor`, `reference::rim_factor`) on
-//! each pixel's inputs.
+//! Stylized shading: the diffuse modes (wrap, toon bands, a toon ramp), the specular modes
+//! (toon spot, off), the rim light (everywhere, on the lit side) and the hemisphere light,
+//! rendered on the render device and compared per pixel with the reference model
+//! (`reference::diffuse_factor`, `reference::ToonRamp`, `reference::highlight_factor`,
+//! `reference::rim_factor`, `reference::Hemisphere`) on each pixel's inputs.
 //!
-//! A hard toon step is a discontinuity: where a light's `N·L` (for bands) or highlight (for
-//! a spot) is within 10⁻⁴ of a step, the device's `f32` may fall on either side, and the pixel
-//! is not judged (`reference::near_a_step`). Tolerance: the frame tests' ([`TOLERANCE`]).
+//! A hard toon step is a discontinuity: where a light's `N·L` (for bands and ramps) or
+//! highlight (for a spot) is within 10⁻⁴ of a step, the device's `f32` may fall on either
+//! side, and the pixel is not judged (`reference::near_a_step`, `ToonRamp::near_an_edge`).
+//! Tolerance: the frame tests' ([`TOLERANCE`]).
 
 use crate::frames::SIZE;
-use crate::texture_maps::{assert_pixels_follow, expected_color, spawn_map_lights};
+use crate::texture_maps::{
+    assert_pixels_follow, expected_color, float_map, spawn_map_lights, toon_ramp,
+};
 use bevy::prelude::*;
 use bevy_phong::{DiffuseMode, SpecularMode, prelude::*, reference};
 use glam::DVec3;
@@ -29,11 +33,22 @@ fn toward_lights(lights: &reference::Lights, position: DVec3) -> Vec<DVec3> {
 #[test]
 fn stylized_modes_follow_the_reference_model() {
     let mut harness = bevy_phong_headless::Harness::new(SIZE, SIZE);
-    spawn_map_lights(harness.world_mut());
-    let sphere = || Sphere::new(0.75).mesh().uv(48, 32);
+    let world = harness.world_mut();
+    spawn_map_lights(world);
+    world.insert_resource(PhongHemisphereLight {
+        sky_color: Color::linear_rgb(0.25, 0.3, 0.45),
+        ground_color: Color::linear_rgb(0.15, 0.08, 0.02),
+        up: Vec3::new(0.2, 1.0, -0.1),
+    });
+    // Four levels, from the far side (N·L < −1/2) to the light (N·L ≥ 1/2).
+    let levels = [0.1, 0.35, 0.7, 1.0];
+    let ramp = world
+        .resource_mut::<Assets<Image>>()
+        .add(float_map(|x, _| [levels[x as usize], 0.0, 0.0, 1.0]));
+    let sphere = || Sphere::new(0.7).mesh().uv(48, 32);
     let objects = [
         (
-            Vec3::new(-2.0, 0.8, 0.0),
+            Vec3::new(-2.2, 1.7, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.9, 0.6, 0.5),
                 diffuse_mode: DiffuseMode::Wrap(0.5),
@@ -43,7 +58,7 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(0.0, 0.8, 0.0),
+            Vec3::new(0.0, 1.7, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.4, 0.7, 0.9),
                 diffuse_mode: DiffuseMode::Toon {
@@ -56,7 +71,7 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(2.0, 0.8, 0.0),
+            Vec3::new(2.2, 1.7, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.6, 0.9, 0.4),
                 diffuse_mode: DiffuseMode::Toon {
@@ -69,7 +84,7 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(-2.0, -1.0, 0.0),
+            Vec3::new(-2.2, 0.0, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.8, 0.8, 0.8),
                 specular_mode: SpecularMode::Off,
@@ -78,7 +93,7 @@ fn stylized_modes_follow_the_reference_model() {
         ),
         // A rim everywhere, and one on the lit side only.
         (
-            Vec3::new(0.0, -1.0, 0.0),
+            Vec3::new(0.0, 0.0, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.5, 0.4, 0.7),
                 rim_color: LinearRgba::rgb(0.3, 0.6, 1.0),
@@ -88,13 +103,40 @@ fn stylized_modes_follow_the_reference_model() {
             },
         ),
         (
-            Vec3::new(2.0, -1.0, 0.0),
+            Vec3::new(2.2, 0.0, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.7, 0.5, 0.3),
                 diffuse_mode: DiffuseMode::Wrap(0.3),
                 rim_color: LinearRgba::rgb(1.0, 0.9, 0.6),
                 rim_power: 1.5,
                 rim_lit_side: true,
+                ..default()
+            },
+        ),
+        // A toon ramp (under WebGL2, where it is not bound, the bands), with a smooth and a
+        // toon highlight.
+        (
+            Vec3::new(-1.1, -1.7, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.9, 0.5, 0.6),
+                diffuse_mode: DiffuseMode::Toon {
+                    bands: 2,
+                    smoothing: 0.0,
+                },
+                toon_ramp_texture: Some(ramp.clone()),
+                ..default()
+            },
+        ),
+        (
+            Vec3::new(1.1, -1.7, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.5, 0.8, 0.9),
+                diffuse_mode: DiffuseMode::Toon {
+                    bands: 3,
+                    smoothing: 0.2,
+                },
+                specular_mode: SpecularMode::Toon { smoothing: 0.1 },
+                toon_ramp_texture: Some(ramp),
                 ..default()
             },
         ),
@@ -106,6 +148,7 @@ fn stylized_modes_follow_the_reference_model() {
         "stylized modes",
         &|material, surface, pixel, inputs, images, lights| {
             let reference_material = reference::Material::from(material);
+            let ramp = toon_ramp(material, inputs, images);
             let normal = reference::normalize_or_zero(surface.normal);
             let view = reference::normalize_or_zero(surface.camera - surface.position);
             for to_light in toward_lights(lights, surface.position) {
@@ -117,13 +160,17 @@ fn stylized_modes_follow_the_reference_model() {
                     view,
                     reference_material.shininess,
                 );
-                if reference::near_a_step(
-                    reference_material.diffuse_mode,
-                    reference_material.specular_mode,
-                    n_dot_l,
-                    h,
-                    1e-4,
-                ) {
+                if ramp
+                    .as_ref()
+                    .is_some_and(|ramp| ramp.near_an_edge(n_dot_l, 1e-4))
+                    || reference::near_a_step(
+                        reference_material.diffuse_mode,
+                        reference_material.specular_mode,
+                        n_dot_l,
+                        h,
+                        1e-4,
+                    )
+                {
                     return None;
                 }
             }

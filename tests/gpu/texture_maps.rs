@@ -327,9 +327,10 @@ pub(crate) fn lit_color(
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
 ) -> Option<DVec3> {
-    let mapped = reference::Material::from(material)
+    let mut mapped = reference::Material::from(material)
         .with_vertex_color(vertex_color(inputs, pixel))
         .mapped(texels);
+    mapped.toon_ramp = toon_ramp(material, inputs, images);
     if material.unlit {
         return Some(mapped.unlit_color());
     }
@@ -341,6 +342,18 @@ pub(crate) fn lit_color(
         f64::from(material.ao_map_intensity),
     );
     Some(reference::shade_baked(&surface, &mapped, lights, &baked))
+}
+
+/// The toon ramp `material` is drawn with: its `toon_ramp_texture` where the device binds it.
+pub(crate) fn toon_ramp(
+    material: &PhongMaterial,
+    inputs: &SurfaceInputs,
+    images: &HashMap<AssetId<Image>, Image>,
+) -> Option<reference::ToonRamp> {
+    let image = images.get(&material.toon_ramp_texture.as_ref()?.id())?;
+    inputs
+        .every_map_bound
+        .then(|| reference::ToonRamp::from_image(image).expect("a readable toon ramp"))
 }
 
 /// The reference color of a pixel of `material`, given its captured inputs; `None` on a

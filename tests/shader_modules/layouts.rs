@@ -96,6 +96,11 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
             "clustered_spot_count",
             offset_of!(GpuLightsHeader, clustered_spot_count),
         ),
+        ("hemisphere_up", offset_of!(GpuLightsHeader, hemisphere_up)),
+        (
+            "hemisphere_half_difference",
+            offset_of!(GpuLightsHeader, hemisphere_half_difference),
+        ),
         ("lights", size_of::<GpuLightsHeader>()),
     ];
     assert_eq!(members, rust_members(&rust));

@@ -379,6 +379,9 @@ impl Harness {
     pub fn reference_lights(&mut self) -> reference::Lights {
         let world = self.app.world_mut();
         let ambient = world.resource::<PhongAmbientLight>().into();
+        let hemisphere = world
+            .get_resource::<bevy_phong::PhongHemisphereLight>()
+            .map(reference::Hemisphere::from);
         let mut lights = Vec::new();
         let mut visible = world.query::<(
             &GlobalTransform,
@@ -394,7 +397,11 @@ impl Harness {
             lights.extend(point.map(|l| reference::Light::point(l, transform)));
             lights.extend(spot.map(|l| reference::Light::spot(l, transform)));
         }
-        reference::Lights { ambient, lights }
+        reference::Lights {
+            ambient,
+            hemisphere,
+            lights,
+        }
     }
 
     /// The camera position, as the shader's view uniform holds it.

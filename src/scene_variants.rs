@@ -1,7 +1,8 @@
-//! Whether the scene casts shadows this frame, and whether soft ones: two process-wide flags
-//! that the shadow gather ([`crate::shadows`]) sets in the main world and that
+//! What the scene holds that changes every Phong material's shader: whether it casts shadows
+//! this frame, whether soft ones, and whether it has a hemisphere light. Process-wide flags
+//! that the gathers ([`crate::shadows`], [`crate::render`]) set in the main world and that
 //! [`PhongMaterialKey`](crate::PhongMaterialKey) reads when a material is specialized. They
-//! sit below both, so that the material needs nothing of the shadows.
+//! sit below both, so that the material needs nothing of the shadows or the lights.
 
 use core::sync::atomic::AtomicBool;
 
@@ -17,3 +18,9 @@ pub(crate) static SCENE_CASTS_SHADOWS: AtomicBool = AtomicBool::new(false);
 /// [`SCENE_CASTS_SHADOWS`] and set beside it. Hard shadows are one bilinear comparison per
 /// light.
 pub(crate) static SCENE_HAS_SOFT_SHADOWS: AtomicBool = AtomicBool::new(false);
+
+/// Whether the scene has a [`PhongHemisphereLight`](crate::PhongHemisphereLight) this frame:
+/// only then is its term compiled in (shader def `PHONG_HEMISPHERE`), as
+/// [`SCENE_CASTS_SHADOWS`]. The light gather sets it and, when it flips, marks every Phong
+/// material modified in the same frame.
+pub(crate) static SCENE_HAS_HEMISPHERE_LIGHT: AtomicBool = AtomicBool::new(false);
