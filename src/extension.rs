@@ -376,7 +376,7 @@ pub(crate) fn gather_light_kind<L: PhongLightKind>(
     state.records.clear();
     let count = push_visible(
         &lights,
-        &slots,
+        |entity| slots.get(entity),
         &mut state.records,
         |light, transform, shadow| {
             let mut record = light.to_gpu(transform);

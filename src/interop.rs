@@ -34,13 +34,17 @@
 //! directional light's cascades are [`PhongCascades::default`], not Bevy's
 //! `CascadeShadowConfig`; resolution and softness are the defaults.
 //!
+//! Bevy's light textures (`SpotLightTexture`, `PointLightTexture`,
+//! `DirectionalLightTexture`) become a [`PhongLightCookie`] on the same entity, laid out the
+//! same way and read, as Bevy reads them, by their red channel (`red_only`).
+//!
 //! A mirrored light is updated whenever its Bevy light changes, and removed with it. Do not
 //! also put a Phong light of the same kind on a Bevy light's entity: the mirror owns it.
 
 use crate::{
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongPointLight,
-        PhongShadows, PhongSpotLight,
+        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCookie,
+        PhongPointLight, PhongShadows, PhongSpotLight,
     },
     schedule::PhongSystems,
 };
@@ -58,7 +62,10 @@ use bevy::{
         schedule::IntoScheduleConfigs,
         system::{Commands, Query, Res, ResMut},
     },
-    light::{DirectionalLight, GlobalAmbientLight, PointLight, SpotLight},
+    light::{
+        DirectionalLight, DirectionalLightTexture, GlobalAmbientLight, PointLight,
+        PointLightTexture, SpotLight, SpotLightTexture,
+    },
     prelude::{ReflectDefault, ReflectResource},
     reflect::Reflect,
 };
@@ -194,10 +201,46 @@ impl Plugin for PhongBevyLightsPlugin {
                     ),
                     mirror::<PointLight, PhongPointLight>(BevyLightExposure::point),
                     mirror::<SpotLight, PhongSpotLight>(BevyLightExposure::spot),
+                    mirror::<SpotLightTexture, PhongLightCookie>(spot_cookie),
+                    mirror::<PointLightTexture, PhongLightCookie>(point_cookie),
+                    mirror::<DirectionalLightTexture, PhongLightCookie>(directional_cookie),
                     mirror_ambient_light,
                 )
                     .before(PhongSystems::Validate),
             );
+    }
+}
+
+/// The cookie of a Bevy `SpotLightTexture`: its image across the cone, its red channel.
+fn spot_cookie(_: &BevyLightExposure, texture: &SpotLightTexture) -> PhongLightCookie {
+    PhongLightCookie {
+        image: texture.image.clone(),
+        red_only: true,
+        ..Default::default()
+    }
+}
+
+/// The cookie of a Bevy `PointLightTexture`: its packed cube map, its red channel.
+fn point_cookie(_: &BevyLightExposure, texture: &PointLightTexture) -> PhongLightCookie {
+    PhongLightCookie {
+        image: texture.image.clone(),
+        cubemap_layout: texture.cubemap_layout,
+        red_only: true,
+        ..Default::default()
+    }
+}
+
+/// The cookie of a Bevy `DirectionalLightTexture`: its image on the light's plane, tiled or
+/// not, its red channel.
+fn directional_cookie(
+    _: &BevyLightExposure,
+    texture: &DirectionalLightTexture,
+) -> PhongLightCookie {
+    PhongLightCookie {
+        image: texture.image.clone(),
+        tiled: texture.tiled,
+        red_only: true,
+        ..Default::default()
     }
 }
 
@@ -335,6 +378,20 @@ mod tests {
         let header = *world.resource::<crate::render::PhongLightBuffer>().header();
         assert_eq!(header.directional_count, 1);
         assert_eq!(header.light_count(), 3);
+
+        app.world_mut().entity_mut(spot).insert(SpotLightTexture {
+            image: Default::default(),
+        });
+        app.world_mut()
+            .entity_mut(sun)
+            .insert(DirectionalLightTexture {
+                image: Default::default(),
+                tiled: true,
+            });
+        app.update();
+        let cookie = app.world().get::<PhongLightCookie>(sun).unwrap();
+        assert!(cookie.tiled && cookie.red_only);
+        assert!(app.world().get::<PhongLightCookie>(spot).unwrap().red_only);
 
         app.world_mut().get_mut::<PointLight>(point).unwrap().range = 7.0;
         app.update();

@@ -144,7 +144,7 @@ pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
 pub use lights::{
     Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
-    PhongPointLight, PhongShadows, PhongSpotLight,
+    PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
 };
 pub use material::{
     DiffuseKind, DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialKey,
@@ -161,9 +161,9 @@ pub use surface_inputs::{
 pub mod prelude {
     pub use crate::{
         Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
-        PhongHemisphereLight, PhongLightCulling, PhongMaterial, PhongMaterialAppExt, PhongPlugin,
-        PhongPointLight, PhongShadows, PhongSpotLight, PhongViewClusters, SpecularMode,
-        SpecularModel,
+        PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
+        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongShadows, PhongSpotLight,
+        PhongViewClusters, SpecularMode, SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 

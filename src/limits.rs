@@ -129,6 +129,14 @@ pub const REFRACTION_RATIO: Limits = Limits::new(0.0, 1e6, 1.0);
 /// The most toon bands a [`DiffuseMode::Toon`](crate::DiffuseMode::Toon) has (at least 1).
 pub const TOON_BANDS: u32 = 256;
 
+/// The side, in texels, of each layer of the light cookie atlas: every
+/// [`PhongLightCookie`](crate::PhongLightCookie)'s image is resampled to it.
+pub const COOKIE_RESOLUTION: u32 = 256;
+
+/// The most distinct cookie images a scene uses at once (layers of the atlas); lights whose
+/// image comes later are drawn without their cookie, with a warning.
+pub const MAX_COOKIE_IMAGES: usize = 64;
+
 /// A signed scale such as a material's bump scale: `[-1e6, 1e6]`, NaN → 0.
 pub const SIGNED_SCALE: Limits = Limits::new(-MAX_INTENSITY, MAX_INTENSITY, 0.0);
 

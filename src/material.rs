@@ -3,7 +3,8 @@
 use crate::displacement::DisplacementUniform;
 use crate::limits;
 use crate::scene_variants::{
-    SCENE_CASTS_SHADOWS, SCENE_HAS_HEMISPHERE_LIGHT, SCENE_HAS_SOFT_SHADOWS,
+    SCENE_CASTS_SHADOWS, SCENE_HAS_HEMISPHERE_LIGHT, SCENE_HAS_LIGHT_COOKIES,
+    SCENE_HAS_SOFT_SHADOWS,
 };
 use bevy::{
     asset::{Asset, Handle},
@@ -642,6 +643,10 @@ pub struct PhongMaterialKey {
     /// then is its term compiled in (shader def `PHONG_HEMISPHERE`). Process-wide, as
     /// `shadows`.
     pub hemisphere: bool,
+    /// Whether some light of the scene has a [`PhongLightCookie`](crate::PhongLightCookie):
+    /// only then is the cookie code compiled in (shader def `PHONG_LIGHT_COOKIES`).
+    /// Process-wide, as `shadows`.
+    pub cookies: bool,
 }
 
 impl From<&PhongMaterial> for PhongMaterialKey {
@@ -692,6 +697,7 @@ impl From<&PhongMaterial> for PhongMaterialKey {
             shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
             soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
             hemisphere: SCENE_HAS_HEMISPHERE_LIGHT.load(Ordering::Relaxed),
+            cookies: SCENE_HAS_LIGHT_COOKIES.load(Ordering::Relaxed),
         }
     }
 }
@@ -795,6 +801,9 @@ impl PhongMaterialKey {
         }
         if self.hemisphere {
             defs.push("PHONG_HEMISPHERE");
+        }
+        if self.cookies {
+            defs.push("PHONG_LIGHT_COOKIES");
         }
         if self.shadows {
             defs.push("PHONG_SHADOWS");

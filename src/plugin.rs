@@ -5,12 +5,12 @@ use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     lights::{
         Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
-        PhongPointLight, PhongShadows, PhongSpotLight,
+        PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
     },
     material::{PhongMaterial, SpecularModel},
     render::{
-        PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters, gather_lights,
-        refresh_material_bind_groups,
+        PhongCookies, PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters,
+        gather_cookies, gather_lights, refresh_material_bind_groups,
     },
     scene::{
         PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
@@ -28,7 +28,8 @@ use bevy::{
     app::{App, Plugin, PostUpdate, PreUpdate},
     asset::{AssetApp, Assets, embedded_asset, load_internal_asset},
     camera::visibility::VisibilitySystems,
-    ecs::schedule::IntoScheduleConfigs,
+    ecs::schedule::{IntoScheduleConfigs, common_conditions::resource_exists},
+    image::Image,
     pbr::{Material, MaterialPlugin, MeshMaterial3d},
     render::RenderApp,
     shader::{Shader, load_shader_library},
@@ -52,10 +53,12 @@ impl Plugin for PhongPlugin {
         app.init_resource::<PhongAmbientLight>()
             .init_resource::<PhongLightCulling>()
             .init_resource::<PhongLightBuffer>()
+            .init_resource::<PhongCookies>()
             .init_resource::<PhongLightClusters>()
             .add_message::<LightBufferResized>()
             .register_type::<PhongAmbientLight>()
             .register_type::<PhongHemisphereLight>()
+            .register_type::<PhongLightCookie>()
             .register_type::<PhongLightCulling>()
             .register_type::<PhongViewClusters>()
             .register_type::<PhongDirectionalLight>()
@@ -86,7 +89,11 @@ impl Plugin for PhongPlugin {
             )
             .add_systems(
                 PostUpdate,
-                (gather_lights, assign_lights_to_clusters)
+                (
+                    gather_cookies.run_if(resource_exists::<Assets<Image>>),
+                    gather_lights,
+                    assign_lights_to_clusters,
+                )
                     .chain()
                     .after(VisibilitySystems::UpdateFrusta)
                     .in_set(PhongSystems::GatherLights),
@@ -115,6 +122,7 @@ impl Plugin for PhongPlugin {
             embedded_asset!(app, "shaders/shadow_caster.wgsl");
             load_shader_library!(app, "shaders/displacement.wgsl");
             load_shader_library!(app, "shaders/toon_ramp.wgsl");
+            load_shader_library!(app, "shaders/cookies.wgsl");
             load_internal_asset!(
                 app,
                 crate::displacement::PHONG_VERTEX_SHADER,

@@ -36,6 +36,7 @@ use bevy::{
 use glam::DVec3;
 
 mod camera_effects;
+mod cookies;
 mod environment;
 mod hemisphere;
 mod normals;
@@ -43,6 +44,7 @@ mod stylized;
 mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
+pub use cookies::{Cookie, CookieProjection, cube_face_uv};
 pub use environment::{
     camera_environment_direction, environment_direction, environment_lod, with_environment,
 };
@@ -614,6 +616,26 @@ impl Light {
             } => {
                 *color *= diffuse;
                 *specular_color *= specular;
+            }
+        }
+        self
+    }
+
+    /// This light with its diffuse and specular intensities times `tint`, channel by channel
+    /// (a cookie's, [`Cookie::tint`]).
+    pub fn tinted(mut self, tint: DVec3) -> Self {
+        match &mut self {
+            Light::Directional {
+                color, specular, ..
+            }
+            | Light::Point {
+                color, specular, ..
+            }
+            | Light::Spot {
+                color, specular, ..
+            } => {
+                *color *= tint;
+                *specular *= tint;
             }
         }
         self

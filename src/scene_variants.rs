@@ -24,3 +24,8 @@ pub(crate) static SCENE_HAS_SOFT_SHADOWS: AtomicBool = AtomicBool::new(false);
 /// [`SCENE_CASTS_SHADOWS`]. The light gather sets it and, when it flips, marks every Phong
 /// material modified in the same frame.
 pub(crate) static SCENE_HAS_HEMISPHERE_LIGHT: AtomicBool = AtomicBool::new(false);
+
+/// Whether some light of the scene has a [`PhongLightCookie`](crate::PhongLightCookie) this
+/// frame: only then is the cookie code compiled in (shader def `PHONG_LIGHT_COOKIES`), as
+/// [`SCENE_CASTS_SHADOWS`]. The cookie gather sets it.
+pub(crate) static SCENE_HAS_LIGHT_COOKIES: AtomicBool = AtomicBool::new(false);

@@ -7,6 +7,7 @@
 //! (`lit`).
 
 mod ambient;
+mod cookie;
 mod decay;
 mod directional;
 mod hemisphere;
@@ -16,6 +17,7 @@ mod shadows;
 mod spot;
 
 pub use ambient::PhongAmbientLight;
+pub use cookie::{PhongLightCookie, cookie_layer_texels};
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
 pub use hemisphere::PhongHemisphereLight;

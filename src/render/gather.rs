@@ -4,6 +4,7 @@
 use super::{
     PHONG_LIGHT_BUFFER,
     clusters::has_finite_reach,
+    cookies::PhongCookies,
     gpu_types::{GpuLight, GpuLightsHeader},
     light_records::{BuiltInLight, indirect_light},
     record_cache::RecordCache,
@@ -22,6 +23,7 @@ use bevy::{
     ecs::{
         change_detection::DetectChanges,
         component::Component,
+        entity::Entity,
         lifecycle::RemovedComponents,
         message::MessageWriter,
         query::{Changed, Or, With},
@@ -71,7 +73,8 @@ impl PhongLightBuffer {
         &self.header
     }
 
-    /// The records last written, in the order [`GpuLightsHeader`] describes.
+    /// The records last written, in the order [`GpuLightsHeader`] describes, then the
+    /// cookies' ([`GpuCookie`](super::gpu_types::GpuCookie), as records of a light's size).
     pub fn records(&self) -> &[GpuLight] {
         &self.records
     }
@@ -110,22 +113,23 @@ impl<L: Component> LightChanges<'_, '_, L> {
 }
 
 /// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
-/// `records`; `to_gpu` gets each light's shadow slot (see [`ShadowSlots`]). Returns how many.
+/// `records`; `to_gpu` gets each light's slot, `slot_of(entity)` (its shadow slot, see
+/// [`ShadowSlots`], and for a built-in light its cookie's). Returns how many.
 pub(crate) fn push_visible<L: Component, R>(
     lights: &LightQuery<L>,
-    slots: &ShadowSlots,
+    slot_of: impl Fn(Entity) -> u32,
     records: &mut Vec<R>,
     to_gpu: impl Fn(&L, &GlobalTransform, u32) -> R,
 ) -> u32 {
     let start = records.len();
     records.extend(
         lit_lights(lights)
-            .map(|(entity, light, transform)| to_gpu(light, transform, slots.get(entity))),
+            .map(|(entity, light, transform)| to_gpu(light, transform, slot_of(entity))),
     );
     (records.len() - start) as u32
 }
 
-/// A built-in light's record with its shadow slot.
+/// A built-in light's record with its shadow and cookie slots ([`GpuLight::shadow`]).
 fn with_shadow<L>(
     to_gpu: impl Fn(&L, &GlobalTransform) -> GpuLight,
 ) -> impl Fn(&L, &GlobalTransform, u32) -> GpuLight {
@@ -152,7 +156,7 @@ struct Pushed {
 /// those that are `clustered`.
 fn push_cached<L: BuiltInLight>(
     lights: &TrackedLightQuery<L>,
-    slots: &ShadowSlots,
+    slot_of: &impl Fn(Entity) -> u32,
     cache: &mut RecordCache<L>,
     records: &mut Vec<GpuLight>,
     epsilon: f32,
@@ -165,7 +169,7 @@ fn push_cached<L: BuiltInLight>(
         // A light that reaches nowhere for ε (range 0) is left out.
         if record.range > 0.0 {
             L::place(&mut record, transform);
-            record.shadow = slots.get(entity);
+            record.shadow = slot_of(entity);
             pushed.kept += 1;
             pushed.clustered += usize::from(clustered(&record));
             records.push(record);
@@ -226,6 +230,7 @@ pub fn gather_lights(
     point: TrackedLightQuery<PhongPointLight>,
     spot: TrackedLightQuery<PhongSpotLight>,
     slots: Res<ShadowSlots>,
+    cookies: Res<PhongCookies>,
     mut directional_changes: LightChanges<PhongDirectionalLight>,
     mut point_changes: LightChanges<PhongPointLight>,
     mut spot_changes: LightChanges<PhongSpotLight>,
@@ -243,6 +248,7 @@ pub fn gather_lights(
         hemisphere.is_some() != state.hemisphere,
         culling.is_changed(),
         slots.is_changed(),
+        cookies.is_changed(),
         state.capacity() == 0,
     ];
     if !changes.contains(&true) {
@@ -252,9 +258,11 @@ pub fn gather_lights(
     let state = &mut *state;
     let records = &mut state.records;
     records.clear();
+    let slot_of =
+        |entity: Entity| slots.get(entity) | cookies.slot_of(entity) << GpuLight::COOKIE_SHIFT;
     let directional_count = push_visible(
         &directional,
-        &slots,
+        slot_of,
         records,
         with_shadow(PhongDirectionalLight::to_gpu),
     );
@@ -273,7 +281,7 @@ pub fn gather_lights(
         let pushed = [
             push_cached(
                 &point,
-                &slots,
+                &slot_of,
                 &mut state.point_cache,
                 records,
                 epsilon,
@@ -281,7 +289,7 @@ pub fn gather_lights(
             ),
             push_cached(
                 &spot,
-                &slots,
+                &slot_of,
                 &mut state.spot_cache,
                 records,
                 epsilon,
@@ -317,6 +325,13 @@ pub fn gather_lights(
         hemisphere_half_difference,
         padding_difference: 0,
     };
+    // The cookies after the lights, as records of a light's size (`GpuCookie`).
+    state.records.extend(
+        cookies
+            .records()
+            .iter()
+            .map(|cookie| bytemuck::cast::<_, GpuLight>(*cookie)),
+    );
     state.hemisphere = hemisphere.is_some();
     let variant_changed =
         SCENE_HAS_HEMISPHERE_LIGHT.swap(state.hemisphere, Ordering::Relaxed) != state.hemisphere;

@@ -32,9 +32,49 @@ pub struct GpuLight {
     pub spot_exponent: f32,
     /// `[constant, linear, quadratic]` distance fall-off (point, spot).
     pub decay: [f32; 3],
-    /// The index of the light's first shadow view plus one, or `0` for a light that casts no
-    /// shadow this frame.
+    /// Two 16-bit indices: in the low half, the index of the light's first shadow view plus
+    /// one, or `0` for a light that casts no shadow this frame; in the high half, the index
+    /// of its cookie ([`GpuCookie`], after the lights) plus one, or `0` for none.
     pub shadow: u32,
+}
+
+impl GpuLight {
+    /// The first bit of the cookie's index in [`shadow`](Self::shadow).
+    pub const COOKIE_SHIFT: u32 = 16;
+}
+
+/// A light's cookie as the shader reads it (`bevy_phong::cookies`): 80 bytes, the size of a
+/// [`GpuLight`], stored after the lights in the light buffer (the `k`-th cookie at index
+/// `light_count + k`). See [`PhongLightCookie`](crate::PhongLightCookie).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCookie {
+    /// The rows of the light's `local_from_world` affine transform.
+    pub light_from_world: [[f32; 4]; 3],
+    /// The cookie atlas's layer that holds the image.
+    pub layer: u32,
+    /// How the image is laid over the light ([`Self::SPOT`], [`Self::DIRECTIONAL`], or
+    /// [`Self::POINT`] plus the cube map layout's index).
+    pub projection: u32,
+    /// `tan(outer_angle)` of a spot light (its angle below 90°).
+    pub tan_outer: f32,
+    /// [`Self::RED_ONLY`] and [`Self::TILED`].
+    pub flags: u32,
+    /// Unused: the record is as long as a light's.
+    pub padding: [u32; 4],
+}
+
+impl GpuCookie {
+    /// A spot light's cone.
+    pub const SPOT: u32 = 0;
+    /// A directional light's plane.
+    pub const DIRECTIONAL: u32 = 1;
+    /// A point light's cube map, plus the index of its `CubemapLayout` (0 to 3).
+    pub const POINT: u32 = 2;
+    /// The red channel tints all three.
+    pub const RED_ONLY: u32 = 1;
+    /// The image repeats over a directional light's plane.
+    pub const TILED: u32 = 2;
 }
 
 /// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its
@@ -121,5 +161,6 @@ impl Default for GpuClustersHeader {
 }
 
 const _: () = assert!(size_of::<GpuLight>() == 80);
+const _: () = assert!(size_of::<GpuCookie>() == size_of::<GpuLight>());
 const _: () = assert!(size_of::<GpuLightsHeader>() == 64);
 const _: () = assert!(size_of::<GpuClustersHeader>() == 16);

@@ -5,6 +5,7 @@
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
 use crate::DisplacementUniform;
 use crate::material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform};
+use crate::scene_variants::SCENE_HAS_LIGHT_COOKIES;
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
     asset::Handle,
@@ -22,6 +23,7 @@ use bevy::{
         texture::{FallbackImage, GpuImage},
     },
 };
+use core::sync::atomic::Ordering;
 
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
 /// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
@@ -91,13 +93,14 @@ impl From<&PhongMaterial> for SurfaceBindings {
 /// The plugin's scene data that every Phong material binds beside its own, read from the
 /// render world (the names are those of `bevy_phong::bindings`): 1 the light buffer
 /// (`lights`), 2 the light clusters (`light_clusters`), 11 the shadow views (`shadow_views`), 12 the
-/// shadow map array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`). A
+/// shadow map array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`), 28 the
+/// light cookie atlas (`cookie_atlas`, a 2D array read texel by texel). A
 /// material of its own that lights with the crate's shader functions adds these bindings
 /// the same way [`PhongMaterial`] does.
 ///
 /// Where a shader stage has fewer than [`Self::STORAGE_BUFFERS_NEEDED`] storage buffers
 /// (WebGL2 has none), binding 1 is instead one `texture_2d<u32>` that holds the lights, the
-/// clusters and the shadow views (`scene_data`), and bindings 2 and 11 are absent; the shaders
+/// clusters and the shadow views (`scene_data`), and bindings 2, 11 and 28 are absent; the shaders
 /// choose the same way from Bevy's `AVAILABLE_STORAGE_BUFFER_BINDINGS`.
 #[derive(SystemParam)]
 pub struct PhongSceneBindings<'w> {
@@ -121,6 +124,9 @@ impl PhongSceneBindings<'_> {
     pub const SHADOW_MAPS: u32 = 12;
     /// Binding index of the shadow maps' comparison sampler.
     pub const SHADOW_SAMPLER: u32 = 13;
+    /// Binding index of the light cookie atlas (absent where the scene data is in the data
+    /// texture).
+    pub const COOKIE_ATLAS: u32 = 28;
     /// Storage buffers per shader stage the scene data needs to stay in buffers; with fewer
     /// it is read from the data texture.
     pub const STORAGE_BUFFERS_NEEDED: u32 = crate::render::STORAGE_BUFFERS_NEEDED;
@@ -159,6 +165,14 @@ impl PhongSceneBindings<'_> {
                 entry(Self::LIGHTS, storage),
                 entry(Self::LIGHT_CLUSTERS, storage),
                 entry(Self::SHADOW_VIEWS, storage),
+                entry(
+                    Self::COOKIE_ATLAS,
+                    BindingType::Texture {
+                        sample_type: TextureSampleType::Float { filterable: true },
+                        view_dimension: TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                ),
             ]
         };
         let shadows = [
@@ -208,6 +222,12 @@ impl PhongSceneBindings<'_> {
                 .images
                 .get(&crate::render::PHONG_SCENE_TEXTURE)
                 .ok_or(AsBindGroupError::RetryNextUpdate)?;
+            if SCENE_HAS_LIGHT_COOKIES.load(Ordering::Relaxed) {
+                bevy::log::warn_once!(
+                    "PhongLightCookie is left out on this device (WebGL2's 16 textures a \
+                     shader stage): lights are drawn without their cookies"
+                );
+            }
             vec![(
                 Self::SCENE_DATA,
                 OwnedBindingResource::TextureView(
@@ -216,7 +236,19 @@ impl PhongSceneBindings<'_> {
                 ),
             )]
         } else {
-            self.buffer_bindings()?
+            let cookies = self
+                .images
+                .get(&crate::render::PHONG_COOKIE_ATLAS)
+                .ok_or(AsBindGroupError::RetryNextUpdate)?;
+            let mut bindings = self.buffer_bindings()?;
+            bindings.push((
+                Self::COOKIE_ATLAS,
+                OwnedBindingResource::TextureView(
+                    TextureViewDimension::D2Array,
+                    cookies.texture_view.clone(),
+                ),
+            ));
+            bindings
         };
         bindings.push((
             Self::SHADOW_MAPS,

@@ -45,6 +45,8 @@
 
 mod cluster_views;
 mod clusters;
+mod cookie_atlas;
+mod cookies;
 mod data_texture;
 mod gather;
 mod gpu_types;
@@ -54,6 +56,9 @@ mod material_upkeep;
 mod record_cache;
 mod scene_texture;
 
+/// How a cookie image becomes a layer of the atlas; defined with the cookie, below the
+/// reference model, which reads the same layer.
+pub use crate::lights::cookie_layer_texels;
 /// For an extension's [`PhongLightKind::to_gpu`], beside [`linear_rgb`]; defined with the
 /// lights, whose readers all share it.
 ///
@@ -63,11 +68,13 @@ pub use crate::lights::light_direction;
 /// shadows, which key their cascades by it too.
 pub use crate::view_key::view_key;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
+pub(crate) use cookie_atlas::PHONG_COOKIE_ATLAS;
+pub use cookies::{PhongCookies, gather_cookies};
 pub use data_texture::{DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub(crate) use gather::{LightChanges, push_visible};
 pub use gather::{PhongLightBuffer, gather_lights};
-pub use gpu_types::{GpuClustersHeader, GpuLight, GpuLightsHeader};
+pub use gpu_types::{GpuClustersHeader, GpuCookie, GpuLight, GpuLightsHeader};
 pub use light_records::linear_rgb;
 pub use material_bindings::{PhongSceneBindings, binds_every_map};
 pub(crate) use material_upkeep::{refresh_material_bind_groups, schedule_light_buffers_before};

@@ -1,6 +1,6 @@
 // The bindings of `PhongMaterial` in the material bind group: the material's own (0, 3–10,
 // 14–23, 27; 24–26 in the vertex stage: bevy_phong::displacement)
-// and the plugin's scene data (1, 2, 11–13; `PhongSceneBindings`).
+// and the plugin's scene data (1, 2, 11–13, 28; `PhongSceneBindings`).
 #define_import_path bevy_phong::bindings
 
 #import bevy_phong::types::{PhongLightClusters, PhongLights, PhongMaterialUniform, PhongShadowViews}
@@ -16,6 +16,9 @@
 @group(#{MATERIAL_BIND_GROUP}) @binding(1) var<storage, read> lights: PhongLights;
 @group(#{MATERIAL_BIND_GROUP}) @binding(2) var<storage, read> light_clusters: PhongLightClusters;
 @group(#{MATERIAL_BIND_GROUP}) @binding(11) var<storage, read> shadow_views: PhongShadowViews;
+// The light cookies' images, a layer each (src/render/cookie_atlas.rs), read texel by texel
+// by `bevy_phong::cookies`.
+@group(#{MATERIAL_BIND_GROUP}) @binding(28) var cookie_atlas: texture_2d_array<f32>;
 #endif
 @group(#{MATERIAL_BIND_GROUP}) @binding(3) var base_color_texture: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(4) var base_color_sampler: sampler;

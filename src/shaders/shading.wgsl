@@ -5,6 +5,9 @@
 #import bevy_phong::lighting::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT, incidence, light_of_kind, phong_surface, rim_factor, unshadowed_light}
 #import bevy_phong::scene::{ambient_color, hemisphere_half_difference, hemisphere_up, cluster_view_count, cluster_word, clustered_point_count, clustered_spot_count, directional_count, light_at, point_count, spot_count}
 #import bevy_phong::shadows::shadow_factors
+#ifdef PHONG_LIGHT_COOKIES
+#import bevy_phong::cookies::light_cookie
+#endif
 #import bevy_pbr::mesh_bindings::mesh
 #import bevy_pbr::mesh_view_bindings::view
 #import bevy_pbr::mesh_types::MESH_FLAGS_SHADOW_RECEIVER_BIT
@@ -51,18 +54,28 @@ fn ambient_light(surface: PhongSurface) -> vec3<f32> {
 // Σ over every light that reaches the surface point: the directional lights, the point and
 // spot lights of unlimited reach, and those of the point's cluster. One loop lights every
 // kind (see `incidence`); while some light casts shadows (PHONG_SHADOWS), each light's
-// terms are scaled by its shadow factors.
+// terms are scaled by its shadow factors, and while some light has a cookie
+// (PHONG_LIGHT_COOKIES), its colors by the cookie's tint.
 fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     let point_start = directional_count();
     let spot_start = point_start + point_count();
     let end = spot_start + spot_count();
     var color = vec3<f32>(0.0);
     for (var index = 0u; index < end; index += 1u) {
-        let light = light_at(index);
+        var light = light_at(index);
+#ifdef PHONG_LIGHT_COOKIES
+        // A cookie's index plus one in the high half of `shadow` (`GpuLight::shadow`).
+        let cookie = light.shadow >> 16u;
+        if cookie != 0u {
+            let tint = light_cookie(cookie - 1u, surface.position);
+            light.color *= tint;
+            light.specular *= tint;
+        }
+#endif
         let kind = select(select(LIGHT_DIRECTIONAL, LIGHT_POINT, index >= point_start), LIGHT_SPOT, index >= spot_start);
         let arriving = incidence(surface, light, kind);
 #ifdef PHONG_SHADOWS
-        let factors = shadow_factors(light.shadow, surface, arriving.to_light, light.position);
+        let factors = shadow_factors(light.shadow & 0xffffu, surface, arriving.to_light, light.position);
 #else
         let factors = vec2<f32>(1.0);
 #endif

@@ -23,7 +23,8 @@ struct PhongLight {
     spot_exponent: f32,
     // (constant, linear, quadratic) distance fall-off (point, spot).
     decay: vec3<f32>,
-    // Index of the light's first shadow view plus one; 0 when it casts no shadow.
+    // Low 16 bits: index of the light's first shadow view plus one (0: no shadow). High 16
+    // bits: index of its cookie plus one (0: none; `bevy_phong::cookies`).
     shadow: u32,
 }
 

@@ -18,6 +18,7 @@
 //! - `displacement`: displacement maps, the positions and the lit colors;
 //! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
 //!   hemisphere light, the same way;
+//! - `cookies`: light cookies on spot, point and directional lights, the same way;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
@@ -39,6 +40,7 @@
 mod cases;
 mod clusters;
 mod contract;
+mod cookies;
 mod culling;
 mod displacement;
 mod environment;

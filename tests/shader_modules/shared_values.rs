@@ -105,6 +105,18 @@ fn wgsl_binding_kind(module: &naga::Module, variable: &naga::GlobalVariable) -> 
                     },
             },
         ) => "2D u32 texture".into(),
+        (
+            _,
+            naga::TypeInner::Image {
+                dim: naga::ImageDimension::D2,
+                arrayed: true,
+                class:
+                    naga::ImageClass::Sampled {
+                        kind: naga::ScalarKind::Float,
+                        multi: false,
+                    },
+            },
+        ) => "2D f32 texture array".into(),
         (_, naga::TypeInner::Sampler { comparison: true }) => "comparison sampler".into(),
         (_, other) => format!("{other:?}"),
     }
@@ -126,6 +138,11 @@ fn rust_binding_kind(binding: &BindingType) -> String {
             view_dimension: TextureViewDimension::D2,
             multisampled: false,
         } => "2D u32 texture".into(),
+        BindingType::Texture {
+            sample_type: TextureSampleType::Float { .. },
+            view_dimension: TextureViewDimension::D2Array,
+            multisampled: false,
+        } => "2D f32 texture array".into(),
         BindingType::Sampler(SamplerBindingType::Comparison) => "comparison sampler".into(),
         other => format!("{other:?}"),
     }
@@ -141,6 +158,7 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
         ("lights", PhongSceneBindings::LIGHTS),
         ("light_clusters", PhongSceneBindings::LIGHT_CLUSTERS),
         ("shadow_views", PhongSceneBindings::SHADOW_VIEWS),
+        ("cookie_atlas", PhongSceneBindings::COOKIE_ATLAS),
     ];
     let texture = [("scene_data", PhongSceneBindings::SCENE_DATA)];
     // Bevy gives every shader the device's storage buffers per stage: one fewer than the

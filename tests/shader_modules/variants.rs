@@ -206,6 +206,7 @@ fn material_keys() -> Vec<PhongMaterialKey> {
             toon_specular: false,
             rim: None,
             hemisphere: false,
+            cookies: false,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
@@ -243,6 +244,7 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         |key| key.rim = Some(true),
         |key| key.diffuse = DiffuseKind::ToonRamp,
         |key| key.hemisphere = true,
+        |key| key.cookies = true,
     ];
     let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
@@ -263,9 +265,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
 /// the camera's environment mixed in or refracted and added (2), the stylized modes (4: wrap,
 /// toon bands, a toon highlight alone and over toon bands), a rim everywhere or on the lit
-/// side (2), a toon ramp (1), a hemisphere light (1), each with no map and every map, under 3
-/// kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1) * 2 * 3;
+/// side (2), a toon ramp (1), a hemisphere light (1), light cookies (1), each with no map and
+/// every map, under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1 + 1) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that

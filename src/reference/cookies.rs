@@ -1,0 +1,228 @@
+//! Light cookies in the reference model (SPEC.md, "Light cookies"): the tint a light's
+//! image gives it at a point, from the atlas layer the crate made of the image.
+
+use crate::lights::PhongLightCookie;
+use crate::lights::cookie_layer_texels;
+use crate::limits::SPOT_ANGLE;
+use bevy::{
+    camera::primitives::CubemapLayout, image::Image, transform::components::GlobalTransform,
+};
+use glam::{DAffine3, DVec2, DVec3};
+
+/// How a cookie's image is laid over its light.
+#[derive(Clone, Copy, Debug)]
+pub enum CookieProjection {
+    /// Across a spot light's cone: `tan` of its outer angle (below 89.5°).
+    Spot {
+        /// `tan(outer_angle)`.
+        tan_outer: f64,
+    },
+    /// Around a point light, as a cube map packed by the layout.
+    Point(CubemapLayout),
+    /// On a directional light's plane, once or repeated.
+    Directional {
+        /// Whether the image repeats.
+        tiled: bool,
+    },
+}
+
+/// A light's cookie.
+#[derive(Clone, Debug)]
+pub struct Cookie {
+    /// The atlas layer's texels, 8-bit sRGB RGBA, row by row, `side` square.
+    pub texels: Vec<[u8; 4]>,
+    /// The layer's side in texels.
+    pub side: u32,
+    /// How the image is laid over the light.
+    pub projection: CookieProjection,
+    /// The inverse of the light's transform.
+    pub light_from_world: DAffine3,
+    /// Whether the red channel tints all three.
+    pub red_only: bool,
+}
+
+/// The widest spot cone a cookie is laid across, as the crate's records take it.
+const WIDEST_SPOT_PROJECTION: f64 = 89.5 * core::f64::consts::PI / 180.0;
+
+impl Cookie {
+    /// The cookie `cookie`, whose image is `image`, on a light at `transform`: a spot light
+    /// with `spot_outer_angle`, else a point light (`point`) or a directional light.
+    pub fn new(
+        cookie: &PhongLightCookie,
+        image: &Image,
+        transform: &GlobalTransform,
+        spot_outer_angle: Option<f32>,
+        point: bool,
+    ) -> Option<Self> {
+        let texels = cookie_layer_texels(image)?;
+        let side = (texels.len() as f64).sqrt() as u32;
+        let affine = transform.affine();
+        let light_to_world = DAffine3::from_cols(
+            affine.matrix3.x_axis.as_dvec3(),
+            affine.matrix3.y_axis.as_dvec3(),
+            affine.matrix3.z_axis.as_dvec3(),
+            affine.translation.as_dvec3(),
+        );
+        let projection = match (spot_outer_angle, point) {
+            (Some(outer), _) => CookieProjection::Spot {
+                tan_outer: f64::from(SPOT_ANGLE.apply(outer))
+                    .min(WIDEST_SPOT_PROJECTION)
+                    .tan(),
+            },
+            (None, true) => CookieProjection::Point(cookie.cubemap_layout),
+            (None, false) => CookieProjection::Directional {
+                tiled: cookie.tiled,
+            },
+        };
+        Some(Self {
+            texels,
+            side,
+            projection,
+            light_from_world: light_to_world.inverse(),
+            red_only: cookie.red_only,
+        })
+    }
+
+    /// The tint at world position `position`: the image's linear color there (bilinear
+    /// between texel centers, the coordinates clamped, or wrapped for a tiled image),
+    /// clamped to `[0, 1]`, or its red channel thrice with `red_only`; 1 where the image
+    /// does not reach (behind a spot light, off an untiled directional light's tile).
+    pub fn tint(&self, position: DVec3) -> DVec3 {
+        let local = self.light_from_world.transform_point3(position);
+        let (uv, tiled) = match self.projection {
+            CookieProjection::Spot { tan_outer } => {
+                if local.z >= 0.0 {
+                    return DVec3::ONE;
+                }
+                let plane = local.truncate() / (local.z * tan_outer);
+                (plane * DVec2::new(-0.5, 0.5) + 0.5, false)
+            }
+            CookieProjection::Directional { tiled } => {
+                let uv = local.truncate() * DVec2::new(-0.5, 0.5) + 0.5;
+                if !tiled && uv != uv.clamp(DVec2::ZERO, DVec2::ONE) {
+                    return DVec3::ONE;
+                }
+                (uv, tiled)
+            }
+            CookieProjection::Point(layout) => (cube_face_uv(local, layout), false),
+        };
+        let tint = self.sample(uv, tiled).clamp(DVec3::ZERO, DVec3::ONE);
+        if self.red_only {
+            DVec3::splat(tint.x)
+        } else {
+            tint
+        }
+    }
+
+    fn texel(&self, x: i64, y: i64, tiled: bool) -> DVec3 {
+        let side = i64::from(self.side);
+        let fit = |c: i64| {
+            if tiled {
+                c.rem_euclid(side)
+            } else {
+                c.clamp(0, side - 1)
+            }
+        };
+        let [r, g, b, _] = self.texels[(fit(y) * side + fit(x)) as usize];
+        DVec3::new(decode(r), decode(g), decode(b))
+    }
+
+    fn sample(&self, uv: DVec2, tiled: bool) -> DVec3 {
+        let at = uv * f64::from(self.side) - 0.5;
+        let corner = at.floor();
+        let weight = at - corner;
+        let (x, y) = (corner.x as i64, corner.y as i64);
+        let top = self
+            .texel(x, y, tiled)
+            .lerp(self.texel(x + 1, y, tiled), weight.x);
+        let bottom = self
+            .texel(x, y + 1, tiled)
+            .lerp(self.texel(x + 1, y + 1, tiled), weight.x);
+        top.lerp(bottom, weight.y)
+    }
+}
+
+/// An 8-bit sRGB value as linear.
+fn decode(value: u8) -> f64 {
+    let c = f64::from(value) / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Where `direction` falls in a cube map packed by `layout` (Bevy's `cubemap_uv`): the face
+/// of its largest component (x, then y, then z on ties), the face's coordinates, placed in
+/// the layout's grid.
+pub fn cube_face_uv(direction: DVec3, layout: CubemapLayout) -> DVec2 {
+    let a = direction.abs();
+    let largest = a.max_element();
+    // Faces in Bevy's order: +x, -x, +y, -y, -z, +z.
+    let (face, face_uv, divisor) = if largest == a.x {
+        if direction.x < 0.0 {
+            (1, DVec2::new(-direction.z, -direction.y), a.x)
+        } else {
+            (0, DVec2::new(direction.z, -direction.y), a.x)
+        }
+    } else if largest == a.y {
+        if direction.y < 0.0 {
+            (3, DVec2::new(direction.x, direction.z), a.y)
+        } else {
+            (2, DVec2::new(direction.x, -direction.z), a.y)
+        }
+    } else if direction.z < 0.0 {
+        (4, DVec2::new(direction.x, -direction.y), a.z)
+    } else {
+        (5, DVec2::new(direction.x, direction.y), a.z)
+    };
+    if divisor <= 0.0 {
+        return DVec2::splat(0.5);
+    }
+    let face_uv = face_uv / divisor * 0.5 + 0.5;
+    let nibble = |table: u32| f64::from((table >> (4 * face)) & 0xf);
+    let (corner, size) = match layout {
+        CubemapLayout::CrossVertical => (
+            DVec2::new(nibble(0x111102), nibble(0x132011)),
+            DVec2::new(1.0 / 3.0, 1.0 / 4.0),
+        ),
+        CubemapLayout::CrossHorizontal => (
+            DVec2::new(nibble(0x131102), nibble(0x112011)),
+            DVec2::new(1.0 / 4.0, 1.0 / 3.0),
+        ),
+        CubemapLayout::SequenceVertical => {
+            (DVec2::new(0.0, f64::from(face)), DVec2::new(1.0, 1.0 / 6.0))
+        }
+        CubemapLayout::SequenceHorizontal => {
+            (DVec2::new(f64::from(face), 0.0), DVec2::new(1.0 / 6.0, 1.0))
+        }
+    };
+    (corner + face_uv) * size
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_face_of_a_vertical_cross_lands_in_its_cell() {
+        // As Bevy's `cubemap_uv` places them (its code, which a mirrored light texture
+        // must match): +y top middle, -x +z +x across the second row, -y third, -z fourth.
+        let cells = [
+            (DVec3::X, (2.0, 1.0)),
+            (-DVec3::X, (0.0, 1.0)),
+            (DVec3::Y, (1.0, 0.0)),
+            (-DVec3::Y, (1.0, 2.0)),
+            (DVec3::Z, (1.0, 1.0)),
+            (-DVec3::Z, (1.0, 3.0)),
+        ];
+        for (direction, (column, row)) in cells {
+            let uv = cube_face_uv(direction, CubemapLayout::CrossVertical);
+            let expected = DVec2::new((column + 0.5) / 3.0, (row + 0.5) / 4.0);
+            assert!(
+                (uv - expected).length() < 1e-12,
+                "{direction}: {uv} vs {expected}"
+            );
+        }
+    }
+}

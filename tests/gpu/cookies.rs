@@ -1,0 +1,187 @@
+//! Light cookies (`PhongLightCookie`): a spot light's image across its cone, a point light's
+//! cube map (a vertical cross) and a directional light's tiled image (its red channel
+//! alone), rendered on the render device and compared per pixel with the reference model
+//! (`reference::Cookie::tint` on each light, then the frame tests' equation).
+//!
+//! The shader filters the atlas itself, with `f32` weights, as the reference does: the
+//! tolerance is the frame tests' ([`TOLERANCE`]). Where a point light's ray is within 10⁻⁵
+//! (relative) of a cube edge, the device's `f32` may pick the other face: those pixels are
+//! not judged. Under WebGL2 the atlas is not bound: the lights are checked untinted.
+
+use crate::frames::SIZE;
+use crate::texture_maps::{assert_pixels_follow, expected_color};
+use bevy::{
+    asset::RenderAssetUsages,
+    camera::primitives::CubemapLayout,
+    prelude::*,
+    render::render_resource::{Extent3d, TextureDimension, TextureFormat},
+};
+use bevy_phong::{limits::COOKIE_RESOLUTION, prelude::*, reference};
+use bevy_phong_headless::Harness;
+use glam::DVec3;
+
+/// A cookie image at the atlas's size, 8-bit sRGB: copied into the atlas unchanged.
+fn cookie_image(texel: impl Fn(u32, u32) -> [u8; 3]) -> Image {
+    let side = COOKIE_RESOLUTION;
+    let data = (0..side * side)
+        .flat_map(|index| {
+            let [r, g, b] = texel(index % side, index / side);
+            [r, g, b, 255]
+        })
+        .collect();
+    Image::new(
+        Extent3d {
+            width: side,
+            height: side,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::default(),
+    )
+}
+
+/// A wave from 0 to 255 along `t` with period `period` texels.
+fn wave(t: u32, period: f32) -> u8 {
+    (127.5 + 127.5 * (t as f32 * core::f32::consts::TAU / period).sin()).round() as u8
+}
+
+/// Whether `direction`'s two largest components are within 10⁻⁵ of each other (relative):
+/// on a cube edge.
+fn near_a_cube_edge(direction: DVec3) -> bool {
+    let mut a = direction.abs().to_array();
+    a.sort_by(f64::total_cmp);
+    a[2] - a[1] <= 1e-5 * a[2]
+}
+
+#[test]
+fn cookies_tint_each_light_kind_as_the_reference_model_says() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let spot_image = images.add(cookie_image(|x, y| {
+        [wave(x, 40.0), wave(y, 56.0), wave(x + y, 90.0)]
+    }));
+    let cube_image = images.add(cookie_image(|x, y| {
+        [(x & 0xff) as u8, (y & 0xff) as u8, wave(x * 3 + y, 70.0)]
+    }));
+    let tile_image = images.add(cookie_image(|x, y| {
+        let red = if (x / 64 + y / 64) % 2 == 0 { 255 } else { 90 };
+        [red, 0, 0]
+    }));
+
+    let spot = PhongSpotLight {
+        color: Color::linear_rgb(1.2, 1.1, 1.0),
+        inner_angle: 25f32.to_radians(),
+        outer_angle: 35f32.to_radians(),
+        ..default()
+    };
+    let spot_at =
+        Transform::from_xyz(-1.3, 2.2, 0.6).looking_at(Vec3::new(-1.3, -1.0, 0.4), Vec3::Z);
+    let point = PhongPointLight {
+        color: Color::linear_rgb(0.9, 0.8, 0.7),
+        decay: Decay::new(1.0, 0.1, 0.05),
+        ..default()
+    };
+    let point_at = Transform::from_xyz(1.0, 1.3, 1.4).with_rotation(Quat::from_rotation_y(0.4));
+    let directional = PhongDirectionalLight {
+        color: Color::linear_rgb(0.4, 0.4, 0.45),
+        ..default()
+    };
+    let directional_at = Transform::from_xyz(1.0, 2.0, 1.0)
+        .looking_at(Vec3::ZERO, Vec3::Y)
+        .with_scale(Vec3::splat(0.6));
+    let spot_cookie = PhongLightCookie {
+        image: spot_image,
+        ..default()
+    };
+    let cube_cookie = PhongLightCookie {
+        image: cube_image,
+        cubemap_layout: CubemapLayout::CrossVertical,
+        ..default()
+    };
+    let tile_cookie = PhongLightCookie {
+        image: tile_image,
+        tiled: true,
+        red_only: true,
+        ..default()
+    };
+    world.spawn((spot.clone(), spot_at, spot_cookie.clone()));
+    world.spawn((point.clone(), point_at, cube_cookie.clone()));
+    world.spawn((directional.clone(), directional_at, tile_cookie.clone()));
+
+    let images = world.resource::<Assets<Image>>();
+    let cookie = |cookie: &PhongLightCookie, at: Transform, spot_angle, is_point| {
+        reference::Cookie::new(
+            cookie,
+            images.get(&cookie.image).unwrap(),
+            &GlobalTransform::from(at),
+            spot_angle,
+            is_point,
+        )
+        .expect("a readable cookie")
+    };
+    let cookied = [
+        (
+            reference::Light::spot(&spot, &GlobalTransform::from(spot_at)),
+            cookie(&spot_cookie, spot_at, Some(spot.outer_angle), false),
+        ),
+        (
+            reference::Light::point(&point, &GlobalTransform::from(point_at)),
+            cookie(&cube_cookie, point_at, None, true),
+        ),
+        (
+            reference::Light::directional(&directional, &GlobalTransform::from(directional_at)),
+            cookie(&tile_cookie, directional_at, None, false),
+        ),
+    ];
+    // Where a point lies in the point light's frame (its cube map's).
+    let from_point_light = cookied[1].1.light_from_world;
+    let objects = [
+        (
+            Plane3d::default().mesh().size(8.0, 8.0).into(),
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.8, 0.8),
+                shininess: 8.0,
+                ..default()
+            },
+        ),
+        (
+            Sphere::new(0.8).mesh().uv(48, 32),
+            Transform::from_xyz(1.2, -0.2, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.7, 0.75, 0.9),
+                shininess: 40.0,
+                ..default()
+            },
+        ),
+    ];
+    assert_pixels_follow(
+        harness,
+        objects,
+        "light cookies",
+        &|material, surface, pixel, inputs, images, _| {
+            let tinted = inputs.every_map_bound;
+            if tinted && near_a_cube_edge(from_point_light.transform_point3(surface.position)) {
+                return None;
+            }
+            let lights = reference::Lights {
+                ambient: DVec3::splat(0.05),
+                hemisphere: None,
+                lights: cookied
+                    .iter()
+                    .map(|(light, cookie)| match tinted {
+                        true => light.tinted(cookie.tint(surface.position)),
+                        false => *light,
+                    })
+                    .collect(),
+            };
+            expected_color(material, surface, pixel, inputs, images, &lights)
+        },
+    );
+}
