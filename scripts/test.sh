@@ -20,7 +20,7 @@ cargo test -p phong_gltf_asset "$@"
 
 # Every example must still render: each writes its PNG headless and exits.
 part "the examples"
-for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room; do
+for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
 # The showcase's sphere shows its three highlights where the lighting model puts them.
@@ -39,7 +39,7 @@ cargo run --quiet --example bench -- --quick
 export WGPU_SETTINGS_PRIO=webgl2
 part "the render tests and the examples under WebGL2's limits"
 cargo test --test gpu --test soak "$@"
-for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room; do
+for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
     cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
 done
 cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png

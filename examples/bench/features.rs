@@ -9,7 +9,8 @@
 //!   with `reflectivity` 0.5; Standard at roughness 0.2, metallic 0.5);
 //!
 //! and each stylized mode alone, for `PhongMaterial` only (`--stylized`): wrapped diffuse,
-//! toon bands, a toon highlight, a rim everywhere and on the lit side.
+//! toon bands, a toon ramp, a toon highlight, a rim everywhere and on the lit side, a
+//! hemisphere light, and a cookie on every light.
 
 use crate::scene::Shading;
 use bevy::{
@@ -37,12 +38,19 @@ pub enum Features {
     Wrap,
     /// `DiffuseMode::Toon { bands: 3, smoothing: 0.1 }`.
     ToonBands,
+    /// `DiffuseMode::Toon` through a four-texel `toon_ramp_texture`.
+    ToonRamp,
     /// `SpecularMode::Toon { smoothing: 0.1 }`.
     ToonHighlight,
     /// A rim everywhere.
     Rim,
     /// A rim on the lit side.
     RimLitSide,
+    /// A `PhongHemisphereLight`.
+    Hemisphere,
+    /// A `PhongLightCookie` on every light (a cube map on the point lights, a tiled image on
+    /// the directional one).
+    Cookies,
 }
 
 impl Features {
@@ -53,9 +61,12 @@ impl Features {
             Features::Environment => "environment",
             Features::Wrap => "wrap diffuse",
             Features::ToonBands => "toon bands",
+            Features::ToonRamp => "toon ramp",
             Features::ToonHighlight => "toon highlight",
             Features::Rim => "rim",
             Features::RimLitSide => "rim on the lit side",
+            Features::Hemisphere => "hemisphere light",
+            Features::Cookies => "light cookies",
         }
     }
 
@@ -202,6 +213,33 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
         ]
     }));
     let cube = images.add(cube_map());
+    let ramp = images.add(image(4, false, |x, _| {
+        [[0.15, 0.3, 0.75, 1.0][x as usize], 0.0, 0.0, 1.0]
+    }));
+    let cookie = images.add(image(256, true, |x, y| {
+        [wave(x, 256, 4.0), wave(y, 256, 3.0), 0.8, 1.0]
+    }));
+
+    if features == Features::Hemisphere {
+        world.insert_resource(PhongHemisphereLight::default());
+    }
+    if features == Features::Cookies {
+        let lights: Vec<Entity> = world
+            .query_filtered::<Entity, Or<(
+                With<PhongPointLight>,
+                With<PhongSpotLight>,
+                With<PhongDirectionalLight>,
+            )>>()
+            .iter(world)
+            .collect();
+        for light in lights {
+            world.entity_mut(light).insert(PhongLightCookie {
+                image: cookie.clone(),
+                tiled: true,
+                ..default()
+            });
+        }
+    }
     let uv_transform = Affine2::from_scale_angle_translation(Vec2::splat(2.0), 0.3, Vec2::ZERO);
 
     if features == Features::Environment {
@@ -263,6 +301,14 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                         smoothing: 0.1,
                     };
                 }
+                Features::ToonRamp => {
+                    material.diffuse_mode = DiffuseMode::Toon {
+                        bands: 3,
+                        smoothing: 0.1,
+                    };
+                    material.toon_ramp_texture = Some(ramp.clone());
+                }
+                Features::Hemisphere | Features::Cookies => {}
                 Features::ToonHighlight => {
                     material.specular_mode = SpecularMode::Toon { smoothing: 0.1 };
                 }

@@ -588,15 +588,18 @@ fn stylized_costs(options: &Options, directory: &Path) {
         None,
         Some(Features::Wrap),
         Some(Features::ToonBands),
+        Some(Features::ToonRamp),
         Some(Features::ToonHighlight),
         Some(Features::Rim),
         Some(Features::RimLitSide),
+        Some(Features::Hemisphere),
+        Some(Features::Cookies),
     ];
     let scene = |mode: Option<Features>| mode.map_or(Scene::Showcase, Scene::Featured);
     let phong = Shading::Phong(Some(SpecularModel::Phong));
     let mut csv = String::from("size,scene,round,median_ms\n");
-    let mut pictures: [Vec<u8>; 6] = [const { Vec::new() }; 6];
-    let times: [f64; 6] = alternating_medians(options.rounds, |row, round| {
+    let mut pictures: [Vec<u8>; 9] = [const { Vec::new() }; 9];
+    let times: [f64; 9] = alternating_medians(options.rounds, |row, round| {
         let scene = scene(modes[row]);
         let (median, picture) =
             median_frame_time_and_picture(scene, size, phong, options.culling, options.frames, &[]);

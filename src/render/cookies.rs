@@ -47,8 +47,8 @@ pub struct PhongCookies {
 }
 
 impl PhongCookies {
-    /// The value of a light record's cookie half for `entity`: its slot plus one, or `0`
-    /// for a light without a cookie this frame.
+    /// The cookie slot of `entity` plus one, or `0` for a light without a cookie this frame
+    /// (the gather turns it into the index of the cookie's record).
     pub fn slot_of(&self, entity: Entity) -> u32 {
         self.slots.get(&entity).map_or(0, |slot| slot + 1)
     }

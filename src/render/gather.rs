@@ -325,7 +325,28 @@ pub fn gather_lights(
         hemisphere_half_difference,
         padding_difference: 0,
     };
-    // The cookies after the lights, as records of a light's size (`GpuCookie`).
+    // The cookies after the lights, as records of a light's size (`GpuCookie`); each light's
+    // cookie slot becomes the index of its record (plus one), where 16 bits hold it.
+    let light_count = state.records.len() as u32;
+    if !cookies.records().is_empty() {
+        for record in &mut state.records {
+            let slot = record.shadow >> GpuLight::COOKIE_SHIFT;
+            if slot == 0 {
+                continue;
+            }
+            let index = light_count + slot - 1;
+            let shadow = record.shadow & GpuLight::SHADOW_BITS;
+            record.shadow = if index < GpuLight::SHADOW_BITS {
+                shadow | (index + 1) << GpuLight::COOKIE_SHIFT
+            } else {
+                bevy::log::warn_once!(
+                    "PhongLightCookie: more than 65,534 lights and cookies; the cookies past \
+                     that are left out"
+                );
+                shadow
+            };
+        }
+    }
     state.records.extend(
         cookies
             .records()

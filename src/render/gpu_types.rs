@@ -34,18 +34,20 @@ pub struct GpuLight {
     pub decay: [f32; 3],
     /// Two 16-bit indices: in the low half, the index of the light's first shadow view plus
     /// one, or `0` for a light that casts no shadow this frame; in the high half, the index
-    /// of its cookie ([`GpuCookie`], after the lights) plus one, or `0` for none.
+    /// of its cookie's record ([`GpuCookie`], after the lights) plus one, or `0` for none.
     pub shadow: u32,
 }
 
 impl GpuLight {
-    /// The first bit of the cookie's index in [`shadow`](Self::shadow).
+    /// The first bit of the cookie's record index in [`shadow`](Self::shadow).
     pub const COOKIE_SHIFT: u32 = 16;
+    /// The bits of the shadow view's index in [`shadow`](Self::shadow).
+    pub const SHADOW_BITS: u32 = 0xffff;
 }
 
 /// A light's cookie as the shader reads it (`bevy_phong::cookies`): 80 bytes, the size of a
-/// [`GpuLight`], stored after the lights in the light buffer (the `k`-th cookie at index
-/// `light_count + k`). See [`PhongLightCookie`](crate::PhongLightCookie).
+/// [`GpuLight`], stored after the lights in the light buffer (its index there in the high
+/// half of its light's [`GpuLight::shadow`]). See [`PhongLightCookie`](crate::PhongLightCookie).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCookie {

@@ -99,6 +99,10 @@ pub enum LightDescription {
         /// Shadow cascades, as `PhongCascades`.
         #[serde(default)]
         cascades: PhongCascades,
+        /// A cookie on the light's plane (one tile over `[−1, 1]²` across the light). Default
+        /// none.
+        #[serde(default)]
+        cookie: Option<CookieDescription>,
     },
     /// Light from a point in all directions.
     Point {
@@ -119,6 +123,9 @@ pub enum LightDescription {
         /// Shadow settings, as `PhongShadows`. Default off.
         #[serde(default)]
         shadows: PhongShadows,
+        /// A cookie around the light (a cube map packed in one image). Default none.
+        #[serde(default)]
+        cookie: Option<CookieDescription>,
     },
     /// Light from a point in a cone around `direction`.
     Spot {
@@ -150,7 +157,56 @@ pub enum LightDescription {
         /// Shadow settings, as `PhongShadows`. Default off.
         #[serde(default)]
         shadows: PhongShadows,
+        /// A cookie across the cone. Default none.
+        #[serde(default)]
+        cookie: Option<CookieDescription>,
     },
+}
+
+/// A light's cookie (`PhongLightCookie`): `(image: "window.png")`, and for a point light
+/// `cubemap_layout: SequenceHorizontal`, for a directional one `tiled: true`. The image is
+/// loaded as sRGB color data, relative to the scene file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CookieDescription {
+    /// Path of the image.
+    pub image: String,
+    /// How a point light's image packs the cube's faces. Default `CrossVertical`.
+    #[serde(default)]
+    pub cubemap_layout: CubemapLayoutDescription,
+    /// Whether a directional light's image repeats. Default `false`.
+    #[serde(default)]
+    pub tiled: bool,
+    /// Whether the red channel alone tints the light. Default `false`.
+    #[serde(default)]
+    pub red_only: bool,
+}
+
+/// Bevy's `CubemapLayout`, by name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CubemapLayoutDescription {
+    /// `+y` above `−x −z +x`, then `−y`, then `+z`, in a column of crosses.
+    #[default]
+    CrossVertical,
+    /// `+y` above `−x −z +x +z`, then `−y`.
+    CrossHorizontal,
+    /// `+x −x +y −y −z +z` from top to bottom.
+    SequenceVertical,
+    /// `+x −x +y −y −z +z` from left to right.
+    SequenceHorizontal,
+}
+
+impl CubemapLayoutDescription {
+    /// Bevy's layout.
+    pub fn to_layout(self) -> bevy::camera::primitives::CubemapLayout {
+        use bevy::camera::primitives::CubemapLayout;
+        match self {
+            Self::CrossVertical => CubemapLayout::CrossVertical,
+            Self::CrossHorizontal => CubemapLayout::CrossHorizontal,
+            Self::SequenceVertical => CubemapLayout::SequenceVertical,
+            Self::SequenceHorizontal => CubemapLayout::SequenceHorizontal,
+        }
+    }
 }
 
 fn default_inner_angle_degrees() -> f32 {

@@ -3,13 +3,14 @@
 
 use super::{
     CameraDescription, LightDescription, MaterialSource, MeshDescription, PhongSceneDescription,
-    SceneFileError, TransformDescription, read_ron, relative_path, scene_color,
+    SceneFileError, TransformDescription, material_file::load_texture, read_ron, relative_path,
+    scene_color,
 };
 use crate::{
     direction,
     lights::{
-        PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongPointLight,
-        PhongSpotLight,
+        PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongLightCookie,
+        PhongPointLight, PhongSpotLight,
     },
     material::PhongMaterial,
 };
@@ -30,8 +31,8 @@ pub struct PhongScene {
     pub ambient: Option<PhongAmbientLight>,
     /// The hemisphere light, if the file has one.
     pub hemisphere: Option<PhongHemisphereLight>,
-    /// Each light with where it is.
-    pub lights: Vec<(SceneLight, Transform)>,
+    /// Each light with where it is, and its cookie if it has one.
+    pub lights: Vec<(SceneLight, Transform, Option<PhongLightCookie>)>,
     /// Each object's mesh, material and transform.
     pub objects: Vec<(Handle<Mesh>, Handle<PhongMaterial>, Transform)>,
 }
@@ -141,6 +142,35 @@ fn build_scene(
 fn scene_light(
     light: &LightDescription,
     field: &str,
+    load_context: &mut LoadContext,
+) -> Result<(SceneLight, Transform, Option<PhongLightCookie>), SceneFileError> {
+    let cookie = match light {
+        LightDescription::Directional { cookie, .. }
+        | LightDescription::Point { cookie, .. }
+        | LightDescription::Spot { cookie, .. } => cookie,
+    };
+    let cookie = match cookie {
+        None => None,
+        Some(cookie) => {
+            let field = format!("{field}.cookie.image");
+            let image = load_texture(load_context, Some(&cookie.image), &field, true)?
+                .expect("a path was given");
+            Some(PhongLightCookie {
+                image,
+                cubemap_layout: cookie.cubemap_layout.to_layout(),
+                tiled: cookie.tiled,
+                red_only: cookie.red_only,
+            })
+        }
+    };
+    let (light, transform) = scene_light_alone(light, field, load_context)?;
+    Ok((light, transform, cookie))
+}
+
+/// The light component of `light` and where it is.
+fn scene_light_alone(
+    light: &LightDescription,
+    field: &str,
     load_context: &LoadContext,
 ) -> Result<(SceneLight, Transform), SceneFileError> {
     let color = |name: &str, color: &super::SceneColor| {
@@ -184,6 +214,7 @@ fn scene_light(
             direction,
             shadows,
             cascades,
+            ..
         } => (
             SceneLight::Directional(PhongDirectionalLight {
                 color: color("color", diffuse)?,
@@ -200,6 +231,7 @@ fn scene_light(
             decay,
             range,
             shadows,
+            ..
         } => (
             SceneLight::Point(PhongPointLight {
                 color: color("color", diffuse)?,
@@ -221,6 +253,7 @@ fn scene_light(
             outer_angle_degrees,
             exponent,
             shadows,
+            ..
         } => (
             SceneLight::Spot(PhongSpotLight {
                 color: color("color", diffuse)?,

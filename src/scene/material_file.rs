@@ -347,7 +347,7 @@ impl PhongMaterialDescription {
 
 /// Starts loading the image at `path` (relative to the file being loaded), as sRGB or
 /// linear data.
-fn load_texture(
+pub(super) fn load_texture(
     load_context: &mut LoadContext,
     path: Option<&str>,
     field: &str,

@@ -30,8 +30,9 @@ mod spawn;
 
 pub use color::SceneColor;
 pub use description::{
-    CameraDescription, HemisphereDescription, LightDescription, MaterialSource, MeshDescription,
-    ObjectDescription, PhongSceneDescription, TransformDescription,
+    CameraDescription, CookieDescription, CubemapLayoutDescription, HemisphereDescription,
+    LightDescription, MaterialSource, MeshDescription, ObjectDescription, PhongSceneDescription,
+    TransformDescription,
 };
 pub use error::{SceneFileError, parse_ron};
 pub(crate) use error::{read_ron, scene_color};

@@ -107,12 +107,15 @@ fn spawn_scene(
                 PhongSceneCamera,
             ));
         }
-        for (light, transform) in &scene.lights {
-            match light {
+        for (light, transform, cookie) in &scene.lights {
+            let mut light = match light {
                 SceneLight::Directional(light) => parent.spawn((light.clone(), *transform)),
                 SceneLight::Point(light) => parent.spawn((light.clone(), *transform)),
                 SceneLight::Spot(light) => parent.spawn((light.clone(), *transform)),
             };
+            if let Some(cookie) = cookie {
+                light.insert(cookie.clone());
+            }
         }
         for (mesh, material, transform) in &scene.objects {
             parent.spawn((

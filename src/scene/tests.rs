@@ -105,7 +105,8 @@ const GOOD_SCENE: &str = r##"(
     lights: [
         Directional(direction: (-1.0, -1.0, -1.0)),
         Point(position: (0.0, 3.0, 0.0), decay: (constant: 1.0, linear: 0.09, quadratic: 0.032)),
-        Spot(position: (0.0, 4.0, 0.0), direction: (0.0, -1.0, 0.0), color: Hex("#ffcc88")),
+        Spot(position: (0.0, 4.0, 0.0), direction: (0.0, -1.0, 0.0), color: Hex("#ffcc88"),
+             cookie: Some((image: "gobo.png", red_only: true))),
     ],
     objects: [
         (mesh: Sphere(radius: 1.0), material: Inline((base_color: Srgb(1.0, 0.0, 1.0), shininess: 50.0))),
@@ -138,6 +139,19 @@ fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
     );
     let ambient = app.world().resource::<crate::PhongAmbientLight>().color;
     assert_eq!(ambient, Color::srgb(0.1, 0.1, 0.2));
+    let world = app.world_mut();
+    let cookies: Vec<crate::PhongLightCookie> = world
+        .query_filtered::<&crate::PhongLightCookie, With<PhongSpotLight>>()
+        .iter(world)
+        .cloned()
+        .collect();
+    // Its image is a handle on the file's path (this app has no image loader).
+    assert_eq!(cookies.len(), 1, "the spot light's cookie");
+    assert!(cookies[0].red_only && !cookies[0].tiled);
+    assert_eq!(
+        world.resource::<AssetServer>().get_path(&cookies[0].image),
+        Some("gobo.png".into())
+    );
     let hemisphere = app.world().resource::<crate::PhongHemisphereLight>();
     assert_eq!(
         (hemisphere.sky_color, hemisphere.ground_color, hemisphere.up),

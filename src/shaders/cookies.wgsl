@@ -7,7 +7,7 @@
 
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
 #import bevy_phong::bindings::cookie_atlas
-#import bevy_phong::scene::{light_count, record_word}
+#import bevy_phong::scene::record_word
 #endif
 
 // `GpuCookie::projection`: a spot light's cone, a directional light's plane, or a point
@@ -21,10 +21,10 @@ const COOKIE_RED_ONLY: u32 = 1u;
 const COOKIE_TILED: u32 = 2u;
 
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
-// Texel `texel` of layer `layer`, its coordinates wrapped (tiled) or clamped to the layer,
-// decoded from the 8-bit sRGB values the atlas holds to linear.
-fn cookie_texel(layer: u32, texel: vec2<i32>, tiled: bool) -> vec3<f32> {
-    let side = i32(textureDimensions(cookie_atlas).x);
+// Texel `texel` of layer `layer` of a `side`-texel atlas, its coordinates wrapped (tiled)
+// or clamped to the layer, decoded from the 8-bit sRGB values the atlas holds to linear
+// (exactly: some devices' own sRGB decoding is approximate).
+fn cookie_texel(layer: u32, texel: vec2<i32>, side: i32, tiled: bool) -> vec3<f32> {
     let wrapped = ((texel % side) + side) % side;
     let clamped = clamp(texel, vec2<i32>(0), vec2<i32>(side - 1));
     let srgb = textureLoad(cookie_atlas, select(clamped, wrapped, tiled), layer, 0).rgb;
@@ -34,13 +34,13 @@ fn cookie_texel(layer: u32, texel: vec2<i32>, tiled: bool) -> vec3<f32> {
 // Layer `layer` at `uv`, bilinear between the four nearest texel centers (with f32 weights:
 // the reference model's filter, not the sampler's fixed-point one).
 fn cookie_sample(layer: u32, uv: vec2<f32>, tiled: bool) -> vec3<f32> {
-    let side = f32(textureDimensions(cookie_atlas).x);
-    let at = uv * side - 0.5;
+    let side = i32(textureDimensions(cookie_atlas).x);
+    let at = uv * f32(side) - 0.5;
     let corner = floor(at);
     let weight = at - corner;
     let texel = vec2<i32>(corner);
-    let top = mix(cookie_texel(layer, texel, tiled), cookie_texel(layer, texel + vec2<i32>(1, 0), tiled), weight.x);
-    let bottom = mix(cookie_texel(layer, texel + vec2<i32>(0, 1), tiled), cookie_texel(layer, texel + vec2<i32>(1, 1), tiled), weight.x);
+    let top = mix(cookie_texel(layer, texel, side, tiled), cookie_texel(layer, texel + vec2<i32>(1, 0), side, tiled), weight.x);
+    let bottom = mix(cookie_texel(layer, texel + vec2<i32>(0, 1), side, tiled), cookie_texel(layer, texel + vec2<i32>(1, 1), side, tiled), weight.x);
     return mix(top, bottom, weight.y);
 }
 
@@ -95,12 +95,12 @@ fn cube_face_uv(direction: vec3<f32>, packing: u32) -> vec2<f32> {
 }
 #endif
 
-// The tint of cookie `cookie` (its index among the cookies) at world position `position`:
+// The tint of the cookie whose record is at `index` in the light buffer (after the lights)
+// at world position `position`:
 // the image's color there, clamped to [0, 1], or its red channel alone; 1 where the image
 // does not reach (behind a spot light, off an untiled directional light's tile).
-fn light_cookie(cookie: u32, position: vec3<f32>) -> vec3<f32> {
+fn light_cookie(index: u32, position: vec3<f32>) -> vec3<f32> {
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 8
-    let index = light_count() + cookie;
     let at = vec4<f32>(position, 1.0);
     let local = vec3<f32>(
         dot(bitcast<vec4<f32>>(record_word(index, 0u)), at),

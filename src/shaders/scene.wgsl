@@ -171,12 +171,6 @@ fn record_word(index: u32, word: u32) -> vec4<u32> {
     return lights.lights[index][word];
 }
 
-// How many lights the light buffer holds before the cookies.
-fn light_count() -> u32 {
-    return lights.directional_count + lights.point_count + lights.spot_count
-        + lights.clustered_point_count + lights.clustered_spot_count;
-}
-
 // How many views have clusters; 0 when no light is clustered.
 fn cluster_view_count() -> u32 {
     return light_clusters.view_count;

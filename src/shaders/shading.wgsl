@@ -64,7 +64,8 @@ fn direct_lights(surface: PhongSurface) -> vec3<f32> {
     for (var index = 0u; index < end; index += 1u) {
         var light = light_at(index);
 #ifdef PHONG_LIGHT_COOKIES
-        // A cookie's index plus one in the high half of `shadow` (`GpuLight::shadow`).
+        // The index of the cookie's record plus one in the high half of `shadow`
+        // (`GpuLight::shadow`).
         let cookie = light.shadow >> 16u;
         if cookie != 0u {
             let tint = light_cookie(cookie - 1u, surface.position);

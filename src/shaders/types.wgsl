@@ -24,7 +24,8 @@ struct PhongLight {
     // (constant, linear, quadratic) distance fall-off (point, spot).
     decay: vec3<f32>,
     // Low 16 bits: index of the light's first shadow view plus one (0: no shadow). High 16
-    // bits: index of its cookie plus one (0: none; `bevy_phong::cookies`).
+    // bits: index of its cookie's record (after the lights) plus one (0: none;
+    // `bevy_phong::cookies`).
     shadow: u32,
 }
 
