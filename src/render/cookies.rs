@@ -42,7 +42,9 @@ pub struct PhongCookies {
     records: Vec<GpuCookie>,
     /// Each cookied light's slot in `records`.
     slots: EntityHashMap<u32>,
-    /// Images already warned about (unreadable, or past the atlas's capacity).
+    /// Images whose texels could not be read (until they change).
+    unreadable: HashSet<AssetId<Image>>,
+    /// Images already warned about past the atlas's capacity.
     warned: HashSet<AssetId<Image>>,
 }
 
@@ -95,16 +97,15 @@ pub fn gather_cookies(
         })
         .collect();
     let state = cookies.bypass_change_detection();
+    // An image that could not be read may be readable once it changed.
+    state.unreadable.retain(|id| !modified.contains(id));
+    // The images the atlas should hold: each loaded, readable cookie image once.
     let mut layers: Vec<AssetId<Image>> = Vec::new();
-    let mut texels = Vec::new();
     for (entity, cookie, _, _) in &lights {
         let id = cookie.image.id();
-        if layers.contains(&id) {
+        if layers.contains(&id) || state.unreadable.contains(&id) || !images.contains(id) {
             continue;
         }
-        let Some(image) = images.get(id) else {
-            continue;
-        };
         if layers.len() == MAX_COOKIE_IMAGES {
             if state.warned.insert(id) {
                 warn!(
@@ -115,24 +116,33 @@ pub fn gather_cookies(
             }
             continue;
         }
-        match cookie_layer_texels(image) {
-            Some(layer) => {
-                layers.push(id);
-                texels.push(layer);
-            }
-            None if state.warned.insert(id) => warn!(
-                "entity {entity}: PhongLightCookie.image has a format whose texels cannot be \
-                 read ({:?}) or no texels: the light is drawn without its cookie",
-                image.texture_descriptor.format
-            ),
-            None => {}
-        }
+        layers.push(id);
     }
     let rebuild = layers != state.layers
         || layers.iter().any(|id| modified.contains(id))
         || !images.contains(&PHONG_COOKIE_ATLAS);
     let mut changed = false;
     if rebuild {
+        // The images' texels are read only here, when the atlas changes.
+        let mut texels = Vec::new();
+        layers.retain(|id| {
+            let image = images.get(*id).expect("a loaded image");
+            match cookie_layer_texels(image) {
+                Some(layer) => {
+                    texels.push(layer);
+                    true
+                }
+                None => {
+                    warn!(
+                        "PhongLightCookie.image {id} has a format whose texels cannot be read \
+                         ({:?}) or no texels: its lights are drawn without their cookie",
+                        image.texture_descriptor.format
+                    );
+                    state.unreadable.insert(*id);
+                    false
+                }
+            }
+        });
         images
             .insert(&PHONG_COOKIE_ATLAS, atlas_image(&texels))
             .expect("the atlas handle accepts an image");
@@ -220,5 +230,105 @@ fn layout_index(layout: CubemapLayout) -> u32 {
         CubemapLayout::CrossHorizontal => 1,
         CubemapLayout::SequenceVertical => 2,
         CubemapLayout::SequenceHorizontal => 3,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::GpuLight;
+    use crate::test_app::{test_app, uploads_in_next_frame};
+    use bevy::{
+        asset::{AssetApp, RenderAssetUsages},
+        ecs::message::Messages,
+        prelude::Transform,
+        render::render_resource::{Extent3d, TextureDimension, TextureFormat},
+    };
+
+    fn image(format: TextureFormat) -> Image {
+        Image::new_fill(
+            Extent3d {
+                width: 4,
+                height: 4,
+                depth_or_array_layers: 1,
+            },
+            TextureDimension::D2,
+            &[200, 100, 50, 255, 0, 0, 0, 0][..format.block_copy_size(None).unwrap() as usize],
+            format,
+            RenderAssetUsages::default(),
+        )
+    }
+
+    /// How many times the atlas was added or modified since the last call.
+    fn atlas_writes(app: &mut bevy::app::App) -> usize {
+        app.world_mut()
+            .resource_mut::<Messages<AssetEvent<Image>>>()
+            .drain()
+            .filter(|event| {
+                event.is_added(&PHONG_COOKIE_ATLAS) || event.is_modified(&PHONG_COOKIE_ATLAS)
+            })
+            .count()
+    }
+
+    #[test]
+    fn a_cookie_gets_a_layer_and_a_record_and_the_atlas_is_written_only_when_it_changes() {
+        let mut app = test_app(|app| {
+            app.init_asset::<Image>();
+        });
+        atlas_writes(&mut app);
+        let readable = app
+            .world_mut()
+            .resource_mut::<Assets<Image>>()
+            .add(image(TextureFormat::Rgba8UnormSrgb));
+        let light = app
+            .world_mut()
+            .spawn((
+                PhongSpotLight::default(),
+                Transform::from_xyz(0.0, 3.0, 0.0),
+                PhongLightCookie {
+                    image: readable,
+                    ..Default::default()
+                },
+            ))
+            .id();
+        assert_eq!(
+            uploads_in_next_frame(&mut app),
+            1,
+            "the light and its cookie"
+        );
+        assert_eq!(
+            atlas_writes(&mut app),
+            1,
+            "the atlas gets the image's layer"
+        );
+        let cookies = app.world().resource::<PhongCookies>();
+        assert_eq!(cookies.records().len(), 1);
+        assert_eq!(cookies.slot_of(light), 1);
+        let buffer = app.world().resource::<super::super::PhongLightBuffer>();
+        // One light, then its cookie's record: the light holds index 1 (plus one).
+        assert_eq!(buffer.records().len(), 2);
+        assert_eq!(buffer.records()[0].shadow >> GpuLight::COOKIE_SHIFT, 2);
+
+        assert_eq!(uploads_in_next_frame(&mut app), 0, "nothing changed");
+        assert_eq!(atlas_writes(&mut app), 0, "nor the atlas");
+
+        // A compressed image: no layer, no record, a warning, and no rebuild after that.
+        let compressed = app
+            .world_mut()
+            .resource_mut::<Assets<Image>>()
+            .add(image(TextureFormat::Bc1RgbaUnorm));
+        app.world_mut()
+            .get_mut::<PhongLightCookie>(light)
+            .unwrap()
+            .image = compressed;
+        app.update();
+        assert_eq!(app.world().resource::<PhongCookies>().records().len(), 0);
+        atlas_writes(&mut app);
+        app.update();
+        assert_eq!(
+            atlas_writes(&mut app),
+            0,
+            "an unreadable image is read once"
+        );
     }
 }
