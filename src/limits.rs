@@ -133,6 +133,10 @@ pub const TOON_BANDS: u32 = 256;
 /// [`PhongLightCookie`](crate::PhongLightCookie)'s image is resampled to it.
 pub const COOKIE_RESOLUTION: u32 = 256;
 
+/// The widest spot cone, in radians, that a cookie's image is laid across (89.5°): a cone
+/// past 90° has no plane to lay it on, so a wider one takes its image at this angle.
+pub const WIDEST_SPOT_COOKIE: f32 = 89.5 * core::f32::consts::PI / 180.0;
+
 /// The most distinct cookie images a scene uses at once (layers of the atlas); lights whose
 /// image comes later are drawn without their cookie, with a warning.
 pub const MAX_COOKIE_IMAGES: usize = 64;

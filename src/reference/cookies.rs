@@ -3,7 +3,7 @@
 
 use crate::lights::PhongLightCookie;
 use crate::lights::cookie_layer_texels;
-use crate::limits::SPOT_ANGLE;
+use crate::limits::{SPOT_ANGLE, WIDEST_SPOT_COOKIE};
 use bevy::{
     camera::primitives::CubemapLayout, image::Image, transform::components::GlobalTransform,
 };
@@ -41,9 +41,6 @@ pub struct Cookie {
     pub red_only: bool,
 }
 
-/// The widest spot cone a cookie is laid across, as the crate's records take it.
-const WIDEST_SPOT_PROJECTION: f64 = 89.5 * core::f64::consts::PI / 180.0;
-
 impl Cookie {
     /// The cookie `cookie`, whose image is `image`, on a light at `transform`: a spot light
     /// with `spot_outer_angle`, else a point light (`point`) or a directional light.
@@ -65,9 +62,7 @@ impl Cookie {
         );
         let projection = match (spot_outer_angle, point) {
             (Some(outer), _) => CookieProjection::Spot {
-                tan_outer: f64::from(SPOT_ANGLE.apply(outer))
-                    .min(WIDEST_SPOT_PROJECTION)
-                    .tan(),
+                tan_outer: f64::from(SPOT_ANGLE.apply(outer).min(WIDEST_SPOT_COOKIE)).tan(),
             },
             (None, true) => CookieProjection::Point(cookie.cubemap_layout),
             (None, false) => CookieProjection::Directional {

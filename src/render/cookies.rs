@@ -7,7 +7,7 @@ use super::gpu_types::GpuCookie;
 use crate::lights::{
     PhongDirectionalLight, PhongLightCookie, PhongPointLight, PhongSpotLight, cookie_layer_texels,
 };
-use crate::limits::{MAX_COOKIE_IMAGES, SPOT_ANGLE};
+use crate::limits::{MAX_COOKIE_IMAGES, SPOT_ANGLE, WIDEST_SPOT_COOKIE};
 use crate::scene_variants::SCENE_HAS_LIGHT_COOKIES;
 use crate::storage_buffer::LightBufferResized;
 use bevy::{
@@ -27,10 +27,6 @@ use bevy::{
     transform::components::GlobalTransform,
 };
 use core::sync::atomic::Ordering;
-
-/// The widest angle a spot cookie's projection takes (a cone past 90° has no plane to lay
-/// the image on): 89.5°.
-const WIDEST_SPOT_PROJECTION: f32 = 89.5 * core::f32::consts::PI / 180.0;
 
 /// The cookies of this frame: the atlas's images, layer by layer, and each cookied light's
 /// record with the light's slot in them.
@@ -200,9 +196,7 @@ fn cookie_record(
     let row = |i: usize| [m.x_axis[i], m.y_axis[i], m.z_axis[i], t[i]];
     let (projection, tan_outer) = match (spot, point) {
         (Some(spot), _) => {
-            let angle = SPOT_ANGLE
-                .apply(spot.outer_angle)
-                .min(WIDEST_SPOT_PROJECTION);
+            let angle = SPOT_ANGLE.apply(spot.outer_angle).min(WIDEST_SPOT_COOKIE);
             (GpuCookie::SPOT, f64::from(angle).tan() as f32)
         }
         (None, Some(_)) => (GpuCookie::POINT + layout_index(cookie.cubemap_layout), 0.0),
