@@ -5,8 +5,8 @@
 #                               screenshots the canvas to target/browser/showcase.png and
 #                               checks the sphere's three highlights on it (`--check`);
 #   scripts/browser.sh --serve  keeps serving it and prints the address to open.
-# Installs what is missing: the wasm32 target, wasm-bindgen-cli at the version in
-# Cargo.lock and, for the test, Chromium and Node.js (Debian's packages) and
+# Installs what is missing: the pinned toolchain and its wasm32 target, wasm-bindgen-cli at
+# the version in Cargo.lock and, for the test, Chromium and Node.js (Debian's packages) and
 # playwright-core (npm, into target/browser/node_modules).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,10 +26,8 @@ fail() {
     exit 1
 }
 
-# What the build and the test need.
-if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
-    rustup target add wasm32-unknown-unknown
-fi
+# What the build and the test need: the pinned toolchain with its wasm32 target.
+scripts/ensure-toolchain.sh
 bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)
 [[ -n $bindgen_version ]] || fail "no wasm-bindgen in Cargo.lock"
 if [[ $(wasm-bindgen --version 2>/dev/null) != "wasm-bindgen $bindgen_version" ]]; then

@@ -3,6 +3,7 @@
 # target/showcase.png. Installs a Vulkan driver first if there is none.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+scripts/ensure-toolchain.sh
 scripts/ensure-vulkan.sh
 source scripts/software-adapter.sh
 source scripts/runtime-dir.sh

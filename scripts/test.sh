@@ -6,6 +6,7 @@
 # on lavapipe, so they always run on it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+scripts/ensure-toolchain.sh
 scripts/ensure-vulkan.sh
 source scripts/runtime-dir.sh
 export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"

@@ -1,14 +1,14 @@
 //! Displacement maps: a mesh's vertices moved along their normals by a texture, in every pass
 //! that draws the mesh (SPEC.md, "Displacement"). The uniform is made from a material in
 //! `material` (`From<&PhongMaterial>`). A displaced material's pipelines run the
-//! crate's vertex shaders (`phong_vertex.wgsl`, `phong_prepass_vertex.wgsl`), copies of
+//! crate's vertex shaders (`phong_vertex.wesl`, `phong_prepass_vertex.wesl`), copies of
 //! Bevy's with the displacement step; the others keep Bevy's own.
 
 use bevy::{
     asset::{Handle, uuid_handle},
     log::warn,
     math::Mat3,
-    mesh::{Mesh, MeshVertexBufferLayoutRef},
+    mesh::{Mesh, MeshAttributeCompressionFlags, MeshVertexBufferLayoutRef},
     reflect::Reflect,
     render::render_resource::{RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError},
     shader::Shader,
@@ -26,7 +26,7 @@ pub(crate) const PHONG_PREPASS_VERTEX_SHADER: Handle<Shader> =
 pub(crate) const DISPLACEMENT_DEF: &str = "PHONG_DISPLACEMENT_MAP";
 
 /// A displacement as the vertex stage reads it (`PhongDisplacement` in
-/// `bevy_phong::displacement`, binding 26).
+/// `bevy_phong::shaders::displacement`, binding 26).
 #[derive(Clone, Copy, Debug, PartialEq, Reflect, ShaderType)]
 pub struct DisplacementUniform {
     /// The UV transform applied to the first UV set before the map is read.
@@ -90,6 +90,18 @@ pub(crate) fn displace(
             .0
             .get_layout(&[Mesh::ATTRIBUTE_NORMAL.at_shader_location(3)])?;
         buffer.attributes.extend(normal.attributes);
+        // The normal as the mesh stores it: Bevy 0.20 may keep it compressed (octahedral),
+        // as its own prepass says with the same def where it binds the normal itself.
+        if layout
+            .0
+            .get_attribute_compression()
+            .contains(MeshAttributeCompressionFlags::COMPRESS_NORMAL)
+        {
+            descriptor
+                .vertex
+                .shader_defs
+                .push("VERTEX_NORMALS_COMPRESSED".into());
+        }
     }
     Ok(())
 }

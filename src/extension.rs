@@ -1,8 +1,8 @@
 //! # Adding a light kind
 //!
 //! A new kind of light plugs into Phong lighting without touching this crate: a component,
-//! a GPU record, a material extension and a few lines of WGSL. The crate's
-//! [`examples/searchlight`](https://github.com/) builds a searchlight (a beam of parallel
+//! a GPU record, a material extension and a few lines of WESL. The crate's
+//! `examples/searchlight` builds a searchlight (a beam of parallel
 //! light with a circular, triangular, diamond or square cross-section) this way; the steps
 //! below follow it.
 //!
@@ -104,7 +104,7 @@
 //!
 //! impl MaterialExtension for LampExtension {
 //!     fn fragment_shader() -> ShaderRef {
-//!         "shaders/lamp.wgsl".into()
+//!         "shaders/lamp.wesl".into()
 //!     }
 //! }
 //!
@@ -125,20 +125,28 @@
 //!
 //! ## 4. The shader
 //!
-//! The extension's fragment shader lights the surface as `PhongMaterial` does and adds the
-//! new term with the same per-light function, `phong_light` (diffuse plus highlight for a
-//! light direction `L`); attenuation and shape are the new kind's own:
+//! The extension's fragment shader (WESL) builds on the crate's shader API,
+//! `bevy_phong::shaders::fragment`, in three steps, as Bevy's PBR shaders build on
+//! `pbr_input_from_standard_material`, `apply_pbr_lighting` and
+//! `main_pass_post_lighting_processing`: `phong_input_from_material` gives the surface as
+//! the `PhongMaterial` and its maps give it at the fragment (vertex colors, every map, flat
+//! shading, the alpha mask); `apply_phong_lighting` lights it with the crate's lights;
+//! `phong_post_lighting_processing` adds what the camera adds (fog, tone mapping). The new
+//! kind's term goes between the last two, with the crate's per-light function `phong_light`
+//! (diffuse plus highlight for a light direction `L`); attenuation and shape are the kind's
+//! own:
 //!
 //! ```wgsl
-//! #import bevy_pbr::{forward_io::VertexOutput, mesh_view_bindings::view}
-//! #import bevy_phong::{
-//!     bindings::material,
+//! import bevy_pbr::render::forward_io::VertexOutput;
+//! import bevy_phong::shaders::{
 //!     data_texture::data_texel,
+//!     fragment::{apply_phong_lighting, phong_input_from_material, phong_post_lighting_processing},
 //!     lighting::{phong_light, normalize_or_zero},
-//!     shading::{material_surface, phong_shade},
-//! }
+//! };
 //!
-//! @group(#{MATERIAL_BIND_GROUP}) @binding(100) var lamps: texture_2d<u32>;
+//! @group(constants::MATERIAL_BIND_GROUP) @binding(100) var lamps: texture_2d<u32>;
+//!
+//! struct Lamp { position: vec3<f32>, color: vec3<f32> }
 //!
 //! // Texel 0 holds the count; each 32-byte lamp takes 2 texels after it.
 //! fn lamp_at(index: u32) -> Lamp {
@@ -148,21 +156,23 @@
 //! }
 //!
 //! @fragment
-//! fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
-//!     let surface = material_surface(in.world_position.xyz, in.world_normal, view.world_position);
-//!     var color = phong_shade(surface);
+//! fn fragment(@builtin(front_facing) is_front: bool, in: VertexOutput) -> @location(0) vec4<f32> {
+//!     let input = phong_input_from_material(in, is_front);
+//!     var color = apply_phong_lighting(input);
 //!     let count = data_texel(lamps, 0u).x;
 //!     for (var i = 0u; i < count; i += 1u) {
 //!         let lamp = lamp_at(i);
-//!         let to_light = normalize_or_zero(lamp.position - surface.position);
-//!         color += phong_light(surface, to_light, lamp.color, lamp.color);
+//!         let to_light = normalize_or_zero(lamp.position - input.surface.position);
+//!         color += vec4(phong_light(input.surface, to_light, lamp.color, lamp.color), 0.0);
 //!     }
-//!     return vec4(color, material.base_color.a);
+//!     return phong_post_lighting_processing(input, color);
 //! }
 //! ```
 //!
 //! Bound as a storage buffer, the same lamps read `lamps.lights[i]` from
-//! `var<storage, read> lamps: Lamps` (the struct above).
+//! `var<storage, read> lamps: Lamps` (the struct above). The repository's
+//! `docs/extension.md` lists every function of the API and what changed from the naga_oil
+//! imports of bevy_phong 0.1.
 //!
 //! ## 5. The reference
 //!
@@ -181,17 +191,16 @@
 //! shader turns the slot into the factors on the two terms:
 //!
 //! ```wgsl
-//! #import bevy_phong::shadows::shadow_factors
-//! // In the fragment shader, before lighting: honour `NotShadowReceiver`.
-//! surface.receives_shadows = receives_shadows(in.instance_index);
-//! // Per light: (diffuse factor, specular factor). `PHONG_SHADOWS` is defined only while
-//! // some light casts shadows: without it the shadow code is left out, which keeps
-//! // scenes without shadows as fast as before (see `PhongMaterialKey::shadows`).
+//! @if(PHONG_SHADOWS)
+//! import bevy_phong::shaders::shadows::shadow_factors;
+//! // Per light: (diffuse factor, specular factor); `input.surface.receives_shadows` already
+//! // honours `NotShadowReceiver`. The flag `PHONG_SHADOWS` is set only while some light
+//! // casts shadows: without it the shadow code is left out, which keeps scenes without
+//! // shadows as fast as before (see `PhongMaterialKey::shadows`).
 //! var shadow = vec2<f32>(1.0);
-//! #ifdef PHONG_SHADOWS
-//! shadow = shadow_factors(lamp.shadow, surface, to_light, lamp.position);
-//! #endif
-//! color += phong_light(surface, to_light, shadow.x * lamp.color, shadow.y * lamp.color);
+//! @if(PHONG_SHADOWS)
+//! shadow = shadow_factors(lamp.shadow, input.surface, to_light, lamp.position);
+//! color += vec4(phong_light(input.surface, to_light, shadow.x * lamp.color, shadow.y * lamp.color), 0.0);
 //! ```
 //!
 //! The searchlight's beams each request a `Beam`: one orthographic map along the beam.
@@ -249,7 +258,7 @@ pub trait PhongLightKind: Component {
 
     /// Stores the light's shadow slot in its record: the index of its first shadow view plus
     /// one, or `0` when it casts no shadow this frame. The shader passes it to
-    /// `bevy_phong::shadows::light_visibility`. Kinds without shadows keep the default,
+    /// `bevy_phong::shaders::shadows::light_visibility`. Kinds without shadows keep the default,
     /// which stores nothing.
     fn set_shadow(record: &mut Self::Gpu, shadow: u32) {
         let _ = (record, shadow);
@@ -288,7 +297,7 @@ impl<L: PhongLightKind> PhongLightKindBuffer<L> {
     /// The same bytes in a data texture, to bind with `#[texture(N, sample_type = "u_int")]`
     /// on every device, WebGL2 included: texel 0 is the [`GpuLightCount`] header, record
     /// `i` starts at texel `1 + i · size_of::<L::Gpu>() / 16`. WGSL reads texel `t` with
-    /// `bevy_phong::data_texture::data_texel(texture, t)`. It holds up to
+    /// `bevy_phong::shaders::data_texture::data_texel(texture, t)`. It holds up to
     /// [`DATA_TEXTURE_MAX_TEXELS`] texels; past
     /// them the last records are left out, with a warning.
     pub fn texture(&self) -> &Handle<Image> {
@@ -489,7 +498,9 @@ mod tests {
         assert_eq!(uploads_in_next_frame(&mut app), 1);
         let buffers = app.world().resource::<Assets<ShaderBuffer>>();
         let lamps = app.world().resource::<PhongLightKindBuffer<Lamp>>();
-        let bytes = buffers.get(lamps.handle()).unwrap().data.clone().unwrap();
+        let bytes = crate::storage_buffer::buffer_bytes(buffers.get(lamps.handle()).unwrap())
+            .unwrap()
+            .to_vec();
         let header: &GpuLightCount = bytemuck::from_bytes(&bytes[..16]);
         assert_eq!(header.count, 1);
         assert_eq!(

@@ -25,9 +25,9 @@ use core::sync::atomic::Ordering;
 use serde::{Deserialize, Serialize};
 
 /// Path of the material's fragment shader among the crate's embedded assets.
-pub(crate) const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wgsl";
+pub(crate) const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wesl";
 /// Path of the material's prepass fragment shader among the crate's embedded assets.
-pub(crate) const PHONG_PREPASS_SHADER: &str = "embedded://bevy_phong/shaders/phong_prepass.wgsl";
+pub(crate) const PHONG_PREPASS_SHADER: &str = "embedded://bevy_phong/shaders/phong_prepass.wesl";
 
 /// How the highlight of a light is shaped (SPEC.md's `H`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
@@ -397,7 +397,7 @@ impl From<Color> for PhongMaterial {
 }
 
 /// [`PhongMaterial`] as the shader reads it (`PhongMaterialUniform` in
-/// `bevy_phong::types`).
+/// `bevy_phong::shaders::types`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, ShaderType)]
 pub struct PhongMaterialUniform {
     /// `k_d`, linear RGB, with the output alpha.
@@ -875,7 +875,7 @@ impl Material for PhongMaterial {
     }
 
     /// Discards what the main pass discards and writes the normal it lights with (see
-    /// `phong_prepass.wgsl`).
+    /// `phong_prepass.wesl`).
     fn prepass_fragment_shader() -> ShaderRef {
         PHONG_PREPASS_SHADER.into()
     }
@@ -894,6 +894,7 @@ impl Material for PhongMaterial {
         if key.bind_group_data.displacement {
             crate::displacement::displace(descriptor, layout, "PhongMaterial")?;
         }
+        crate::scene_variants::add_scene_data_flag(descriptor);
         if let Some(fragment) = descriptor.fragment.as_mut() {
             let defs = key.bind_group_data.shader_defs(layout);
             fragment

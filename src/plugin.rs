@@ -104,36 +104,43 @@ impl Plugin for PhongPlugin {
         // device (`WgpuSettings::backends: None`), as Bevy's own plugins do: tools can then
         // compose them without a GPU. ECS-only apps (`MinimalPlugins`) have no shader assets.
         if app.world().contains_resource::<Assets<Shader>>() {
-            load_shader_library!(app, "shaders/types.wgsl");
-            load_shader_library!(app, "shaders/lighting.wgsl");
-            load_shader_library!(app, "shaders/bindings.wgsl");
-            load_shader_library!(app, "shaders/data_texture.wgsl");
-            load_shader_library!(app, "shaders/scene.wgsl");
-            load_shader_library!(app, "shaders/view_key.wgsl");
-            load_shader_library!(app, "shaders/shading.wgsl");
-            load_shader_library!(app, "shaders/normals.wgsl");
-            load_shader_library!(app, "shaders/uv.wgsl");
-            load_shader_library!(app, "shaders/environment.wgsl");
-            load_shader_library!(app, "shaders/texture_maps.wgsl");
-            load_shader_library!(app, "shaders/shadows.wgsl");
-            load_shader_library!(app, "shaders/camera_effects.wgsl");
-            embedded_asset!(app, "shaders/phong_material.wgsl");
-            embedded_asset!(app, "shaders/phong_prepass.wgsl");
-            embedded_asset!(app, "shaders/shadow_caster.wgsl");
-            load_shader_library!(app, "shaders/displacement.wgsl");
-            load_shader_library!(app, "shaders/toon_ramp.wgsl");
-            load_shader_library!(app, "shaders/cookies.wgsl");
+            load_shader_library!(app, "shaders/types.wesl");
+            load_shader_library!(app, "shaders/lighting.wesl");
+            load_shader_library!(app, "shaders/bindings.wesl");
+            load_shader_library!(app, "shaders/data_texture.wesl");
+            load_shader_library!(app, "shaders/scene.wesl");
+            load_shader_library!(app, "shaders/view_key.wesl");
+            load_shader_library!(app, "shaders/shading.wesl");
+            load_shader_library!(app, "shaders/normals.wesl");
+            load_shader_library!(app, "shaders/uv.wesl");
+            load_shader_library!(app, "shaders/environment.wesl");
+            load_shader_library!(app, "shaders/texture_maps.wesl");
+            load_shader_library!(app, "shaders/shadows.wesl");
+            load_shader_library!(app, "shaders/camera_effects.wesl");
+            load_shader_library!(app, "shaders/fragment.wesl");
+            embedded_asset!(app, "shaders/phong_material.wesl");
+            embedded_asset!(app, "shaders/phong_prepass.wesl");
+            embedded_asset!(app, "shaders/shadow_caster.wesl");
+            load_shader_library!(app, "shaders/displacement.wesl");
+            load_shader_library!(app, "shaders/toon_ramp.wesl");
+            load_shader_library!(app, "shaders/cookies.wesl");
             load_internal_asset!(
                 app,
                 crate::displacement::PHONG_VERTEX_SHADER,
-                "shaders/phong_vertex.wgsl",
-                Shader::from_wgsl
+                "shaders/phong_vertex.wesl",
+                |source, _path| Shader::from_wesl(
+                    source,
+                    "embedded://bevy_phong/shaders/phong_vertex.wesl"
+                )
             );
             load_internal_asset!(
                 app,
                 crate::displacement::PHONG_PREPASS_VERTEX_SHADER,
-                "shaders/phong_prepass_vertex.wgsl",
-                Shader::from_wgsl
+                "shaders/phong_prepass_vertex.wesl",
+                |source, _path| Shader::from_wesl(
+                    source,
+                    "embedded://bevy_phong/shaders/phong_prepass_vertex.wesl"
+                )
             );
         }
         if app.get_sub_app(RenderApp).is_none() {

@@ -8,7 +8,8 @@ use bevy::{
     app::App,
     asset::{AssetApp, Assets, Handle},
     ecs::message::Message,
-    render::storage::ShaderBuffer,
+    platform::collections::AlignedVec,
+    render::storage::{ShaderBuffer, ShaderBufferData},
 };
 use bytemuck::Pod;
 
@@ -119,22 +120,45 @@ impl LightBuffer {
     }
 }
 
+/// The bytes a [`ShaderBuffer`] asset holds, up to its buffer size; `None` before its first
+/// write.
+pub(crate) fn buffer_bytes(asset: &ShaderBuffer) -> Option<&[u8]> {
+    match &asset.data {
+        ShaderBufferData::Initialized { data, buffer_size } => {
+            Some(&data[..data.len().min(*buffer_size as usize)])
+        }
+        ShaderBufferData::Uninitialized(_) => None,
+    }
+}
+
 /// Whether `asset` is `size` bytes long and starts with `header, records` (the caller knows
 /// that the rest is zero).
 fn holds(asset: &ShaderBuffer, header: &[u8], records: &[u8], size: usize) -> bool {
-    asset.data.as_deref().is_some_and(|data| {
-        data.len() == size && data.starts_with(header) && data[header.len()..].starts_with(records)
-    })
+    match &asset.data {
+        ShaderBufferData::Initialized { data, buffer_size } => {
+            *buffer_size == size as u64
+                && data.len() == size
+                && data.starts_with(header)
+                && data[header.len()..].starts_with(records)
+        }
+        ShaderBufferData::Uninitialized(_) => false,
+    }
 }
 
 /// Replaces the bytes of `asset` with `header, records`, zero-padded to `size`.
 fn fill<H: Pod, R: Pod>(asset: &mut ShaderBuffer, header: &H, records: &[R], size: usize) {
-    let data = asset.data.get_or_insert_with(Vec::new);
+    let mut data = match core::mem::take(&mut asset.data) {
+        ShaderBufferData::Initialized { data, .. } => data,
+        ShaderBufferData::Uninitialized(_) => AlignedVec::new(align_of::<R>().max(align_of::<H>())),
+    };
     data.clear();
     data.extend_from_slice(bytemuck::bytes_of(header));
     data.extend_from_slice(bytemuck::cast_slice(records));
     data.resize(size, 0);
-    asset.buffer_description.size = size as u64;
+    asset.data = ShaderBufferData::Initialized {
+        data,
+        buffer_size: size as u64,
+    };
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ use bevy::{
 };
 
 /// Path of the material's fragment shader among the crate's embedded assets.
-pub(crate) const SURFACE_INPUTS_SHADER: &str = "embedded://bevy_phong/shaders/surface_inputs.wgsl";
+pub(crate) const SURFACE_INPUTS_SHADER: &str = "embedded://bevy_phong/shaders/surface_inputs.wesl";
 
 /// Adds [`SurfaceInputsMaterial`]: for tests and tools that check a render against the
 /// reference model. Games don't need it.
@@ -24,7 +24,7 @@ pub struct SurfaceInputsPlugin;
 
 impl Plugin for SurfaceInputsPlugin {
     fn build(&self, app: &mut App) {
-        embedded_asset!(app, "shaders/surface_inputs.wgsl");
+        embedded_asset!(app, "shaders/surface_inputs.wesl");
         app.add_plugins(MaterialPlugin::<SurfaceInputsMaterial>::default());
     }
 }
@@ -201,6 +201,7 @@ impl Material for SurfaceInputsMaterial {
         if key.bind_group_data.displaced {
             crate::displacement::displace(descriptor, layout, "SurfaceInputsMaterial")?;
         }
+        crate::scene_variants::add_scene_data_flag(descriptor);
         Ok(())
     }
 }

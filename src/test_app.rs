@@ -73,6 +73,7 @@ pub fn built_in_buffer_bytes(app: &App) -> Vec<u8> {
     app.world()
         .resource::<Assets<ShaderBuffer>>()
         .get(&PHONG_LIGHT_BUFFER)
-        .and_then(|buffer| buffer.data.clone())
+        .and_then(crate::storage_buffer::buffer_bytes)
+        .map(<[u8]>::to_vec)
         .expect("the light buffer is written on the first frame")
 }

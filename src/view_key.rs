@@ -37,7 +37,7 @@ pub fn view_key(frustum: &Frustum) -> u32 {
 mod tests {
     use super::*;
     use bevy::math::Vec4;
-    use bevy::math::primitives::HalfSpace;
+    use bevy::shape::HalfSpace;
 
     fn frustum(offset: f32) -> Frustum {
         let mut frustum = Frustum::default();

@@ -66,7 +66,7 @@ fn crowd_app(shadows: bool) -> (App, Vec<Entity>) {
     app.update();
     let world = app.world_mut();
     let mesh = member_mesh();
-    let aabb = mesh.compute_aabb().expect("the sheet has positions");
+    let aabb = mesh.get_aabb().expect("the sheet has positions");
     let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
     let bind_poses = world
         .resource_mut::<Assets<SkinnedMeshInverseBindposes>>()

@@ -6,7 +6,7 @@
 //! with the lights written into the shader: together they split the lights' cost into
 //! reading and arithmetic. `StandardMaterial` is the last row, for the ratio to it.
 //!
-//! A stage is a set of defs of the benchmark's own fragment shader, `ablation.wgsl` beside
+//! A stage is a set of defs of the benchmark's own fragment shader, `ablation.wesl` beside
 //! this file, which the benchmark puts in place of `PhongMaterial`'s fragment shader for
 //! the row ([`median_frame_time_and_picture`]); the crate's shaders carry no cut. That
 //! shader is made of the crate's WGSL functions (`phong_surface`, `incidence`,
@@ -43,7 +43,7 @@ struct Stage {
     /// The row's name in the table and the CSV file (quoted there: it holds no quotes).
     name: &'static str,
     shading: Shading,
-    /// The defs of `ablation.wgsl`, drawn in place of `PhongMaterial`'s fragment shader;
+    /// The defs of `ablation.wesl`, drawn in place of `PhongMaterial`'s fragment shader;
     /// none: the crate's shader.
     defs: &'static [&'static str],
     /// The row (index into [`STAGES`]) whose work this one adds to; `None` for the floor.

@@ -369,7 +369,7 @@ fn alternating_medians<const ROWS: usize>(
 
 /// The scene data in storage buffers beside the data texture of devices without them
 /// (WebGL2), all measured in this run. Each measurement runs in a process of its own, the
-/// texture's with `WGPU_SETTINGS_PRIO=webgl2`, as a game gets its device: Bevy 0.19 does
+/// texture's with `WGPU_SETTINGS_PRIO=webgl2`, as a game gets its device: Bevy 0.19 did
 /// not load shaders in a second app of one process whose device has WebGL2's limits after
 /// one with full limits.
 fn fallback_costs(options: &Options, directory: &Path) {

@@ -122,7 +122,7 @@ pub struct ConstantColor {
 
 impl Material for ConstantColor {
     fn fragment_shader() -> ShaderRef {
-        "shaders/constant_color.wgsl".into()
+        "shaders/constant_color.wesl".into()
     }
 }
 

@@ -19,8 +19,8 @@ use bevy_phong_headless::{
 };
 use std::time::{Duration, Instant};
 
-/// The asset path of `PhongMaterial`'s fragment shader (`src/shaders/phong_material.wgsl`).
-const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wgsl";
+/// The asset path of `PhongMaterial`'s fragment shader (`src/shaders/phong_material.wesl`).
+const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wesl";
 
 /// Frames to wait for a shader to load before giving up.
 const MAX_WAIT_FRAMES: u32 = 600;
@@ -141,9 +141,9 @@ fn measured_app(
     }
 }
 
-/// The benchmark's cut fragment shader (`examples/bench/ablation.wgsl`), composed from the
-/// crate's WGSL functions.
-const ABLATION_SHADER: &str = include_str!("ablation.wgsl");
+/// The benchmark's cut fragment shader (`examples/bench/ablation.wesl`), composed from the
+/// crate's shader functions.
+const ABLATION_SHADER: &str = include_str!("ablation.wesl");
 
 /// Waits until the shader asset at `path` has loaded, then puts the ablation's shader
 /// ([`ABLATION_SHADER`]) with `defs` in its place. Bevy composes every pipeline of that
@@ -167,10 +167,15 @@ fn replace_with_ablation_shader(
         std::thread::sleep(Duration::from_millis(1));
         frames += 1;
     }
-    let defs = defs.iter().map(|&def| ShaderDefVal::from(def)).collect();
+    let defs = defs
+        .iter()
+        .map(|&def| ShaderDefVal::Bool(def.to_owned().into(), true))
+        .collect();
     let mut shaders = app.world_mut().resource_mut::<Assets<Shader>>();
     let mut shader = shaders.get_mut(&handle).expect("the shader has loaded");
-    *shader = Shader::from_wgsl_with_defs(ABLATION_SHADER, "examples/bench/ablation.wgsl", defs);
+    let mut ablation = Shader::from_wesl(ABLATION_SHADER, "examples/bench/ablation.wesl");
+    ablation.shader_defs = defs;
+    *shader = ablation;
     handle
 }
 
@@ -190,7 +195,7 @@ fn spawn_camera(world: &mut World, scene: Scene, size: u32) -> Handle<Image> {
             },
             RenderTarget::Image(target.clone().into()),
             Msaa::Off,
-            Tonemapping::None,
+            Tonemapping::Linear,
             Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y),
         ));
     }

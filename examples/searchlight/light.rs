@@ -111,7 +111,7 @@ impl Default for Searchlight {
     }
 }
 
-/// One searchlight as `searchlight.wgsl` reads it (96 bytes).
+/// One searchlight as `searchlight.wesl` reads it (96 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuSearchlight {
@@ -198,6 +198,6 @@ impl SearchlightExtension {
 
 impl MaterialExtension for SearchlightExtension {
     fn fragment_shader() -> ShaderRef {
-        "shaders/searchlight.wgsl".into()
+        "shaders/searchlight.wesl".into()
     }
 }

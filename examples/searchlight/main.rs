@@ -1,7 +1,7 @@
 //! Searchlights, a light kind added from outside the crate with `bevy_phong`'s extension API:
 //! four beams of parallel light, one of each cross-section (circle, triangle, diamond,
 //! square), sweep over a floor and a few objects that an ambient and a point light also
-//! light. See `light.rs` for the light and `assets/shaders/searchlight.wgsl` for its shader.
+//! light. See `light.rs` for the light and `assets/shaders/searchlight.wesl` for its shader.
 //!
 //! Keys: `1`–`4` select a searchlight, `S` changes its shape, `E` its edge softness,
 //! `Space` pauses the sweep.

@@ -118,7 +118,7 @@ pub struct StillLoading;
     reason = "the glTF scene's camera is a game's (HDR, tonemapped)"
 )]
 pub fn example_camera(transform: Transform) -> impl Bundle {
-    (Camera3d::default(), Tonemapping::None, transform)
+    (Camera3d::default(), Tonemapping::Linear, transform)
 }
 
 /// Switches every `PhongMaterial` between Phong and Blinn-Phong highlights (key B).

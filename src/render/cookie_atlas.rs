@@ -12,7 +12,7 @@ use bevy::{
     },
 };
 
-/// The atlas image, bound by every Phong material (`cookie_atlas` in `bevy_phong::bindings`)
+/// The atlas image, bound by every Phong material (`cookie_atlas` in `bevy_phong::shaders::bindings`)
 /// where the device binds every map.
 pub(crate) const PHONG_COOKIE_ATLAS: Handle<Image> =
     uuid_handle!("9b4e6d2a-7c1f-4e85-b3a0-5d8f2c6e1a47");

@@ -2,7 +2,7 @@
 //!
 //! A data texture is an `Rgba32Uint` texture [`DATA_TEXTURE_WIDTH`] texels wide: texel `i`
 //! (counting row after row) holds bytes `16 i .. 16 i + 16` of what it stores, as four
-//! little-endian `u32`s. Shaders read texel `i` with `bevy_phong::data_texture::data_texel`
+//! little-endian `u32`s. Shaders read texel `i` with `bevy_phong::shaders::data_texture::data_texel`
 //! and rebuild their structs with `bitcast`. The bytes are those of the storage buffers,
 //! unchanged, so both paths read the same values.
 
@@ -13,7 +13,7 @@ use bevy::{
 };
 
 /// Texels per row: WebGL2's smallest guaranteed texture size (`DATA_TEXTURE_WIDTH` in
-/// `data_texture.wgsl`).
+/// `data_texture.wesl`).
 pub const DATA_TEXTURE_WIDTH: u32 = 2048;
 
 /// Most rows, the same bound: `2048 × 2048` texels of 16 bytes, 64 MiB.

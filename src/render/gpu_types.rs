@@ -1,8 +1,8 @@
-//! The GPU layout of the light buffer, as the shader reads it (`bevy_phong::types`).
+//! The GPU layout of the light buffer, as the shader reads it (`bevy_phong::shaders::types`).
 //!
 //! The Rust structs here are `#[repr(C)]` plain data, written into the buffer byte for byte;
 //! a test compares their sizes and field offsets with the layout naga reflects from
-//! `shaders/types.wgsl`.
+//! `shaders/types.wesl`.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -45,7 +45,7 @@ impl GpuLight {
     pub const SHADOW_BITS: u32 = 0xffff;
 }
 
-/// A light's cookie as the shader reads it (`bevy_phong::cookies`): 80 bytes, the size of a
+/// A light's cookie as the shader reads it (`bevy_phong::shaders::cookies`): 80 bytes, the size of a
 /// [`GpuLight`], stored after the lights in the light buffer (its index there in the high
 /// half of its light's [`GpuLight::shadow`]). See [`PhongLightCookie`](crate::PhongLightCookie).
 #[repr(C)]

@@ -14,9 +14,9 @@ use bevy::{
     render::{
         render_asset::RenderAssets,
         render_resource::{
-            AsBindGroup, AsBindGroupError, BindGroupLayout, BindGroupLayoutEntry, BindingType,
-            BufferBindingType, OwnedBindingResource, SamplerBindingType, ShaderStages,
-            TextureSampleType, TextureViewDimension, UnpreparedBindGroup,
+            AsBindGroup, AsBindGroupError, BindGroupBuilder, BindGroupLayout, BindGroupLayoutEntry,
+            BindingType, BufferBindingType, SamplerBindingType, ShaderStages, TextureSampleType,
+            TextureViewDimension, UnpreparedBindingResource,
         },
         renderer::RenderDevice,
         storage::GpuShaderBuffer,
@@ -91,7 +91,7 @@ impl From<&PhongMaterial> for SurfaceBindings {
 }
 
 /// The plugin's scene data that every Phong material binds beside its own, read from the
-/// render world (the names are those of `bevy_phong::bindings`): 1 the light buffer
+/// render world (the names are those of `bevy_phong::shaders::bindings`): 1 the light buffer
 /// (`lights`), 2 the light clusters (`light_clusters`), 11 the shadow views (`shadow_views`), 12 the
 /// shadow map array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`), 28 the
 /// light cookie atlas (`cookie_atlas`, a 2D array read texel by texel). A
@@ -101,7 +101,8 @@ impl From<&PhongMaterial> for SurfaceBindings {
 /// Where a shader stage has fewer than [`Self::STORAGE_BUFFERS_NEEDED`] storage buffers
 /// (WebGL2 has none), binding 1 is instead one `texture_2d<u32>` that holds the lights, the
 /// clusters and the shadow views (`scene_data`), and bindings 2, 11 and 28 are absent; the shaders
-/// choose the same way from Bevy's `AVAILABLE_STORAGE_BUFFER_BINDINGS`.
+/// follow the layout through the flag `PHONG_STORAGE_BUFFERS`, which every pipeline drawing
+/// with them sets from its material bind group's layout.
 #[derive(SystemParam)]
 pub struct PhongSceneBindings<'w> {
     device: Res<'w, RenderDevice>,
@@ -112,7 +113,7 @@ pub struct PhongSceneBindings<'w> {
 
 impl PhongSceneBindings<'_> {
     /// Binding index of the light buffer.
-    pub const LIGHTS: u32 = 1;
+    pub const LIGHTS: u32 = crate::scene_variants::LIGHT_BUFFER_BINDING;
     /// Binding index of the scene data texture, where storage buffers are missing (in
     /// place of the light buffer).
     pub const SCENE_DATA: u32 = 1;
@@ -193,7 +194,7 @@ impl PhongSceneBindings<'_> {
     }
 
     /// The three storage buffers' bindings.
-    fn buffer_bindings(&self) -> Result<Vec<(u32, OwnedBindingResource)>, AsBindGroupError> {
+    fn buffer_bindings(&self) -> Result<Vec<(u32, UnpreparedBindingResource)>, AsBindGroupError> {
         [
             (Self::LIGHTS, &PHONG_LIGHT_BUFFER),
             (Self::LIGHT_CLUSTERS, &PHONG_LIGHT_CLUSTER_BUFFER),
@@ -205,14 +206,17 @@ impl PhongSceneBindings<'_> {
                 .buffers
                 .get(handle)
                 .ok_or(AsBindGroupError::RetryNextUpdate)?;
-            Ok((binding, OwnedBindingResource::Buffer(buffer.buffer.clone())))
+            Ok((
+                binding,
+                UnpreparedBindingResource::Buffer(buffer.buffer.clone()),
+            ))
         })
         .collect()
     }
 
     /// The scene's GPU resources for those entries; `RetryNextUpdate` until the plugin has
     /// uploaded them (in the first frame).
-    pub fn bindings(&self) -> Result<Vec<(u32, OwnedBindingResource)>, AsBindGroupError> {
+    pub fn bindings(&self) -> Result<Vec<(u32, UnpreparedBindingResource)>, AsBindGroupError> {
         let shadow_maps = self
             .shadow_maps
             .as_ref()
@@ -230,7 +234,7 @@ impl PhongSceneBindings<'_> {
             }
             vec![(
                 Self::SCENE_DATA,
-                OwnedBindingResource::TextureView(
+                UnpreparedBindingResource::TextureView(
                     TextureViewDimension::D2,
                     texture.texture_view.clone(),
                 ),
@@ -243,7 +247,7 @@ impl PhongSceneBindings<'_> {
             let mut bindings = self.buffer_bindings()?;
             bindings.push((
                 Self::COOKIE_ATLAS,
-                OwnedBindingResource::TextureView(
+                UnpreparedBindingResource::TextureView(
                     TextureViewDimension::D2Array,
                     cookies.texture_view.clone(),
                 ),
@@ -252,14 +256,14 @@ impl PhongSceneBindings<'_> {
         };
         bindings.push((
             Self::SHADOW_MAPS,
-            OwnedBindingResource::TextureView(
+            UnpreparedBindingResource::TextureView(
                 TextureViewDimension::D2Array,
                 shadow_maps.array_view.clone(),
             ),
         ));
         bindings.push((
             Self::SHADOW_SAMPLER,
-            OwnedBindingResource::Sampler(
+            UnpreparedBindingResource::Sampler(
                 SamplerBindingType::Comparison,
                 shadow_maps.sampler.clone(),
             ),
@@ -303,24 +307,31 @@ impl AsBindGroup for PhongMaterial {
         self.into()
     }
 
-    fn unprepared_bind_group(
+    fn build_bind_group(
         &self,
         layout: &BindGroupLayout,
         render_device: &RenderDevice,
         (surface, scene): &mut SystemParamItem<'_, '_, Self::Param>,
         _force_no_bindless: bool,
-    ) -> Result<UnpreparedBindGroup, AsBindGroupError> {
-        let mut bind_group = SurfaceBindings::from(self).unprepared_bind_group(
+        output: &mut BindGroupBuilder,
+    ) -> Result<(), AsBindGroupError> {
+        // The builder may already hold another material's bindings (an extension's): only
+        // the entries written here are filtered.
+        let first = output.binding_resources.0.len();
+        SurfaceBindings::from(self).build_bind_group(
             layout,
             render_device,
             surface,
             true,
+            output,
         )?;
         if !binds_every_map(render_device) {
-            bind_group
-                .bindings
-                .0
-                .retain(|(binding, _)| !MAPS_OF_FULL_DEVICES.contains(binding));
+            let mut index = 0;
+            output.binding_resources.0.retain(|(binding, _)| {
+                let keep = index < first || !MAPS_OF_FULL_DEVICES.contains(binding);
+                index += 1;
+                keep
+            });
             if self.alpha_map_texture.is_some()
                 || self.environment_map.is_some()
                 || self.bump_map_texture.is_some()
@@ -333,8 +344,8 @@ impl AsBindGroup for PhongMaterial {
                 );
             }
         }
-        bind_group.bindings.0.extend(scene.bindings()?);
-        Ok(bind_group)
+        output.binding_resources.0.extend(scene.bindings()?);
+        Ok(())
     }
 
     fn bind_group_layout_entries(

@@ -40,7 +40,7 @@
 //! quarter, so this happens rarely.
 //!
 //! Where the device has too few storage buffers (WebGL2), the same bytes travel in one
-//! data texture instead (`scene_texture`, read in WGSL through `bevy_phong::scene`), chosen
+//! data texture instead (`scene_texture`, read in WGSL through `bevy_phong::shaders::scene`), chosen
 //! once at render startup from the device's limits; see `docs/design/webgl2.md`.
 
 mod cluster_views;

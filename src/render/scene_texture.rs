@@ -4,8 +4,8 @@
 //! [`ShaderBuffer`] assets; on such a device [`pack_scene_texture`] then copies their bytes,
 //! unchanged, into one data texture (see [`super::data_texture`]) that materials bind
 //! instead of the three buffers. The shaders read it through the same accessors
-//! (`bevy_phong::scene`), choosing the path from the shader def Bevy gives every shader,
-//! `AVAILABLE_STORAGE_BUFFER_BINDINGS`. See `docs/design/webgl2.md`.
+//! (`bevy_phong::shaders::scene`), choosing the path from the flag `PHONG_STORAGE_BUFFERS`,
+//! which each pipeline sets from the layout bound here. See `docs/design/webgl2.md`.
 //!
 //! Layout, in texels: texel 0 holds the first texel of each region
 //! `[lights, clusters, shadow views, 0]`; then the three buffers' bytes, each region starting on
@@ -46,8 +46,8 @@ pub(crate) const PHONG_SCENE_TEXTURE: Handle<Image> =
 
 /// Storage buffers a shader stage needs for the scene data to stay in buffers: the plugin's
 /// three beside Bevy's own (its clustered lights and meshes take up to five). Every native
-/// backend with full WebGPU limits has 8; WebGL2 has none. The shaders compare
-/// `AVAILABLE_STORAGE_BUFFER_BINDINGS` with the same number.
+/// backend with full WebGPU limits has 8; WebGL2 has none. The shaders follow through the
+/// flag `PHONG_STORAGE_BUFFERS`, set from the bind group layout this number chose.
 pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 8;
 
 /// Whether `device` has too few storage buffers per shader stage for the scene data, which
@@ -106,7 +106,7 @@ pub(crate) fn pack_scene_texture(
     .map(|handle| {
         buffers
             .get(handle)
-            .and_then(|buffer| buffer.data.as_deref())
+            .and_then(crate::storage_buffer::buffer_bytes)
             .unwrap_or(&[])
     });
     let packed = pack(lights, clusters, views, DATA_TEXTURE_MAX_TEXELS);

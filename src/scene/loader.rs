@@ -16,9 +16,10 @@ use crate::{
 };
 use bevy::{
     asset::{Asset, AssetLoader, Handle, LoadContext, io::Reader},
-    math::{Vec3, primitives::*},
+    math::Vec3,
     mesh::{Mesh, Meshable},
     reflect::TypePath,
+    shape::*,
     transform::components::Transform,
 };
 

@@ -17,7 +17,7 @@ use bevy::{
     asset::{AssetId, Assets},
     camera::primitives::{Aabb, MeshAabb},
     ecs::{entity::Entity, system::Query, system::Res, system::SystemParam},
-    math::{Mat4, Vec3, Vec3A, bounding::Aabb3d},
+    math::{Mat4, Vec3, Vec3A},
     mesh::{
         Mesh, MeshAccessError,
         morph::{MeshMorphWeights, MorphWeights},
@@ -25,6 +25,7 @@ use bevy::{
             SkinnedMesh, SkinnedMeshInverseBindposes, entity_aabb_from_skinned_mesh_bounds,
         },
     },
+    shape::Aabb3d,
     transform::components::GlobalTransform,
 };
 use thiserror::Error;
@@ -104,7 +105,7 @@ impl Poses<'_, '_> {
             .ok_or(DeformError::MeshNotLoaded)?;
         let local = || match aabb {
             Some(aabb) => Ok(*aabb),
-            None => mesh.compute_aabb().ok_or(DeformError::Missing("positions")),
+            None => mesh.get_aabb().ok_or(DeformError::Missing("positions")),
         };
         let morph_reach = match self.morphs.get(entity) {
             Ok(morph) => morph_reach(mesh, self.morph_weights(morph))?,

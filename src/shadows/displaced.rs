@@ -1,6 +1,6 @@
 //! Displaced shadow casters: a caster whose `PhongMaterial` has a displacement map moves its
 //! vertices in the shadow maps as the material's own vertex stages move them
-//! (`shadow_caster.wgsl`, DISPLACED). The main world notes each caster's map and numbers
+//! (`shadow_caster.wesl`, DISPLACED). The main world notes each caster's map and numbers
 //! ([`CasterDisplacement`]); the render world binds the map (group `DISPLACEMENT_GROUP`) and
 //! passes the numbers as instance data.
 

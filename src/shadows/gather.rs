@@ -666,7 +666,8 @@ mod tests {
 
     #[test]
     fn a_sphere_is_in_view_when_it_meets_the_volume() {
-        let clip_from_world = Mat4::orthographic_rh(-1.0, 1.0, -1.0, 1.0, 10.0, 0.0);
+        let clip_from_world =
+            glam::camera::rh::proj::directx::orthographic(-1.0, 1.0, -1.0, 1.0, 10.0, 0.0);
         let sphere = |x: f32, z: f32, radius: f32| Bounds {
             center: Vec3::new(x, 0.0, z),
             radius,

@@ -1,5 +1,5 @@
 //! The GPU layout of the shadow views, as the shader reads them (`PhongShadowView` in
-//! `bevy_phong::types`).
+//! `bevy_phong::shaders::types`).
 
 use bytemuck::{Pod, Zeroable};
 

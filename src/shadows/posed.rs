@@ -1,7 +1,7 @@
 //! Skinned and morphed casters posed on the GPU as the shadow maps draw them: by the joint
 //! matrices and morph weights that Bevy prepared to draw the same meshes this frame
 //! (`bevy_pbr`'s `SkinUniforms`, `MorphIndices` and `MorphUniforms`, and the morph targets
-//! Bevy keeps per mesh), read by `shadow_caster.wgsl` the way Bevy's mesh vertex stage reads
+//! Bevy keeps per mesh), read by `shadow_caster.wesl` the way Bevy's mesh vertex stage reads
 //! them. Nothing is posed or copied on the CPU.
 //!
 //! Where the device has storage buffers, the joints, the weights, the morph descriptors and

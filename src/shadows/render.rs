@@ -12,12 +12,13 @@ use bevy::{
     asset::{AssetId, AssetServer, Handle},
     ecs::{
         resource::Resource,
-        system::{Commands, Res, ResMut},
+        system::{Commands, Local, Res, ResMut},
         world::{FromWorld, World},
     },
     image::Image,
-    log::error,
+    log::{error, warn},
     mesh::{Mesh, MeshVertexBufferLayoutRef, PrimitiveTopology, VertexBufferLayout},
+    platform::collections::HashSet,
     prelude::default,
     render::{
         Extract,
@@ -160,7 +161,7 @@ impl FromWorld for ShadowCasterPipeline {
         Self {
             shader: world
                 .resource::<AssetServer>()
-                .load("embedded://bevy_phong/shaders/shadow_caster.wgsl"),
+                .load("embedded://bevy_phong/shaders/shadow_caster.wesl"),
             posed_layouts: PosedLayouts::new(&world.resource::<RenderDevice>().limits()),
         }
     }
@@ -175,7 +176,7 @@ pub(crate) struct ShadowCasterKey {
     displaced: bool,
 }
 
-/// One draw's instance data (`Caster` in `shadow_caster.wgsl`): the matrix to the map's
+/// One draw's instance data (`Caster` in `shadow_caster.wesl`): the matrix to the map's
 /// clip space by columns, then where a posed caster's deformation is (see
 /// [`PosedDraw::deform`]), then a displaced caster's UV transform, scale and bias (see
 /// [`super::displaced::CasterDisplacement::instance_data`]).
@@ -253,6 +254,7 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
                 shader_defs,
                 entry_point: Some("vertex".into()),
                 buffers: vec![vertices, instance],
+                ..default()
             },
             primitive: PrimitiveState {
                 topology: key.topology,
@@ -327,6 +329,7 @@ pub(crate) fn prepare_shadow_draws(
     mut draws: ResMut<ShadowDraws>,
     device: Res<RenderDevice>,
     queue: Res<RenderQueue>,
+    mut warned_compressed: Local<HashSet<AssetId<Mesh>>>,
 ) {
     let draws = &mut *draws;
     draws.pipelines.clear();
@@ -356,7 +359,7 @@ pub(crate) fn prepare_shadow_draws(
             matches!(
                 mesh.primitive_topology(),
                 PrimitiveTopology::TriangleList | PrimitiveTopology::TriangleStrip
-            )
+            ) && !is_compressed(&mesh.layout, mesh_id, &mut warned_compressed)
         });
         let posed_draw = posed.zip(mesh).and_then(|((entity, skinned), mesh)| {
             let first_vertex = allocator.mesh_vertex_slice(&mesh_id)?.range.start;
@@ -409,6 +412,24 @@ pub(crate) fn prepare_shadow_draws(
     if !draws.instances.is_empty() {
         draws.instances.write_buffer(&device, &queue);
     }
+}
+
+/// Whether the mesh `id` (of vertex buffer `layout`) keeps its vertices compressed (Bevy
+/// 0.20's `Mesh::with_compressed_*`): the caster reads full-precision attributes, so such a
+/// mesh casts no shadow in the crate's maps, with a warning once per mesh.
+fn is_compressed(
+    layout: &MeshVertexBufferLayoutRef,
+    id: AssetId<Mesh>,
+    warned: &mut HashSet<AssetId<Mesh>>,
+) -> bool {
+    let compressed = !layout.0.get_attribute_compression().is_empty();
+    if compressed && warned.insert(id) {
+        warn!(
+            "mesh {id:?} stores compressed vertex attributes: bevy_phong's shadow maps leave it \
+             out (it casts no shadow from Phong lights); keep the mesh uncompressed to cast"
+        );
+    }
+    compressed
 }
 
 /// Draws every shadow map of the frame: each pass clears its layer, then draws its casters.

@@ -33,7 +33,8 @@ pub(crate) struct ShadowLightView {
 
 impl ShadowLightView {
     fn perspective(view_from_world: Mat4, fov: f32, near: f32, resolution: u32) -> Self {
-        let clip_from_view = Mat4::perspective_infinite_reverse_rh(fov, 1.0, near);
+        let clip_from_view =
+            glam::camera::rh::proj::directx::perspective_infinite_reverse(fov, 1.0, near);
         Self {
             clip_from_world: clip_from_view * view_from_world,
             projection: GpuShadowView::PERSPECTIVE,
@@ -75,7 +76,7 @@ fn cube_face_fov(resolution: u32) -> f32 {
 /// The six views of a point light at `position` (or of a spot light too wide for one map).
 pub(crate) fn cube_views(position: Vec3, near: f32, resolution: u32) -> [ShadowLightView; 6] {
     CUBE_FACES.map(|(forward, up)| {
-        let view_from_world = Mat4::look_to_rh(position, forward, up);
+        let view_from_world = glam::camera::rh::view::look_to_mat4(position, forward, up);
         ShadowLightView::perspective(view_from_world, cube_face_fov(resolution), near, resolution)
     })
 }
@@ -93,7 +94,7 @@ pub(crate) fn spot_view(
     resolution: u32,
 ) -> ShadowLightView {
     let up = any_perpendicular(direction);
-    let view_from_world = Mat4::look_to_rh(position, direction, up);
+    let view_from_world = glam::camera::rh::view::look_to_mat4(position, direction, up);
     // The cone's edge plus the filter's margin.
     let half_tan = outer_angle.tan() * (1.0 + 2.0 * MAX_FILTER_RADIUS_TEXELS / resolution as f32);
     ShadowLightView::perspective(view_from_world, 2.0 * half_tan.atan(), near, resolution)
@@ -132,7 +133,7 @@ pub(crate) fn cascade_views(
     casters: &[Bounds],
 ) -> Vec<ShadowLightView> {
     let up = any_perpendicular(direction);
-    let light_from_world = Mat4::look_to_rh(Vec3::ZERO, direction, up);
+    let light_from_world = glam::camera::rh::view::look_to_mat4(Vec3::ZERO, direction, up);
     let forward = camera
         .world_from_view
         .transform_vector3(Vec3::NEG_Z)
@@ -200,7 +201,7 @@ fn cascade_view(
         })
         .fold(-center.z - radius, f32::min);
     // Reversed depth: `orthographic_rh(…, far, near)` puts the near plane at 1.
-    let clip_from_light = Mat4::orthographic_rh(
+    let clip_from_light = glam::camera::rh::proj::directx::orthographic(
         center.x - radius,
         center.x + radius,
         center.y - radius,
@@ -233,8 +234,8 @@ pub(crate) fn beam_view(
     resolution: u32,
 ) -> ShadowLightView {
     let up = direction.cross(right).normalize();
-    let light_from_world = Mat4::look_to_rh(origin, direction, up);
-    let clip_from_light = Mat4::orthographic_rh(
+    let light_from_world = glam::camera::rh::view::look_to_mat4(origin, direction, up);
+    let clip_from_light = glam::camera::rh::proj::directx::orthographic(
         -half_size[0],
         half_size[0],
         -half_size[1],
@@ -300,8 +301,12 @@ mod tests {
     #[test]
     fn cascades_cover_their_slices_and_reach_back_to_casters() {
         let camera = CascadeCamera {
-            world_from_view: Mat4::look_at_rh(Vec3::new(0.0, 2.0, 8.0), Vec3::ZERO, Vec3::Y)
-                .inverse(),
+            world_from_view: glam::camera::rh::view::look_at_mat4(
+                Vec3::new(0.0, 2.0, 8.0),
+                Vec3::ZERO,
+                Vec3::Y,
+            )
+            .inverse(),
             slice_corners: Box::new(|near, far| {
                 let corner = |z: f32, sx: f32, sy: f32| Vec3::new(sx * z * 0.5, sy * z * 0.4, -z);
                 [

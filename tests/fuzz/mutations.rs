@@ -69,7 +69,7 @@ pub const HOSTILE_PATHS: &[&str] = &[
     "/etc/passwd",
     "{absolute canary}",
     "other://canary.phong.ron",
-    "embedded://bevy_phong/shaders/types.wgsl",
+    "embedded://bevy_phong/shaders/types.wesl",
     "file:///etc/passwd",
     "C:\\Windows\\win.ini",
     "",

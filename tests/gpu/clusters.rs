@@ -205,7 +205,8 @@ type ProbedMaterial = ExtendedMaterial<PhongMaterial, ViewProbe>;
 fn the_shader_finds_its_own_views_clusters() {
     let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
         app.add_phong_material::<ProbedMaterial>();
-        let shader = Shader::from_wgsl(include_str!("view_probe.wgsl"), file!());
+        let shader =
+            Shader::from_wesl(include_str!("view_probe.wesl"), "tests/gpu/view_probe.wesl");
         app.world_mut()
             .resource_mut::<Assets<Shader>>()
             .insert(VIEW_PROBE_SHADER.id(), shader)

@@ -2,7 +2,8 @@
 //!
 //! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
 //!   reference model, on each pixel's own inputs;
-//! - `searchlight`: the same for the searchlight example's extension;
+//! - `searchlight`: the same for the searchlight example's extension, its surfaces with
+//!   their maps and vertex colors (the crate's shader API);
 //! - `clusters`: per-view light clusters against the reference model, around the frustum,
 //!   with two cameras and through 0 → 3,000 → 0 lights; the shader finds its own view;
 //! - `culling`: light clusters and ε culling against the reference model;
@@ -16,6 +17,8 @@
 //!   maps and Bevy's `Lightmap`, the same way;
 //! - `shading_normals`: bump maps and flat shading, the same way;
 //! - `displacement`: displacement maps, the positions and the lit colors;
+//! - `morphs`: two morphed meshes with their own weights, in the main pass, the prepass and
+//!   the shadow maps, against their closed-form pose;
 //! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
 //!   hemisphere light, the same way;
 //! - `cookies`: light cookies on spot, point and directional lights, the same way;
@@ -52,6 +55,7 @@ mod gltf;
 mod huge_vectors;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
+mod morphs;
 #[path = "../fuzz/mutations.rs"]
 mod mutations;
 #[path = "../fuzz/random.rs"]

@@ -6,6 +6,10 @@ use crate::{
     frames::TOLERANCE,
     light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
     searchlight_reference::{ReferenceSearchlight, searchlight_term},
+    texture_maps::{
+        SrgbDecoding, color_map, lit_color, lit_normal, loaded_images, normal_map,
+        spawn_map_lights, texels_at, vertex_color,
+    },
 };
 use bevy::prelude::*;
 use bevy_phong::{extension::PhongLightKindBuffer, prelude::*, reference};
@@ -201,4 +205,114 @@ fn assert_no_beam_light(
             },
         )
         .assert_within(case, TOLERANCE);
+}
+
+/// The extension's surfaces are `PhongMaterial`'s as its maps and the mesh's vertex colors
+/// give them (the crate's shader API, `bevy_phong::shaders::fragment`): a sphere with base
+/// color, specular, emissive and normal maps, and a cube with vertex colors and a base color
+/// map, under the map tests' lights and a soft searchlight, each pixel against the reference
+/// model with those maps plus the searchlight's term on the mapped surface. Pixels on a
+/// texel's edge are not judged (either texel may be sampled); at most a fifth of them.
+#[test]
+fn searchlit_surfaces_show_their_maps_and_vertex_colors() {
+    let mut harness = Harness::with_plugins(128, 128, |app| {
+        app.add_plugins(SearchlightPlugin);
+    });
+    let world = harness.world_mut();
+    spawn_map_lights(world);
+    let extension =
+        SearchlightExtension::new(world.resource::<PhongLightKindBuffer<Searchlight>>());
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let base_color = images.add(color_map(0.2, 1.0));
+    let specular = images.add(color_map(0.0, 1.0));
+    let emissive = images.add(color_map(0.0, 0.3));
+    let normals = images.add(normal_map());
+    let every_map = PhongMaterial {
+        base_color_texture: Some(base_color.clone()),
+        specular_texture: Some(specular),
+        emissive_texture: Some(emissive),
+        normal_map_texture: Some(normals),
+        specular_strength: 2.0,
+        shininess: 40.0,
+        emissive: LinearRgba::WHITE,
+        ..default()
+    };
+    let colored = PhongMaterial {
+        base_color_texture: Some(base_color),
+        shininess: 20.0,
+        ..default()
+    };
+    let mut cube = Mesh::from(Cuboid::new(1.2, 1.2, 1.2));
+    let colors: Vec<[f32; 4]> = cube
+        .attribute(Mesh::ATTRIBUTE_POSITION)
+        .and_then(|positions| positions.as_float3())
+        .expect("a cuboid has positions")
+        .iter()
+        .map(|&[x, y, z]| [0.5 + 0.4 * x, 0.5 + 0.4 * y, 0.5 - 0.4 * z, 1.0])
+        .collect();
+    cube.insert_attribute(Mesh::ATTRIBUTE_COLOR, colors);
+    let objects = [
+        (
+            Sphere::new(1.2)
+                .mesh()
+                .uv(48, 32)
+                .with_generated_tangents()
+                .unwrap(),
+            Transform::default(),
+            every_map,
+        ),
+        (
+            cube,
+            Transform::from_xyz(2.2, -0.3, 0.5).with_rotation(Quat::from_rotation_y(-0.6)),
+            colored,
+        ),
+    ];
+    for (mesh, transform, base) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world
+            .resource_mut::<Assets<SearchlitMaterial>>()
+            .add(SearchlitMaterial {
+                base,
+                extension: extension.clone(),
+            });
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+    world.spawn((
+        Searchlight {
+            color: Color::linear_rgb(1.2, 1.1, 0.9),
+            radius: 2.0,
+            edge: 0.6,
+            ..default()
+        },
+        Transform::from_xyz(1.0, 6.0, 2.0).looking_at(Vec3::new(1.0, 0.0, 0.0), Vec3::Z),
+    ));
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps_of::<SearchlitMaterial>();
+    let lights = harness.reference_lights();
+    let searchlights = reference_searchlights(&mut harness);
+    let images = loaded_images(&mut harness);
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        let base = &material.base;
+        // The maps here are linear (`Rgba8Unorm`): nothing to decode.
+        let texels = texels_at(base, &inputs, pixel, &images, SrgbDecoding::Exact)?;
+        let phong = lit_color(base, surface, pixel, &inputs, &texels, &images, &lights)?;
+        let mapped = reference::Material::from(base)
+            .with_vertex_color(vertex_color(&inputs, pixel))
+            .mapped(&texels);
+        let normal = lit_normal(base, surface, pixel, &inputs, &images)?;
+        let mapped_surface = reference::SurfacePoint { normal, ..*surface };
+        let beams = searchlights
+            .iter()
+            .map(|light| searchlight_term(&mapped_surface, &mapped, light))
+            .sum::<glam::DVec3>();
+        Some(phong + beams)
+    });
+    comparison.assert_within("searchlit maps", TOLERANCE);
+    assert!(
+        comparison.skipped_pixels < comparison.lit_pixels / 5,
+        "searchlit maps: too few pixels judged: {} lit, {} on texel edges",
+        comparison.lit_pixels,
+        comparison.skipped_pixels
+    );
 }

@@ -55,7 +55,8 @@ fn scatter(x: u32, y: u32, channel: u32, low: f32, high: f32) -> f32 {
     low + (high - low) * hash as f32 / 10.0
 }
 
-fn color_map(low: f32, high: f32) -> Image {
+/// A map whose channels vary from texel to texel within `[low, high]`.
+pub(crate) fn color_map(low: f32, high: f32) -> Image {
     float_map(|x, y| [0, 1, 2, 3].map(|channel| scatter(x, y, channel, low, high)))
 }
 
@@ -140,9 +141,9 @@ fn srgb_to_linear(value: f64) -> f64 {
 
 /// The UVs `material`'s maps are sampled at in pixel `pixel`: the captured first UV set
 /// moved by the material's UV transform, in `f64` (`reference::transformed_uv`).
-pub(crate) fn sampled_uv(
+pub(crate) fn sampled_uv<M: Material>(
     material: &PhongMaterial,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
     pixel: usize,
 ) -> [f64; 2] {
     let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
@@ -153,10 +154,10 @@ pub(crate) fn sampled_uv(
 
 /// The UVs a map of `material` on `channel` is sampled at in pixel `pixel`: the first set
 /// as [`sampled_uv`] gives it, the second as captured.
-fn map_uv(
+fn map_uv<M: Material>(
     material: &PhongMaterial,
     channel: &UvChannel,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
     pixel: usize,
 ) -> [f64; 2] {
     match channel {
@@ -169,7 +170,7 @@ fn map_uv(
 }
 
 /// The interpolated vertex color of pixel `pixel` (white where the mesh has none).
-pub(crate) fn vertex_color(inputs: &SurfaceInputs, pixel: usize) -> DVec4 {
+pub(crate) fn vertex_color<M: Material>(inputs: &SurfaceInputs<M>, pixel: usize) -> DVec4 {
     let color = inputs.colors.as_ref().unwrap().pixels[pixel];
     DVec4::from_array(color.map(f64::from))
 }
@@ -188,11 +189,11 @@ pub(crate) fn loaded_images(harness: &mut Harness) -> HashMap<AssetId<Image>, Im
 /// map's and then the bump map's where the material has them and the mesh has tangents
 /// (the bump map only where the device binds it), around `surface.normal` (the frame normal:
 /// the interpolated normal, or the face normal with flat shading); `None` on a texel edge.
-pub(crate) fn lit_normal(
+pub(crate) fn lit_normal<M: Material>(
     material: &PhongMaterial,
     surface: &reference::SurfacePoint,
     pixel: usize,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
     images: &HashMap<AssetId<Image>, Image>,
 ) -> Option<DVec3> {
     let uv_and_sign = inputs.uvs.as_ref().unwrap().pixels[pixel];
@@ -240,9 +241,9 @@ pub(crate) fn lit_normal(
 /// The texels each of `material`'s maps gives in pixel `pixel` (at the UVs of
 /// [`sampled_uv`], or the second set for a light or AO map on it), sRGB maps decoded as
 /// `decoding` says; `None` on a texel edge.
-pub(crate) fn texels_at(
+pub(crate) fn texels_at<M: Material>(
     material: &PhongMaterial,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
     pixel: usize,
     images: &HashMap<AssetId<Image>, Image>,
     decoding: SrgbDecoding,
@@ -318,11 +319,11 @@ pub(crate) fn masked_out(
 /// The reference color of a pixel of `material` that is drawn (not masked out), given its
 /// captured inputs and its maps' `texels` (`emissive + k_d` where it is unlit); `None` on a
 /// texel edge of the normal map.
-pub(crate) fn lit_color(
+pub(crate) fn lit_color<M: Material>(
     material: &PhongMaterial,
     surface: &reference::SurfacePoint,
     pixel: usize,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
     texels: &reference::Texels,
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
@@ -345,9 +346,9 @@ pub(crate) fn lit_color(
 }
 
 /// The toon ramp `material` is drawn with: its `toon_ramp_texture` where the device binds it.
-pub(crate) fn toon_ramp(
+pub(crate) fn toon_ramp<M: Material>(
     material: &PhongMaterial,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
     images: &HashMap<AssetId<Image>, Image>,
 ) -> Option<reference::ToonRamp> {
     let image = images.get(&material.toon_ramp_texture.as_ref()?.id())?;

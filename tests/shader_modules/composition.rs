@@ -1,6 +1,6 @@
 //! Every entry shader composes and validates in every variant it is specialized in, and
 //! every module of the crate, composed alone (all its functions, used or not), with every
-//! combination of the crate's defs. A WGSL error in a branch no render test draws fails here,
+//! combination of the crate's defs. A WESL error in a branch no render test draws fails here,
 //! with the variants it breaks and the defs they share.
 
 use crate::{
@@ -21,15 +21,9 @@ const LISTED_FAILURES: usize = 8;
 fn assert_every_variant_validates(path: &str, variants: &[Variant]) {
     let start = Instant::now();
     let library = library();
-    let mut composer = library.composer_for(path);
     let (failed, passed): (Vec<_>, Vec<_>) = variants
         .iter()
-        .map(|variant| {
-            (
-                variant,
-                library.compose(&mut composer, path, &variant.defs).err(),
-            )
-        })
+        .map(|variant| (variant, library.compose(path, &variant.defs).err()))
         .partition(|(_, error)| error.is_some());
     println!(
         "{path}: {} variants composed and validated in {:.2} s, {} failed",
@@ -64,11 +58,13 @@ fn assert_every_variant_validates(path: &str, variants: &[Variant]) {
     );
 }
 
+/// A def's name, `!NAME` for a flag set off (as the WebGL2 device's `PHONG_STORAGE_BUFFERS`).
 fn def_name(def: &ShaderDefVal) -> String {
     match def {
-        ShaderDefVal::Bool(name, _) | ShaderDefVal::Int(name, _) | ShaderDefVal::UInt(name, _) => {
-            name.clone()
-        }
+        ShaderDefVal::Bool(name, false) => format!("!{name}"),
+        ShaderDefVal::Bool(name, true)
+        | ShaderDefVal::Int(name, _)
+        | ShaderDefVal::UInt(name, _) => name.to_string(),
     }
 }
 

@@ -1,5 +1,6 @@
-//! The Rust structs the crate writes for the GPU have the layout the WGSL declares: sizes and
-//! field offsets as naga lays out the structs of the composed module `bevy_phong::types`.
+//! The Rust structs the crate writes for the GPU have the layout the WESL declares: sizes and
+//! field offsets as naga lays out the structs of the composed module
+//! `bevy_phong::shaders::types`.
 
 use crate::library::library;
 use bevy::render::render_resource::ShaderType;
@@ -10,9 +11,9 @@ use bevy_phong::{
 };
 use std::mem::offset_of;
 
-/// The WGSL module `bevy_phong::types`, composed.
+/// The WESL module `bevy_phong::shaders::types`, composed.
 fn types_module() -> naga::Module {
-    library().module("bevy_phong::types", &[])
+    library().module("bevy_phong::shaders::types", &[])
 }
 
 /// `(size, [(member, offset)])` of the WGSL struct `name`, as naga's front end lays it out.
@@ -21,7 +22,7 @@ fn wgsl_struct(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
         .types
         .iter()
         .find(|(_, ty)| ty.name.as_deref() == Some(name))
-        .unwrap_or_else(|| panic!("struct {name} in bevy_phong::types"));
+        .unwrap_or_else(|| panic!("struct {name} in bevy_phong::shaders::types"));
     let naga::TypeInner::Struct { members, span } = &ty.inner else {
         panic!("{name} is a struct");
     };
@@ -66,7 +67,7 @@ fn each_light_in_the_wgsl_light_buffer_takes_one_gpu_light() {
         .types
         .iter()
         .find(|(_, ty)| ty.name.as_deref() == Some("PhongLights"))
-        .expect("struct PhongLights in bevy_phong::types");
+        .expect("struct PhongLights in bevy_phong::shaders::types");
     let naga::TypeInner::Struct { members, .. } = &ty.inner else {
         panic!("PhongLights is a struct");
     };

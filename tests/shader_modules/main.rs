@@ -1,12 +1,13 @@
-//! The crate's WGSL, checked on the CPU (no GPU, no window):
+//! The crate's WESL, checked on the CPU (no GPU, no window):
 //!
 //! - `composition`: every entry shader (the material's fragment stage, the shadow caster,
 //!   `SurfaceInputsMaterial`, the searchlight example's, the benchmark's floor, the shader
-//!   contract's kernel), composed with naga_oil from the modules the crate and Bevy register,
-//!   for every set of shader defs it is specialized with, and validated by naga;
+//!   contract's kernel), composed with WESL (the `wesl` crate Bevy 0.20 composes with) from
+//!   the modules the crate and Bevy register, for every set of shader defs it is specialized
+//!   with, and validated by naga;
 //! - `layouts`: the Rust structs written for the GPU have the sizes and offsets naga gives
-//!   the WGSL structs;
-//! - `shared_values`: flags and binding numbers that Rust and WGSL both name agree.
+//!   the WESL structs;
+//! - `shared_values`: flags and binding numbers that Rust and WESL both name agree.
 
 mod composition;
 mod layouts;

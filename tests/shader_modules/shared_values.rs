@@ -39,7 +39,7 @@ fn flags(material: PhongMaterial) -> u32 {
 
 #[test]
 fn material_flags_are_the_wgsl_constants() {
-    let types = library().module("bevy_phong::types", &[]);
+    let types = library().module("bevy_phong::shaders::types", &[]);
     let phong = constant(&types, "SPECULAR_MODEL_PHONG");
     let blinn_phong = constant(&types, "SPECULAR_MODEL_BLINN_PHONG");
     let flip_y = constant(&types, "FLIP_NORMAL_MAP_Y");
@@ -66,7 +66,7 @@ fn material_flags_are_the_wgsl_constants() {
 
 #[test]
 fn shadow_projection_kinds_are_the_wgsl_constants() {
-    let types = library().module("bevy_phong::types", &[]);
+    let types = library().module("bevy_phong::shaders::types", &[]);
     assert_eq!(
         GpuShadowView::ORTHOGRAPHIC,
         constant(&types, "SHADOW_PROJECTION_ORTHOGRAPHIC")
@@ -161,17 +161,27 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
         ("cookie_atlas", PhongSceneBindings::COOKIE_ATLAS),
     ];
     let texture = [("scene_data", PhongSceneBindings::SCENE_DATA)];
-    // Bevy gives every shader the device's storage buffers per stage: one fewer than the
-    // scene data needs is the texture path, as on the Rust side.
+    // Bevy gives every shader the device's storage buffers per stage (and whether they are at
+    // least 3 and 6), the crate's pipelines the flag `PHONG_STORAGE_BUFFERS` for the layout
+    // the device gets: one fewer storage buffer than the scene data needs is the texture path,
+    // as on the Rust side.
     let needed = PhongSceneBindings::STORAGE_BUFFERS_NEEDED;
     for (storage_buffers, scene) in [(needed, &storage[..]), (needed - 1, &texture[..])] {
         let scene_texture = storage_buffers < needed;
         let mut defs = variants::plain_material().swap_remove(0).defs;
-        defs.push(ShaderDefVal::UInt(
-            "AVAILABLE_STORAGE_BUFFER_BINDINGS".into(),
-            storage_buffers,
-        ));
-        let bindings = library().module("bevy_phong::bindings", &defs);
+        defs.extend([
+            ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), storage_buffers),
+            ShaderDefVal::Bool(
+                "AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_3".into(),
+                storage_buffers >= 3,
+            ),
+            ShaderDefVal::Bool(
+                "AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6".into(),
+                storage_buffers >= 6,
+            ),
+            ShaderDefVal::Bool("PHONG_STORAGE_BUFFERS".into(), !scene_texture),
+        ]);
+        let bindings = library().module("bevy_phong::shaders::bindings", &defs);
         let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
         let variable = |name: &str| {
             bindings
@@ -179,7 +189,7 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
                 .iter()
                 .map(|(_, variable)| variable)
                 .find(|variable| variable.name.as_deref() == Some(name))
-                .unwrap_or_else(|| panic!("bevy_phong::bindings::{name}"))
+                .unwrap_or_else(|| panic!("bevy_phong::shaders::bindings::{name}"))
         };
         let named: Vec<_> = scene.iter().chain(&shadows).collect();
         for (name, binding) in &named {
@@ -210,7 +220,7 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
 
 #[test]
 fn every_data_texture_has_the_rust_width() {
-    let module = library().module("bevy_phong::data_texture", &[]);
+    let module = library().module("bevy_phong::shaders::data_texture", &[]);
     assert_eq!(
         constant(&module, "DATA_TEXTURE_WIDTH"),
         bevy_phong::render::DATA_TEXTURE_WIDTH
@@ -219,7 +229,7 @@ fn every_data_texture_has_the_rust_width() {
 
 #[test]
 fn the_shader_reads_each_cluster_and_view_record_at_the_rust_stride() {
-    let types = library().module("bevy_phong::types", &[]);
+    let types = library().module("bevy_phong::shaders::types", &[]);
     assert_eq!(
         constant(&types, "CLUSTER_WORDS"),
         GpuClustersHeader::CLUSTER_WORDS

@@ -61,7 +61,7 @@ fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
 }
 
 /// The defs Bevy's `MeshPipeline::specialize` derives from a mesh's vertex attributes
-/// (bevy_pbr 0.19, `render/mesh.rs`), with those it always adds.
+/// (bevy_pbr 0.20.1, `render/mesh.rs`), with those it always adds.
 fn mesh_defs(layout: &MeshVertexBufferLayoutRef) -> Vec<ShaderDefVal> {
     let mut defs: Vec<ShaderDefVal> = vec![
         "MESH_PIPELINE".into(),
@@ -83,12 +83,24 @@ fn mesh_defs(layout: &MeshVertexBufferLayoutRef) -> Vec<ShaderDefVal> {
     defs
 }
 
-/// `AVAILABLE_STORAGE_BUFFER_BINDINGS`, which Bevy's pipeline cache gives every shader, on
-/// the two kinds of device: wgpu's default limits (8 storage buffers per stage) and WebGL2's
-/// (none: the crate reads its scene data from a texture, Bevy its lights from uniforms).
-pub fn devices() -> [(&'static str, ShaderDefVal); 2] {
-    let storage_buffers =
-        |count: u32| ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), count);
+/// `AVAILABLE_STORAGE_BUFFER_BINDINGS` and its comparisons `__GE_3` and `__GE_6`, which
+/// Bevy's pipeline cache gives every shader, and the crate's `PHONG_STORAGE_BUFFERS`, which
+/// every Phong pipeline sets from its material bind group (`add_scene_data_flag`), on the two
+/// kinds of device: wgpu's default limits (8 storage buffers per stage: the scene data in
+/// storage buffers) and WebGL2's (none: the crate reads its scene data from a texture, Bevy
+/// its lights from uniforms).
+pub fn devices() -> [(&'static str, Vec<ShaderDefVal>); 2] {
+    let storage_buffers = |count: u32| {
+        vec![
+            ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), count),
+            ShaderDefVal::Bool("AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_3".into(), count >= 3),
+            ShaderDefVal::Bool("AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6".into(), count >= 6),
+            ShaderDefVal::Bool(
+                "PHONG_STORAGE_BUFFERS".into(),
+                count >= bevy_phong::render::PhongSceneBindings::STORAGE_BUFFERS_NEEDED,
+            ),
+        ]
+    };
     [
         (
             "full limits",
@@ -116,9 +128,9 @@ fn view_setups() -> Vec<(String, Vec<ShaderDefVal>)> {
     cameras()
         .into_iter()
         .flat_map(|(camera, camera_defs)| {
-            devices().map(|(device, device_def)| {
+            devices().map(|(device, device_defs)| {
                 let mut defs = camera_defs.clone();
-                defs.push(device_def);
+                defs.extend(device_defs);
                 (format!("{camera}, {device}"), defs)
             })
         })
@@ -305,7 +317,7 @@ fn phong_variant(
     layout: &MeshVertexBufferLayoutRef,
     view: &str,
     view_defs: &[ShaderDefVal],
-    phong: &[&str],
+    phong: &[&'static str],
 ) -> Variant {
     let mut defs = mesh_defs(layout);
     defs.extend(view_defs.iter().cloned());
@@ -438,17 +450,17 @@ const PREPASS_SETUPS: [(&str, &[&str]); 4] = [
 /// every distinct set of the crate's defs on every mesh, in the prepasses Bevy runs a
 /// fragment stage for (an alpha-masked depth prepass, the normal prepass, the normal and
 /// motion-vector prepasses, a shadow map of a directional light emulating unclipped depth),
-/// on both [`devices`] (Bevy's prepass pipeline, bevy_pbr 0.19 `prepass/mod.rs`).
+/// on both [`devices`] (Bevy's prepass pipeline, bevy_pbr 0.20.1 `prepass/mod.rs`).
 pub fn phong_prepass() -> Vec<Variant> {
     let mut variants = Vec::new();
     for (mesh, layout) in mesh_layouts() {
         let phong_defs = distinct_phong_defs(&layout);
         for (setup, setup_defs) in PREPASS_SETUPS {
             let prepass = prepass_defs(&layout, setup_defs);
-            for (device, device_def) in devices() {
+            for (device, device_defs) in devices() {
                 for phong in &phong_defs {
                     let mut defs = prepass.clone();
-                    defs.push(device_def.clone());
+                    defs.extend(device_defs.iter().cloned());
                     defs.extend(phong.iter().map(|&def| def.into()));
                     variants.push(Variant {
                         name: format!("mesh of {mesh}, {setup}, {device}, {phong:?}"),
@@ -462,7 +474,10 @@ pub fn phong_prepass() -> Vec<Variant> {
 }
 
 /// The defs of Bevy's prepass pipeline for a mesh of `layout` in the prepass `setup_defs`.
-fn prepass_defs(layout: &MeshVertexBufferLayoutRef, setup_defs: &[&str]) -> Vec<ShaderDefVal> {
+fn prepass_defs(
+    layout: &MeshVertexBufferLayoutRef,
+    setup_defs: &[&'static str],
+) -> Vec<ShaderDefVal> {
     let normals = setup_defs.contains(&"NORMAL_PREPASS");
     let mut prepass: Vec<ShaderDefVal> = [
         "PREPASS_PIPELINE",
@@ -527,9 +542,9 @@ pub fn displaced_vertex(prepass: bool) -> Vec<Variant> {
                 .iter()
                 .flat_map(|(setup, setup_defs)| {
                     let defs = prepass_defs(&layout, setup_defs);
-                    devices().map(|(device, device_def)| {
+                    devices().map(|(device, device_defs)| {
                         let mut defs = defs.clone();
-                        defs.push(device_def);
+                        defs.extend(device_defs);
                         (format!("{setup}, {device}"), defs)
                     })
                 })

@@ -285,6 +285,12 @@ impl Harness {
         self.capture::<PhongMaterial>(true)
     }
 
+    /// As [`Self::capture_inputs_of`], with the UV sets and tangents that texture maps need
+    /// and the vertex colors: for extensions of `PhongMaterial` drawn with its maps.
+    pub fn capture_inputs_with_maps_of<M: CapturedMaterial>(&mut self) -> SurfaceInputs<M> {
+        self.capture::<M>(true)
+    }
+
     fn capture<M: CapturedMaterial>(&mut self, with_maps: bool) -> SurfaceInputs<M> {
         let world = self.app.world_mut();
         let meshes: Vec<(Entity, Handle<M>)> = world

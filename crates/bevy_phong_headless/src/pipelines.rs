@@ -36,7 +36,7 @@ pub fn run_until_settled(app: &mut App, max_frames: u32, mut frame: impl FnMut(&
 /// Whether some pipeline is still on its way to compiling.
 ///
 /// A pipeline queued without a shader (its handle the default one) never compiles and is
-/// not counted. Bevy 0.19 queues one under WebGL2 limits: its sparse buffer update
+/// not counted. Bevy (0.19 and 0.20) queues one under WebGL2 limits: its sparse buffer update
 /// pipeline, whose compute shader it does not load where storage buffers are missing
 /// (`bevy_render::render_resource::sparse_buffer_vec`).
 pub fn pipelines_compiling(cache: &PipelineCache) -> bool {
@@ -54,6 +54,7 @@ fn has_shader(descriptor: &PipelineDescriptor) -> bool {
     let shader = match descriptor {
         PipelineDescriptor::RenderPipelineDescriptor(render) => render.vertex.shader.id(),
         PipelineDescriptor::ComputePipelineDescriptor(compute) => compute.shader.id(),
+        PipelineDescriptor::MeshPipelineDescriptor(mesh) => mesh.mesh.shader.id(),
     };
     shader != AssetId::<Shader>::default()
 }
@@ -96,6 +97,9 @@ fn label(descriptor: &PipelineDescriptor) -> Option<String> {
         }
         PipelineDescriptor::ComputePipelineDescriptor(compute) => {
             compute.label.as_ref().map(|label| label.to_string())
+        }
+        PipelineDescriptor::MeshPipelineDescriptor(mesh) => {
+            mesh.label.as_ref().map(|label| label.to_string())
         }
     }
 }

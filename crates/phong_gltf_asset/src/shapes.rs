@@ -100,7 +100,7 @@ pub fn arm(shoulder: [f64; 3]) -> Shape {
     shape
 }
 
-/// The blob's segments around and from pole to pole: 7 × 4 = 28 vertices. Bevy 0.19 keeps a
+/// The blob's segments around and from pole to pole: 7 × 4 = 28 vertices. Bevy (0.19, 0.20) keeps a
 /// mesh's morph targets in a 3D texture 9 texels tall per vertex, and WebGL2's limits allow
 /// 256: 28 vertices is the most a morphed mesh can have there.
 pub const BLOB_SIDES: usize = 6;

@@ -19,23 +19,27 @@ fn perspective_view(
     near: f32,
     far: f32,
 ) -> ClusterView {
-    let world_from_view = Mat4::look_at_rh(eye, target, Vec3::Y).inverse();
+    let world_from_view = glam::camera::rh::view::look_at_mat4(eye, target, Vec3::Y).inverse();
     ClusterView {
         key: 0,
         view_from_world: world_from_view.inverse(),
-        clip_from_view: Mat4::perspective_infinite_reverse_rh(fov, aspect, near),
+        clip_from_view: glam::camera::rh::proj::directx::perspective_infinite_reverse(
+            fov, aspect, near,
+        ),
         tiles: UVec2::new(16, 9),
         slices: DepthSlices::logarithmic(24, near, far),
     }
 }
 
 fn orthographic_view(eye: Vec3, target: Vec3) -> ClusterView {
-    let world_from_view = Mat4::look_at_rh(eye, target, Vec3::Y).inverse();
+    let world_from_view = glam::camera::rh::view::look_at_mat4(eye, target, Vec3::Y).inverse();
     ClusterView {
         key: 0,
         view_from_world: world_from_view.inverse(),
         // Bevy's orthographic projection: reverse z, near 0, far 1000.
-        clip_from_view: Mat4::orthographic_rh(-8.0, 8.0, -4.5, 4.5, 1000.0, 0.0),
+        clip_from_view: glam::camera::rh::proj::directx::orthographic(
+            -8.0, 8.0, -4.5, 4.5, 1000.0, 0.0,
+        ),
         tiles: UVec2::new(8, 5),
         slices: DepthSlices::linear(16, 0.0, 1000.0),
     }

@@ -1,4 +1,4 @@
-//! Runs `kernel.wgsl` (the material's lighting functions in a fragment shader, the stage
+//! Runs `kernel.wesl` (the material's lighting functions in a fragment shader, the stage
 //! the material runs in) on the render device and reads the results back: the cases go in
 //! as a data texture and come out as one pixel each of an `Rgba32Float` target. Both work on
 //! every device, WebGL2 limits included.
@@ -25,7 +25,7 @@ use bevy_phong::render::{DATA_TEXTURE_WIDTH, GpuLight};
 use bevy_phong_headless::headless_app;
 use bytemuck::{Pod, Zeroable};
 
-/// One case as the kernel reads it (`ContractCase` in `kernel.wgsl`): 10 texels.
+/// One case as the kernel reads it (`ContractCase` in `kernel.wesl`): 10 texels.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct GpuCase {
@@ -42,7 +42,7 @@ pub struct GpuCase {
     pub light: GpuLight,
 }
 
-/// Pixels per row of the results target (`RESULTS_WIDTH` in `kernel.wgsl`).
+/// Pixels per row of the results target (`RESULTS_WIDTH` in `kernel.wesl`).
 const RESULTS_WIDTH: u32 = 1024;
 /// Cases per pass: 256 rows of results, and 10 · 2¹⁸ + 1 texels of cases (1,281 rows of
 /// the data texture, within WebGL2's 2,048).
@@ -65,9 +65,9 @@ impl ContractKernel {
         let shader = app
             .world_mut()
             .resource_mut::<Assets<Shader>>()
-            .add(Shader::from_wgsl(
-                include_str!("kernel.wgsl"),
-                "tests/gpu/contract/kernel.wgsl",
+            .add(Shader::from_wesl(
+                include_str!("kernel.wesl"),
+                "tests/gpu/contract/kernel.wesl",
             ));
         let layout = BindGroupLayoutDescriptor::new(
             "phong_contract",
@@ -239,11 +239,15 @@ impl ContractKernel {
         device
             .poll(PollType::wait_indefinitely())
             .expect("the device finishes the kernel");
-        let results = bytemuck::cast_slice::<u8, [f32; 4]>(&slice.get_mapped_range())
+        let mapped = slice
+            .get_mapped_range()
+            .expect("the results buffer is mapped");
+        let results = bytemuck::cast_slice::<u8, [f32; 4]>(&mapped)
             .iter()
             .take(cases.len())
             .map(|rgba| [rgba[0], rgba[1], rgba[2]])
             .collect();
+        drop(mapped);
         staging.unmap();
         results
     }

@@ -149,7 +149,7 @@ fn the_normal_prepass_holds_the_normal_mapped_normal() {
             .resource_mut::<Assets<Shader>>()
             .insert(
                 SHOW_NORMAL_PREPASS_SHADER.id(),
-                Shader::from_wgsl(SHOW_NORMAL_PREPASS_WGSL, "show_normal_prepass.wgsl"),
+                Shader::from_wesl(SHOW_NORMAL_PREPASS_WESL, "show_normal_prepass.wesl"),
             )
             .expect("a uuid handle is always valid");
     });
@@ -198,9 +198,9 @@ const SHOW_NORMAL_PREPASS_SHADER: Handle<Shader> =
     uuid_handle!("8f0b8f52-4d6a-4c1e-9f5e-2b7d3c1a6e90");
 
 /// Shows the normal prepass's normal at each pixel, as Bevy's `prepass_utils` decodes it.
-const SHOW_NORMAL_PREPASS_WGSL: &str = r"
-#import bevy_pbr::forward_io::VertexOutput
-#import bevy_pbr::prepass_utils::prepass_normal
+const SHOW_NORMAL_PREPASS_WESL: &str = r"
+import bevy_pbr::render::forward_io::VertexOutput;
+import bevy_pbr::prepass::utils::prepass_normal;
 
 @fragment
 fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
@@ -208,7 +208,7 @@ fn fragment(in: VertexOutput) -> @location(0) vec4<f32> {
 }
 ";
 
-/// A translucent material that shows the normal prepass (see `SHOW_NORMAL_PREPASS_WGSL`).
+/// A translucent material that shows the normal prepass (see `SHOW_NORMAL_PREPASS_WESL`).
 #[derive(Asset, TypePath, AsBindGroup, Clone)]
 struct ShowNormalPrepass {}
 

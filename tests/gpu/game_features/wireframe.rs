@@ -50,7 +50,6 @@ fn bevys_wireframe_draws_over_phong_meshes() {
             Mesh3d(sphere.clone()),
             MeshMaterial3d(wired_material),
             Transform::from_xyz(-1.3, 0.0, 0.0),
-            Wireframe,
             WireframeColor {
                 color: Color::linear_rgb(WIRE[0], WIRE[1], WIRE[2]),
             },
@@ -61,6 +60,12 @@ fn bevys_wireframe_draws_over_phong_meshes() {
         MeshMaterial3d(plain_material.clone()),
         Transform::from_xyz(1.3, 0.0, 0.0),
     ));
+    harness.settle();
+    // The wire is added once the camera draws into its image: Bevy 0.20.1 specializes an
+    // entity's wireframe pipeline once, for the view's target format of that frame, and
+    // the harness's float image is the target only from the frame it is prepared (before,
+    // the view reports Bevy's default format, and the pipeline would never be made again).
+    harness.world_mut().entity_mut(wired).insert(Wireframe);
     harness.settle();
     let rendered = harness.render_next_frame();
     // The inputs without the wires, which would draw over them too.
