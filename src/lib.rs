@@ -61,9 +61,10 @@
 //!   ([`PhongMaterialKey`]).
 //! - **The light buffer** ([`render`]) is a storage buffer that the gather system rewrites
 //!   in the frames where a light changed; see that module for how it stays bound.
-//! - **Shaders** are embedded: `bevy_phong::shaders::types`, `bevy_phong::shaders::lighting` (one function per
-//!   term of the equation, for other shaders to import), `bevy_phong::shaders::bindings` and
-//!   `bevy_phong::shaders::shading`. No file from `assets/` is needed.
+//! - **Shaders** are embedded WESL modules, imported at `bevy_phong::shaders::NAME`:
+//!   `fragment` (the shader API for extensions: the mapped surface, its lit color, the
+//!   camera's effects), `types`, `lighting` (one function per term of the equation),
+//!   `bindings` and `shading`. No file from `assets/` is needed.
 //! - **New light kinds** plug in from outside the crate: [`extension`] is the guide, with a
 //!   searchlight as the worked example.
 //! - **Invalid input** (a negative range, a NaN color, ...) is replaced by a documented value
