@@ -454,13 +454,13 @@ fn capabilities() -> naga::valid::Capabilities {
         | naga::valid::Capabilities::TEXTURE_AND_SAMPLER_BINDING_ARRAY
 }
 
-/// The defs Bevy's pipeline cache adds to every shader (`PipelineCache::new`): storage
-/// buffer bindings as wgpu's default limits give (a device with storage buffers), and the
-/// comparisons WESL flags cannot make, baked in; and the crate's flag that every Phong
-/// pipeline sets on such a device (`scene_variants::add_scene_data_flag`): its scene data in
-/// storage buffers.
-fn global_defs() -> Vec<ShaderDefVal> {
-    let storage_buffers = WgpuLimits::default().max_storage_buffers_per_shader_stage;
+/// The defs a device with `storage_buffers` storage buffers per shader stage gives a Phong
+/// pipeline: Bevy's pipeline cache adds the count and the comparisons WESL flags cannot make,
+/// baked in (`PipelineCache::new`); every Phong pipeline adds the crate's flag
+/// `PHONG_STORAGE_BUFFERS` for the layout such a device gets
+/// (`scene_variants::add_scene_data_flag`): the scene data in storage buffers from
+/// `PhongSceneBindings::STORAGE_BUFFERS_NEEDED` on, else in the data texture.
+pub fn device_defs(storage_buffers: u32) -> Vec<ShaderDefVal> {
     vec![
         ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), storage_buffers),
         ShaderDefVal::Bool(
@@ -471,6 +471,15 @@ fn global_defs() -> Vec<ShaderDefVal> {
             "AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6".into(),
             storage_buffers >= 6,
         ),
-        ShaderDefVal::Bool("PHONG_STORAGE_BUFFERS".into(), true),
+        ShaderDefVal::Bool(
+            "PHONG_STORAGE_BUFFERS".into(),
+            storage_buffers >= bevy_phong::render::PhongSceneBindings::STORAGE_BUFFERS_NEEDED,
+        ),
     ]
+}
+
+/// The defs every shader is composed with unless a test names a device: those of a device
+/// with wgpu's default limits ([`device_defs`]).
+fn global_defs() -> Vec<ShaderDefVal> {
+    device_defs(WgpuLimits::default().max_storage_buffers_per_shader_stage)
 }

@@ -1,13 +1,15 @@
 //! Values that Rust writes and WGSL reads, or that both name, agree: read from the composed
 //! naga modules and compared with the Rust constants.
 
-use crate::{library::library, variants};
+use crate::{
+    library::{device_defs, library},
+    variants,
+};
 use bevy::{
     prelude::default,
     render::render_resource::{
         BindingType, BufferBindingType, SamplerBindingType, TextureSampleType, TextureViewDimension,
     },
-    shader::ShaderDefVal,
 };
 use bevy_phong::{
     PhongMaterial, PhongMaterialUniform, SpecularModel,
@@ -169,18 +171,7 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
     for (storage_buffers, scene) in [(needed, &storage[..]), (needed - 1, &texture[..])] {
         let scene_texture = storage_buffers < needed;
         let mut defs = variants::plain_material().swap_remove(0).defs;
-        defs.extend([
-            ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), storage_buffers),
-            ShaderDefVal::Bool(
-                "AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_3".into(),
-                storage_buffers >= 3,
-            ),
-            ShaderDefVal::Bool(
-                "AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6".into(),
-                storage_buffers >= 6,
-            ),
-            ShaderDefVal::Bool("PHONG_STORAGE_BUFFERS".into(), !scene_texture),
-        ]);
+        defs.extend(device_defs(storage_buffers));
         let bindings = library().module("bevy_phong::shaders::bindings", &defs);
         let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
         let variable = |name: &str| {

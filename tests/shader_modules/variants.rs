@@ -2,6 +2,7 @@
 //! `PhongMaterialKey::shader_defs`, for every key on every kind of mesh) and those Bevy's
 //! mesh and material pipelines add.
 
+use crate::library::device_defs;
 use bevy::{
     asset::RenderAssetUsages,
     mesh::{Mesh, MeshVertexBufferLayoutRef, MeshVertexBufferLayouts, PrimitiveTopology},
@@ -90,27 +91,16 @@ fn mesh_defs(layout: &MeshVertexBufferLayoutRef) -> Vec<ShaderDefVal> {
 /// storage buffers) and WebGL2's (none: the crate reads its scene data from a texture, Bevy
 /// its lights from uniforms).
 pub fn devices() -> [(&'static str, Vec<ShaderDefVal>); 2] {
-    let storage_buffers = |count: u32| {
-        vec![
-            ShaderDefVal::UInt("AVAILABLE_STORAGE_BUFFER_BINDINGS".into(), count),
-            ShaderDefVal::Bool("AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_3".into(), count >= 3),
-            ShaderDefVal::Bool("AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6".into(), count >= 6),
-            ShaderDefVal::Bool(
-                "PHONG_STORAGE_BUFFERS".into(),
-                count >= bevy_phong::render::PhongSceneBindings::STORAGE_BUFFERS_NEEDED,
-            ),
-        ]
-    };
     [
         (
             "full limits",
-            storage_buffers(
+            device_defs(
                 bevy::render::settings::WgpuLimits::default().max_storage_buffers_per_shader_stage,
             ),
         ),
         (
             "WebGL2 limits",
-            storage_buffers(
+            device_defs(
                 bevy::render::settings::WgpuLimits::downlevel_webgl2_defaults()
                     .max_storage_buffers_per_shader_stage,
             ),
