@@ -7,8 +7,8 @@ use crate::{
     light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
     searchlight_reference::{ReferenceSearchlight, searchlight_term},
     texture_maps::{
-        SrgbDecoding, color_map, lit_color, lit_normal, loaded_images, normal_map,
-        spawn_map_lights, texels_at, vertex_color,
+        SrgbDecoding, color_map, lit_color, lit_normal, loaded_images, mapped_material, normal_map,
+        spawn_map_lights, texels_at,
     },
 };
 use bevy::prelude::*;
@@ -297,9 +297,7 @@ fn searchlit_surfaces_show_their_maps_and_vertex_colors() {
         // The maps here are linear (`Rgba8Unorm`): nothing to decode.
         let texels = texels_at(base, &inputs, pixel, &images, SrgbDecoding::Exact)?;
         let phong = lit_color(base, surface, pixel, &inputs, &texels, &images, &lights)?;
-        let mapped = reference::Material::from(base)
-            .with_vertex_color(vertex_color(&inputs, pixel))
-            .mapped(&texels);
+        let mapped = mapped_material(base, pixel, &inputs, &texels, &images);
         let normal = lit_normal(base, surface, pixel, &inputs, &images)?;
         let mapped_surface = reference::SurfacePoint { normal, ..*surface };
         let beams = searchlights

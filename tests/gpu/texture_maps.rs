@@ -316,6 +316,22 @@ pub(crate) fn masked_out(
     Some(alpha < f64::from(cutoff))
 }
 
+/// `material` as the reference model lights pixel `pixel`: its vertex color and its maps'
+/// `texels` applied, with the toon ramp the device binds.
+pub(crate) fn mapped_material<M: Material>(
+    material: &PhongMaterial,
+    pixel: usize,
+    inputs: &SurfaceInputs<M>,
+    texels: &reference::Texels,
+    images: &HashMap<AssetId<Image>, Image>,
+) -> reference::Material {
+    let mut mapped = reference::Material::from(material)
+        .with_vertex_color(vertex_color(inputs, pixel))
+        .mapped(texels);
+    mapped.toon_ramp = toon_ramp(material, inputs, images);
+    mapped
+}
+
 /// The reference color of a pixel of `material` that is drawn (not masked out), given its
 /// captured inputs and its maps' `texels` (`emissive + k_d` where it is unlit); `None` on a
 /// texel edge of the normal map.
@@ -328,10 +344,7 @@ pub(crate) fn lit_color<M: Material>(
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
 ) -> Option<DVec3> {
-    let mut mapped = reference::Material::from(material)
-        .with_vertex_color(vertex_color(inputs, pixel))
-        .mapped(texels);
-    mapped.toon_ramp = toon_ramp(material, inputs, images);
+    let mapped = mapped_material(material, pixel, inputs, texels, images);
     if material.unlit {
         return Some(mapped.unlit_color());
     }
