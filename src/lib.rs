@@ -93,8 +93,8 @@
 //!
 //! 1. foundations, which use nothing of the crate: `limits`, `direction`, `displacement`
 //!    (the displaced vertex stages), `quoting`,
-//!    `schedule` (the [`PhongSystems`] sets), `scene_variants` (whether the scene casts
-//!    shadows or has a hemisphere light, read by the material key), `storage_buffer` (the growable GPU buffer),
+//!    `schedule` (the [`PhongSystems`] sets), `scene_variants` (the scene's shader
+//!    variants: shadows, the hemisphere light, cookies; each app's, carried by its materials), `storage_buffer` (the growable GPU buffer),
 //!    `view_key` (how a fragment finds its view's clusters and cascades);
 //! 2. the data model: `lights` (with the rule of which lights give light), `material`,
 //!    `culling`;
@@ -149,7 +149,7 @@ pub use lights::{
 };
 pub use material::{
     DiffuseKind, DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialKey,
-    PhongMaterialUniform, SpecularMode, SpecularModel, UvSet,
+    PhongMaterialUniform, PhongSceneMaterial, SpecularMode, SpecularModel, UvSet,
 };
 pub use plugin::{PhongMaterialAppExt, PhongPlugin};
 pub use schedule::PhongSystems;
@@ -163,8 +163,8 @@ pub mod prelude {
     pub use crate::{
         Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
         PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
-        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongShadows, PhongSpotLight,
-        PhongViewClusters, SpecularMode, SpecularModel,
+        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSceneMaterial, PhongShadows,
+        PhongSpotLight, PhongViewClusters, SpecularMode, SpecularModel,
         scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
 

@@ -2,10 +2,7 @@
 
 use crate::displacement::DisplacementUniform;
 use crate::limits;
-use crate::scene_variants::{
-    SCENE_CASTS_SHADOWS, SCENE_HAS_HEMISPHERE_LIGHT, SCENE_HAS_LIGHT_COOKIES,
-    SCENE_HAS_SOFT_SHADOWS,
-};
+use crate::scene_variants::SceneVariants;
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
@@ -13,7 +10,10 @@ use bevy::{
     log::warn,
     math::{Affine2, Mat3, Vec3, Vec4},
     mesh::{Mesh, MeshVertexBufferLayoutRef, UvChannel},
-    pbr::{Material, MaterialPipeline, MaterialPipelineKey, MeshPipelineKey},
+    pbr::{
+        ExtendedMaterial, Material, MaterialExtension, MaterialPipeline, MaterialPipelineKey,
+        MeshPipelineKey,
+    },
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
     render::render_resource::{
@@ -21,7 +21,6 @@ use bevy::{
     },
     shader::ShaderRef,
 };
-use core::sync::atomic::Ordering;
 use serde::{Deserialize, Serialize};
 
 /// Path of the material's fragment shader among the crate's embedded assets.
@@ -334,6 +333,12 @@ pub struct PhongMaterial {
     /// indices `η` (three.js's `refractionRatio`, 0.98 there; glass in air ≈ 0.66), `≥ 0`.
     /// Default `None`.
     pub refraction_ratio: Option<f32>,
+    /// The scene's shader variant (shadows, soft shadows, hemisphere light, cookies), which
+    /// the plugin keeps equal to the app's, so that it travels to the render world with the
+    /// material. Leave it at its default.
+    #[doc(hidden)]
+    #[reflect(ignore, clone)]
+    pub scene_variants: SceneVariants,
 }
 
 impl Default for PhongMaterial {
@@ -383,6 +388,7 @@ impl Default for PhongMaterial {
             environment_combine: EnvironmentCombine::Multiply,
             reflectivity: 1.0,
             refraction_ratio: None,
+            scene_variants: SceneVariants::default(),
         }
     }
 }
@@ -393,6 +399,44 @@ impl From<Color> for PhongMaterial {
             base_color,
             ..Self::default()
         }
+    }
+}
+
+/// A material that [`add_phong_material`](crate::PhongMaterialAppExt::add_phong_material)
+/// registers: one made of a [`PhongMaterial`] (`PhongMaterial` itself and every
+/// `ExtendedMaterial<PhongMaterial, _>`) names it, so that the plugin keeps the scene's
+/// shader variant (shadows, hemisphere light, cookies) on it. A material of its own that
+/// binds the scene data implements it with the defaults: `impl PhongSceneMaterial for
+/// MyMaterial {}`.
+pub trait PhongSceneMaterial: Material {
+    /// The [`PhongMaterial`] this material is made of, if any. Default `None`.
+    fn phong_material(&self) -> Option<&PhongMaterial> {
+        None
+    }
+
+    /// The same, to change. Default `None`.
+    fn phong_material_mut(&mut self) -> Option<&mut PhongMaterial> {
+        None
+    }
+}
+
+impl PhongSceneMaterial for PhongMaterial {
+    fn phong_material(&self) -> Option<&PhongMaterial> {
+        Some(self)
+    }
+
+    fn phong_material_mut(&mut self) -> Option<&mut PhongMaterial> {
+        Some(self)
+    }
+}
+
+impl<E: MaterialExtension> PhongSceneMaterial for ExtendedMaterial<PhongMaterial, E> {
+    fn phong_material(&self) -> Option<&PhongMaterial> {
+        Some(&self.base)
+    }
+
+    fn phong_material_mut(&mut self) -> Option<&mut PhongMaterial> {
+        Some(&mut self.base)
     }
 }
 
@@ -629,23 +673,21 @@ pub struct PhongMaterialKey {
     pub light_map: Option<UvSet>,
     /// The UV set of its AO map, if it has one.
     pub ao_map: Option<UvSet>,
-    /// Whether some light of the scene casts shadows: only then is the shadow code compiled
-    /// in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last off,
-    /// compiles the other variant once, as any new variant. The flag is process-wide: apps
-    /// that render Phong materials side by side in one process share it.
+    /// Whether some light of the material's app casts shadows: only then is the shadow code
+    /// compiled in (shader def `PHONG_SHADOWS`). Switching the first shadow on, or the last
+    /// off, compiles the other variant once, as any new variant. This and the next three are
+    /// the app's scene, which the plugin copies into each of its materials: two apps in one
+    /// process each have their own.
     pub shadows: bool,
-    /// Whether some shadow-casting light of the scene has a size (`PhongShadows::softness`
+    /// Whether some shadow-casting light of the app has a size (`PhongShadows::softness`
     /// above 0): only then is the soft-shadow filter (PCSS) compiled in (shader def
-    /// `PHONG_SOFT_SHADOWS`); hard shadows take one bilinear comparison. Process-wide, as
-    /// `shadows`.
+    /// `PHONG_SOFT_SHADOWS`); hard shadows take one bilinear comparison.
     pub soft_shadows: bool,
-    /// Whether the scene has a [`PhongHemisphereLight`](crate::PhongHemisphereLight): only
-    /// then is its term compiled in (shader def `PHONG_HEMISPHERE`). Process-wide, as
-    /// `shadows`.
+    /// Whether the app has a [`PhongHemisphereLight`](crate::PhongHemisphereLight): only
+    /// then is its term compiled in (shader def `PHONG_HEMISPHERE`).
     pub hemisphere: bool,
-    /// Whether some light of the scene has a [`PhongLightCookie`](crate::PhongLightCookie):
+    /// Whether some light of the app has a [`PhongLightCookie`](crate::PhongLightCookie):
     /// only then is the cookie code compiled in (shader def `PHONG_LIGHT_COOKIES`).
-    /// Process-wide, as `shadows`.
     pub cookies: bool,
 }
 
@@ -694,10 +736,10 @@ impl From<&PhongMaterial> for PhongMaterialKey {
                 .ao_map_texture
                 .as_ref()
                 .map(|_| UvSet::from(&material.ao_map_channel)),
-            shadows: SCENE_CASTS_SHADOWS.load(Ordering::Relaxed),
-            soft_shadows: SCENE_HAS_SOFT_SHADOWS.load(Ordering::Relaxed),
-            hemisphere: SCENE_HAS_HEMISPHERE_LIGHT.load(Ordering::Relaxed),
-            cookies: SCENE_HAS_LIGHT_COOKIES.load(Ordering::Relaxed),
+            shadows: material.scene_variants.shadows,
+            soft_shadows: material.scene_variants.soft_shadows,
+            hemisphere: material.scene_variants.hemisphere,
+            cookies: material.scene_variants.cookies,
         }
     }
 }

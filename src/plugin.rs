@@ -7,15 +7,16 @@ use crate::{
         Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
         PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
     },
-    material::{PhongMaterial, SpecularModel},
+    material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
     render::{
         PhongCookies, PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters,
-        gather_cookies, gather_lights, refresh_material_bind_groups,
+        carry_scene_variants, gather_cookies, gather_lights, refresh_material_bind_groups,
     },
     scene::{
         PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
         spawn_phong_scenes,
     },
+    scene_variants::SceneVariants,
     schedule::{PhongSystems, configure_phong_systems},
     shadows::PhongLit,
     storage_buffer::{LightBufferResized, init_shader_buffers},
@@ -30,7 +31,7 @@ use bevy::{
     camera::visibility::VisibilitySystems,
     ecs::schedule::{IntoScheduleConfigs, common_conditions::resource_exists},
     image::Image,
-    pbr::{Material, MaterialPlugin, MeshMaterial3d},
+    pbr::{MaterialPlugin, MeshMaterial3d},
     render::RenderApp,
     shader::{Shader, load_shader_library},
 };
@@ -51,6 +52,7 @@ impl Plugin for PhongPlugin {
         init_shader_buffers(app);
         configure_phong_systems(app);
         app.init_resource::<PhongAmbientLight>()
+            .init_resource::<SceneVariants>()
             .init_resource::<PhongLightCulling>()
             .init_resource::<PhongLightBuffer>()
             .init_resource::<PhongCookies>()
@@ -171,23 +173,25 @@ impl Plugin for PhongPlugin {
 pub trait PhongMaterialAppExt {
     /// Adds `MaterialPlugin::<M>` and keeps `M`'s bind groups on the current light buffers:
     /// when a buffer is reallocated, every `M` is rebuilt in the same frame, after the new
-    /// buffer is uploaded. Meshes drawn with `M` are marked
+    /// buffer is uploaded; and where `M` is made of a [`PhongMaterial`], keeps its shader
+    /// variant on the app's scene (see [`PhongSceneMaterial`]). Meshes drawn with `M` are marked
     /// [`PhongLit`](crate::PhongLit), so that the cameras that see them get shadow
     /// maps.
-    fn add_phong_material<M: Material>(&mut self) -> &mut Self
+    fn add_phong_material<M: PhongSceneMaterial>(&mut self) -> &mut Self
     where
         M::Data: PartialEq + Eq + Hash + Clone;
 }
 
 impl PhongMaterialAppExt for App {
-    fn add_phong_material<M: Material>(&mut self) -> &mut Self
+    fn add_phong_material<M: PhongSceneMaterial>(&mut self) -> &mut Self
     where
         M::Data: PartialEq + Eq + Hash + Clone,
     {
         self.add_plugins(MaterialPlugin::<M>::default())
             .add_systems(
                 PostUpdate,
-                refresh_material_bind_groups::<M>.in_set(PhongSystems::RefreshMaterials),
+                (refresh_material_bind_groups::<M>, carry_scene_variants::<M>)
+                    .in_set(PhongSystems::RefreshMaterials),
             );
         // Already required where `M` was added before: that requirement stands.
         let _ = self.try_register_required_components::<MeshMaterial3d<M>, PhongLit>();

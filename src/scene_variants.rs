@@ -1,40 +1,44 @@
 //! What the scene holds that changes every Phong material's shader: whether it casts shadows
-//! this frame, whether soft ones, and whether it has a hemisphere light; and where the scene
-//! data is bound (storage buffers, or one data texture under WebGL2's limits). Process-wide flags
-//! that the gathers ([`crate::shadows`], [`crate::render`]) set in the main world and that
-//! [`PhongMaterialKey`](crate::PhongMaterialKey) reads when a material is specialized. They
-//! sit below both, so that the material needs nothing of the shadows or the lights.
+//! this frame, whether soft ones, whether it has a hemisphere light and whether cookies
+//! ([`SceneVariants`]); and where the scene data is bound (storage buffers, or one data
+//! texture under WebGL2's limits). The gathers ([`crate::shadows`], [`crate::render`]) set the
+//! app's [`SceneVariants`] resource in the main world; each Phong material carries a copy
+//! (kept equal by [`crate::render`]), which travels to the render world with the material
+//! when Bevy extracts it, and which [`PhongMaterialKey`](crate::PhongMaterialKey) reads when
+//! the material is specialized. Nothing is shared between apps, and the render world reads
+//! the value of the frame it draws. They sit below both, so that the material needs nothing
+//! of the shadows or the lights.
 
 use bevy::{
+    ecs::resource::Resource,
     pbr::MATERIAL_BIND_GROUP_INDEX,
     render::render_resource::{BindingType, BufferBindingType, RenderPipelineDescriptor},
     shader::ShaderDefVal,
 };
-use core::sync::atomic::AtomicBool;
 
-/// Whether any light casts shadows this frame. Phong materials compile the shadow code only
-/// in the variant for scenes where one does (shader def `PHONG_SHADOWS`): on some devices
-/// (lavapipe) the mere presence of that code makes every fragment several times slower.
-/// The shadow gather sets it in the main world and, when it flips, marks every Phong
-/// material modified in the same frame, so that each is prepared again with the new key.
-pub(crate) static SCENE_CASTS_SHADOWS: AtomicBool = AtomicBool::new(false);
-
-/// Whether some shadow-casting light has a size (`softness > 0`) this frame: only then is
-/// the soft-shadow filter compiled in (shader def `PHONG_SOFT_SHADOWS`), as
-/// [`SCENE_CASTS_SHADOWS`] and set beside it. Hard shadows are one bilinear comparison per
-/// light.
-pub(crate) static SCENE_HAS_SOFT_SHADOWS: AtomicBool = AtomicBool::new(false);
-
-/// Whether the scene has a [`PhongHemisphereLight`](crate::PhongHemisphereLight) this frame:
-/// only then is its term compiled in (shader def `PHONG_HEMISPHERE`), as
-/// [`SCENE_CASTS_SHADOWS`]. The light gather sets it and, when it flips, marks every Phong
-/// material modified in the same frame.
-pub(crate) static SCENE_HAS_HEMISPHERE_LIGHT: AtomicBool = AtomicBool::new(false);
-
-/// Whether some light of the scene has a [`PhongLightCookie`](crate::PhongLightCookie) this
-/// frame: only then is the cookie code compiled in (shader def `PHONG_LIGHT_COOKIES`), as
-/// [`SCENE_CASTS_SHADOWS`]. The cookie gather sets it.
-pub(crate) static SCENE_HAS_LIGHT_COOKIES: AtomicBool = AtomicBool::new(false);
+/// The scene's choices that change the shader of every Phong material, in the main world
+/// (a resource of the app) and in each material (a copy the plugin keeps equal to it). Each
+/// leaves code out of the shaders of scenes that do not need it: on some devices (lavapipe)
+/// the mere presence of the shadow code makes every fragment several times slower. When one
+/// changes, every Phong material is modified in the same frame and prepared again with the
+/// new key; the first time a variant is seen it is compiled, as any new variant.
+#[doc(hidden)]
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct SceneVariants {
+    /// Whether any light casts shadows this frame (shader def `PHONG_SHADOWS`). Set by the
+    /// shadow gather.
+    pub(crate) shadows: bool,
+    /// Whether some shadow-casting light has a size (`softness > 0`) this frame: only then is
+    /// the soft-shadow filter compiled in (shader def `PHONG_SOFT_SHADOWS`); hard shadows are
+    /// one bilinear comparison per light. Set by the shadow gather.
+    pub(crate) soft_shadows: bool,
+    /// Whether the scene has a [`PhongHemisphereLight`](crate::PhongHemisphereLight) (shader
+    /// def `PHONG_HEMISPHERE`). Set by the light gather.
+    pub(crate) hemisphere: bool,
+    /// Whether some light has a [`PhongLightCookie`](crate::PhongLightCookie) with a record
+    /// this frame (shader def `PHONG_LIGHT_COOKIES`). Set by the cookie gather.
+    pub(crate) cookies: bool,
+}
 
 /// Binding index, in the material bind group, of the light buffer (a storage buffer) or, where
 /// a shader stage has too few storage buffers (WebGL2), of the data texture that holds the

@@ -7,9 +7,10 @@
 //!   normal (not normalized) it was lit with; alpha is the object's material number (0 for
 //!   background, where RGB is 0 too).
 //!
-//! It also prints the largest difference from `bevy_phong::reference` on those inputs (for
-//! a scene without shadows: the reference is not given the visibility of a scene file's
-//! lights).
+//! It also prints the largest difference from `bevy_phong::reference` on those inputs, every
+//! material feature and light applied (`Harness::compare_with_reference`; for a scene without
+//! shadows: the reference is not given the visibility of a scene file's lights), and how many
+//! pixels it could not judge (texel edges, maps sampled with filtering, environment maps).
 //!
 //! `cargo run --example render_scene -- assets/scenes/showcase.phong_scene.ron --out DIR`;
 //! `--help` lists the options.
@@ -152,10 +153,11 @@ fn render(options: &Options) -> Result<(), String> {
         // know the scene's shapes; a scene file's are not modelled here.
         println!("the scene casts shadows: no comparison with the reference model");
     } else {
-        let comparison = harness.compare(&rendered, &inputs);
+        let comparison = harness.compare_with_reference(&rendered);
         println!(
-            "{} lit pixels; largest difference from the reference model {:.2e} (relative to max(1, |expected|))",
-            comparison.lit_pixels, comparison.max_error
+            "{} lit pixels, {} of them not judged; largest difference from the reference model \
+             {:.2e} (relative to max(1, |expected|))",
+            comparison.lit_pixels, comparison.skipped_pixels, comparison.max_error
         );
     }
     std::fs::create_dir_all(&options.out)

@@ -8,7 +8,7 @@ use crate::lights::{
     PhongDirectionalLight, PhongLightCookie, PhongPointLight, PhongSpotLight, cookie_layer_texels,
 };
 use crate::limits::{MAX_COOKIE_IMAGES, SPOT_ANGLE, WIDEST_SPOT_COOKIE};
-use crate::scene_variants::SCENE_HAS_LIGHT_COOKIES;
+use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::LightBufferResized;
 use bevy::{
     asset::{AssetEvent, AssetId, Assets},
@@ -26,7 +26,6 @@ use bevy::{
     platform::collections::HashSet,
     transform::components::GlobalTransform,
 };
-use core::sync::atomic::Ordering;
 
 /// The cookies of this frame: the atlas's images, layer by layer, and each cookied light's
 /// record with the light's slot in them.
@@ -84,6 +83,7 @@ pub fn gather_cookies(
     mut images: ResMut<Assets<Image>>,
     mut cookies: ResMut<PhongCookies>,
     mut resized: MessageWriter<LightBufferResized>,
+    mut variants: ResMut<SceneVariants>,
 ) {
     let modified: HashSet<AssetId<Image>> = image_events
         .read()
@@ -164,12 +164,14 @@ pub fn gather_cookies(
         changed = true;
     }
     let any = !state.records.is_empty();
-    let variant_changed = SCENE_HAS_LIGHT_COOKIES.swap(any, Ordering::Relaxed) != any;
+    if variants.cookies != any {
+        variants.cookies = any;
+    }
     if changed {
         cookies.set_changed();
     }
-    if rebuild || variant_changed {
-        // A new atlas texture, or a new variant: the materials' bind groups are made again.
+    if rebuild {
+        // A new atlas texture: the materials' bind groups are made again.
         resized.write(LightBufferResized {
             buffer: super::PHONG_LIGHT_BUFFER,
         });

@@ -14,7 +14,7 @@ use crate::lights::{
     LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongPointLight,
     PhongSpotLight, TrackedLightQuery, lit_lights, lit_tracked_lights,
 };
-use crate::scene_variants::SCENE_HAS_HEMISPHERE_LIGHT;
+use crate::scene_variants::SceneVariants;
 use crate::shadows::ShadowSlots;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
@@ -33,7 +33,6 @@ use bevy::{
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
-use core::sync::atomic::Ordering;
 
 /// The built-in lights' buffer, and the scratch space the gather system fills it from (kept
 /// between frames: no allocation once the scene's size is reached).
@@ -237,6 +236,7 @@ pub fn gather_lights(
     mut state: ResMut<PhongLightBuffer>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
     mut resized: MessageWriter<LightBufferResized>,
+    mut variants: ResMut<SceneVariants>,
 ) {
     // Evaluate every detector: each one drains its removals.
     let changes = [
@@ -354,12 +354,12 @@ pub fn gather_lights(
             .map(|cookie| bytemuck::cast::<_, GpuLight>(*cookie)),
     );
     state.hemisphere = hemisphere.is_some();
-    let variant_changed =
-        SCENE_HAS_HEMISPHERE_LIGHT.swap(state.hemisphere, Ordering::Relaxed) != state.hemisphere;
+    if variants.hemisphere != state.hemisphere {
+        variants.hemisphere = state.hemisphere;
+    }
     if state
         .buffer
         .write(&mut buffers, &state.header, &state.records)
-        || variant_changed
     {
         resized.write(LightBufferResized {
             buffer: state.buffer.handle().clone(),

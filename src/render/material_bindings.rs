@@ -5,7 +5,6 @@
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
 use crate::DisplacementUniform;
 use crate::material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform};
-use crate::scene_variants::SCENE_HAS_LIGHT_COOKIES;
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
     asset::Handle,
@@ -23,7 +22,6 @@ use bevy::{
         texture::{FallbackImage, GpuImage},
     },
 };
-use core::sync::atomic::Ordering;
 
 /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
 /// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
@@ -226,12 +224,6 @@ impl PhongSceneBindings<'_> {
                 .images
                 .get(&crate::render::PHONG_SCENE_TEXTURE)
                 .ok_or(AsBindGroupError::RetryNextUpdate)?;
-            if SCENE_HAS_LIGHT_COOKIES.load(Ordering::Relaxed) {
-                bevy::log::warn_once!(
-                    "PhongLightCookie is left out on this device (WebGL2's 16 textures a \
-                     shader stage): lights are drawn without their cookies"
-                );
-            }
             vec![(
                 Self::SCENE_DATA,
                 UnpreparedBindingResource::TextureView(
@@ -326,6 +318,12 @@ impl AsBindGroup for PhongMaterial {
             output,
         )?;
         if !binds_every_map(render_device) {
+            if self.scene_variants.cookies {
+                bevy::log::warn_once!(
+                    "PhongLightCookie is left out on this device (WebGL2's 16 textures a \
+                     shader stage): lights are drawn without their cookies"
+                );
+            }
             let mut index = 0;
             output.binding_resources.0.retain(|(binding, _)| {
                 let keep = index < first || !MAPS_OF_FULL_DEVICES.contains(binding);

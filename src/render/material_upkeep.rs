@@ -1,8 +1,10 @@
 //! Keeping material bind groups on the current light buffer after it is reallocated.
 
+use crate::material::PhongSceneMaterial;
+use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::LightBufferResized;
 use bevy::{
-    asset::Assets,
+    asset::{AssetId, Assets},
     ecs::message::MessageReader,
     pbr::{Material, MeshMaterial3d},
     render::{
@@ -24,6 +26,36 @@ pub(crate) fn refresh_material_bind_groups<M: Material>(
     }
     // `iter_mut` reports every asset it yields as modified.
     for _ in materials.iter_mut() {}
+}
+
+/// Keeps the scene's shader variant of every material of type `M` made of a
+/// [`PhongMaterial`](crate::PhongMaterial) equal to the app's [`SceneVariants`]: a material
+/// that differs (one just added, or every one where the scene's variant changed this frame)
+/// is modified, so that the render world prepares it again, with the new key, in the same
+/// frame. The variant travels with the material's extraction: each app has its own, and the
+/// render world reads the one of the frame it draws.
+///
+/// Runs in [`PhongSystems::RefreshMaterials`](crate::PhongSystems::RefreshMaterials).
+pub(crate) fn carry_scene_variants<M: PhongSceneMaterial>(
+    variants: Res<SceneVariants>,
+    mut materials: ResMut<Assets<M>>,
+) {
+    let stale: Vec<AssetId<M>> = materials
+        .iter()
+        .filter(|(_, material)| {
+            material
+                .phong_material()
+                .is_some_and(|phong| phong.scene_variants != *variants)
+        })
+        .map(|(id, _)| id)
+        .collect();
+    for id in stale {
+        if let Some(mut material) = materials.get_mut(id)
+            && let Some(phong) = material.phong_material_mut()
+        {
+            phong.scene_variants = *variants;
+        }
+    }
 }
 
 /// Does nothing; it exists for its place in the render schedule: after the light buffers
@@ -49,4 +81,7 @@ where
     );
 }
 
-use bevy::ecs::{schedule::IntoScheduleConfigs, system::ResMut};
+use bevy::ecs::{
+    schedule::IntoScheduleConfigs,
+    system::{Res, ResMut},
+};

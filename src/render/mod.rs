@@ -77,7 +77,9 @@ pub use gather::{PhongLightBuffer, gather_lights};
 pub use gpu_types::{GpuClustersHeader, GpuCookie, GpuLight, GpuLightsHeader};
 pub use light_records::linear_rgb;
 pub use material_bindings::{PhongSceneBindings, binds_every_map};
-pub(crate) use material_upkeep::{refresh_material_bind_groups, schedule_light_buffers_before};
+pub(crate) use material_upkeep::{
+    carry_scene_variants, refresh_material_bind_groups, schedule_light_buffers_before,
+};
 pub(crate) use scene_texture::{
     PHONG_SCENE_TEXTURE, STORAGE_BUFFERS_NEEDED, announce_scene_data_path, needs_scene_texture,
     pack_scene_texture,

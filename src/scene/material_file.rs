@@ -341,6 +341,8 @@ impl PhongMaterialDescription {
             environment_combine: self.environment_combine,
             reflectivity: self.reflectivity,
             refraction_ratio: self.refraction_ratio,
+            // The app's, which the plugin sets.
+            scene_variants: Default::default(),
         })
     }
 }

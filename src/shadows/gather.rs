@@ -16,7 +16,7 @@ use super::{
 use crate::lights::PhongShadows;
 use crate::limits;
 use crate::material::PhongMaterial;
-use crate::scene_variants::{SCENE_CASTS_SHADOWS, SCENE_HAS_SOFT_SHADOWS};
+use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::{AssetId, Assets, Handle, uuid_handle},
@@ -39,7 +39,7 @@ use bevy::{
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
-use core::{ops::Range, sync::atomic::Ordering};
+use core::ops::Range;
 
 /// The storage buffer of the shadow views, bound by every Phong material.
 pub(crate) const PHONG_SHADOW_VIEW_BUFFER: Handle<ShaderBuffer> =
@@ -184,6 +184,7 @@ pub(crate) fn gather_shadows(
     mut slots: ResMut<ShadowSlots>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
     mut resized: MessageWriter<LightBufferResized>,
+    mut variants: ResMut<SceneVariants>,
     poses: Poses,
 ) {
     let cameras = shadow_cameras(&cameras, &phong_lit);
@@ -333,10 +334,11 @@ pub(crate) fn gather_shadows(
         .write(&mut buffers, &header, &state.records);
     let casts_shadows = !state.records.is_empty();
     let soft_shadows = state.records.iter().any(|view| view.light_size > 0.0);
-    let variant_changed = (SCENE_CASTS_SHADOWS.swap(casts_shadows, Ordering::Relaxed)
-        != casts_shadows)
-        | (SCENE_HAS_SOFT_SHADOWS.swap(soft_shadows, Ordering::Relaxed) != soft_shadows);
-    if buffer_resized || variant_changed || next.layout != frame.layout {
+    if (variants.shadows, variants.soft_shadows) != (casts_shadows, soft_shadows) {
+        variants.shadows = casts_shadows;
+        variants.soft_shadows = soft_shadows;
+    }
+    if buffer_resized || next.layout != frame.layout {
         resized.write(LightBufferResized {
             buffer: PHONG_SHADOW_VIEW_BUFFER,
         });

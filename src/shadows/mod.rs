@@ -73,7 +73,7 @@ pub const MAX_SHADOW_VIEWS: usize = 256;
 
 use crate::{
     lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight},
-    scene_variants::SCENE_CASTS_SHADOWS,
+    scene_variants::SceneVariants,
     schedule::PhongSystems,
 };
 use bevy::{
@@ -85,7 +85,7 @@ use bevy::{
     ecs::{
         query::{Or, With, Without},
         schedule::IntoScheduleConfigs,
-        system::Query,
+        system::{Query, Res},
     },
     light::NotShadowCaster,
     mesh::{Mesh3d, morph::MeshMorphWeights, skinning::SkinnedMesh},
@@ -95,7 +95,6 @@ use bevy::{
         renderer::{RenderGraph, RenderGraphSystems},
     },
 };
-use core::sync::atomic::Ordering;
 
 /// The main world's part: the requests of the built-in lights and the gather.
 pub(crate) fn add_shadow_gather(app: &mut App) {
@@ -129,7 +128,7 @@ pub(crate) fn add_shadow_gather(app: &mut App) {
                     .in_set(PhongSystems::RequestShadows),
                 gather_shadows.in_set(PhongSystems::GatherShadows),
                 keep_posed_casters_prepared
-                    .run_if(|| SCENE_CASTS_SHADOWS.load(Ordering::Relaxed))
+                    .run_if(|variants: Res<SceneVariants>| variants.shadows)
                     .after(VisibilitySystems::CheckVisibility)
                     .before(VisibilitySystems::MarkNewlyHiddenEntitiesInvisible),
             ),

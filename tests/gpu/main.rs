@@ -28,13 +28,17 @@
 //!   each primitive covers the pixels `StandardMaterial` covers, and the scene is lit as the
 //!   reference model says on the skinned and morphed inputs;
 //! - `scene_files`: a scene file loaded, rendered and compared with the reference model;
+//! - `self_check`: `render_scene`'s comparison with the reference model
+//!   (`Harness::compare_with_reference`), one scene per material feature and kind of light;
 //! - `shadows`: every pixel's shadowing against rays cast in `f64` to each light, within a
 //!   band around the exact shadow's edge;
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel;
 //! - `huge_vectors`: light directions of any scale and colors past the bound, against the
 //!   reference model;
 //! - `fuzzed_scenes`: a sample of the fuzzer's files (`tests/fuzz`), rendered: no NaN or
-//!   infinite pixel.
+//!   infinite pixel;
+//! - `two_apps`: two apps in one process, one with shadows, a cookie and a hemisphere light
+//!   and one without, their frames interleaved: each renders as it does alone.
 //!
 //! The soak test is the other binary on the render device (`tests/soak`): it measures the
 //! CPU time of its process, which it must have to itself.
@@ -64,6 +68,7 @@ mod scene_files;
 mod searchlight;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
+mod self_check;
 mod shading_normals;
 mod shadows;
 #[path = "../fuzz/shapes.rs"]
@@ -72,3 +77,4 @@ mod stress;
 mod stylized;
 mod surface_inputs;
 mod texture_maps;
+mod two_apps;

@@ -18,11 +18,14 @@ use crate::texture_maps::{
 };
 use bevy::{math::Affine2, prelude::*};
 use bevy_phong::{prelude::*, reference};
-use bevy_phong_headless::Harness;
+use bevy_phong_headless::{
+    Harness,
+    pixel_model::{face_normal_at, world_triangles},
+};
 use glam::DVec3;
 
 /// A height map whose red channel varies from texel to texel over `[0, 1]`.
-fn height_map() -> Image {
+pub(crate) fn height_map() -> Image {
     float_map(|x, y| {
         let height = ((x * 5 + y * 3 + 1) % 7) as f32 / 6.0;
         [height, 0.0, 0.0, 1.0]
@@ -30,7 +33,7 @@ fn height_map() -> Image {
 }
 
 /// A UV sphere with tangents, as the normal and bump maps need.
-fn tangent_sphere(radius: f32) -> Mesh {
+pub(crate) fn tangent_sphere(radius: f32) -> Mesh {
     Sphere::new(radius)
         .mesh()
         .uv(48, 32)
@@ -92,50 +95,6 @@ fn bump_maps_follow_the_reference_model() {
     assert_follows_the_reference(harness, objects, "bump maps");
 }
 
-/// The world-space triangles of `mesh` placed by `transform`.
-fn world_triangles(mesh: &Mesh, transform: &Transform) -> Vec<[DVec3; 3]> {
-    let positions = mesh
-        .attribute(Mesh::ATTRIBUTE_POSITION)
-        .and_then(|positions| positions.as_float3())
-        .expect("a mesh with positions");
-    let world = |index: usize| {
-        transform
-            .transform_point(Vec3::from(positions[index]))
-            .as_dvec3()
-    };
-    let indices: Vec<usize> = mesh.indices().expect("an indexed mesh").iter().collect();
-    indices
-        .chunks_exact(3)
-        .map(|triangle| [world(triangle[0]), world(triangle[1]), world(triangle[2])])
-        .collect()
-}
-
-/// The geometric normal (any length) of the one triangle among `triangles` that holds
-/// `position`, to 10⁻⁴; `None` where none or two with different planes do (an edge).
-fn face_normal_at(triangles: &[[DVec3; 3]], position: DVec3) -> Option<DVec3> {
-    const NEAR: f64 = 1e-4;
-    let mut found: Option<DVec3> = None;
-    for [a, b, c] in triangles {
-        let normal = (*b - *a).cross(*c - *a);
-        let unit = normal.normalize();
-        if unit.dot(position - *a).abs() > NEAR {
-            continue;
-        }
-        // Inside: on the inner side of each edge, within NEAR.
-        let inside = [(a, b), (b, c), (c, a)]
-            .iter()
-            .all(|(from, to)| unit.cross(**to - **from).normalize().dot(position - **from) > -NEAR);
-        if !inside {
-            continue;
-        }
-        match found {
-            Some(other) if other.normalize().dot(unit) < 1.0 - 1e-9 => return None,
-            _ => found = Some(normal),
-        }
-    }
-    found
-}
-
 #[test]
 fn flat_shading_lights_each_triangle_with_its_face_normal() {
     let mut harness = Harness::new(SIZE, SIZE);
@@ -184,7 +143,7 @@ fn flat_shading_lights_each_triangle_with_its_face_normal() {
     let triangles: Vec<[DVec3; 3]> = objects
         .iter()
         .filter(|(_, _, material)| material.flat_shading)
-        .flat_map(|(mesh, transform, _)| world_triangles(mesh, transform))
+        .flat_map(|(mesh, transform, _)| world_triangles(mesh, &GlobalTransform::from(*transform)))
         .collect();
     assert_pixels_follow(
         harness,

@@ -32,7 +32,7 @@ fn wave(x: f32) -> f32 {
 
 /// `mesh` with a color at each vertex that varies with its position: RGB in `[0.3, 1]`,
 /// alpha in `[0, 1]`.
-fn with_vertex_colors(mut mesh: Mesh) -> Mesh {
+pub(crate) fn with_vertex_colors(mut mesh: Mesh) -> Mesh {
     let positions = mesh
         .attribute(Mesh::ATTRIBUTE_POSITION)
         .and_then(|positions| positions.as_float3())
@@ -165,7 +165,7 @@ fn unlit_materials_show_their_emissive_and_base_colors_only() {
 }
 
 /// `mesh` with a second UV set: its first, turned a quarter and shrunk into the middle.
-fn with_second_uvs(mut mesh: Mesh) -> Mesh {
+pub(crate) fn with_second_uvs(mut mesh: Mesh) -> Mesh {
     let uvs = mesh
         .attribute(Mesh::ATTRIBUTE_UV_0)
         .and_then(|uvs| match uvs {

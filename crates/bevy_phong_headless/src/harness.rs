@@ -7,7 +7,6 @@ use bevy::{
     core_pipeline::tonemapping::{DebandDither, Tonemapping},
     image::Image,
     math::DVec3,
-    pbr::{ExtendedMaterial, MaterialExtension},
     prelude::*,
     render::{
         error_handler::RenderErrorHandler,
@@ -23,11 +22,12 @@ use bevy_phong::{
 };
 use std::{
     collections::HashMap,
+    rc::Rc,
     sync::{Mutex, MutexGuard},
 };
 
 use crate::{
-    Comparison, FloatImage, app::headless_app_with_assets, assert_no_failed_pipelines,
+    Comparison, FloatImage, app::headless_app_with_assets, assert_no_failed_pipelines, pixel_model,
     read_back_frame, run_until_settled,
 };
 
@@ -38,26 +38,6 @@ pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
 const MAX_SETTLE_FRAMES: u32 = 600;
 /// Frames to wait for a scene file and what it names to load before giving up.
 const MAX_LOAD_FRAMES: u32 = 2_000;
-
-/// A material whose per-pixel inputs [`Harness`] captures: the Phong material it draws
-/// with, whose faces and displaced vertices the capture draws alike
-/// ([`SurfaceInputsMaterial::standing_in_for`]).
-pub trait CapturedMaterial: Material {
-    /// The Phong material this one draws with.
-    fn phong(&self) -> &PhongMaterial;
-}
-
-impl CapturedMaterial for PhongMaterial {
-    fn phong(&self) -> &PhongMaterial {
-        self
-    }
-}
-
-impl<E: MaterialExtension> CapturedMaterial for ExtendedMaterial<PhongMaterial, E> {
-    fn phong(&self) -> &PhongMaterial {
-        &self.base
-    }
-}
 
 /// Per-pixel inputs of the lighting equation: world position and normal (with texture maps
 /// also UVs, tangent and vertex color), and in alpha the tag of the material that covers the pixel (0 for
@@ -98,6 +78,72 @@ impl<M: Material> SurfaceInputs<M> {
     }
 }
 
+/// The lights of a scene as the reference model takes them, each with its cookie.
+pub struct ReferenceScene {
+    /// The ambient light, the hemisphere light and each light, untinted.
+    pub lights: reference::Lights,
+    /// Each light's cookie, in the order of `lights.lights`, and whether it is a point
+    /// light's (a cube map).
+    pub cookies: Vec<Option<(reference::Cookie, bool)>>,
+}
+
+impl ReferenceScene {
+    /// The lights at world position `position`: each tinted by its cookie where `tinted`
+    /// (the device binds the cookie atlas); `None` where a point light's cookie is read
+    /// within 10⁻⁵ (relative) of a cube edge, where the device's `f32` may pick the other
+    /// face.
+    pub fn lights_at(&self, position: DVec3, tinted: bool) -> Option<reference::Lights> {
+        let mut lights = self.lights.clone();
+        if !tinted {
+            return Some(lights);
+        }
+        for (light, cookie) in lights.lights.iter_mut().zip(&self.cookies) {
+            let Some((cookie, cube)) = cookie else {
+                continue;
+            };
+            if *cube && near_a_cube_edge(cookie.light_from_world.transform_point3(position)) {
+                return None;
+            }
+            *light = light.tinted(cookie.tint(position));
+        }
+        Some(lights)
+    }
+}
+
+/// Whether `direction`'s two largest components are within 10⁻⁵ of each other (relative):
+/// on a cube edge.
+fn near_a_cube_edge(direction: DVec3) -> bool {
+    let mut a = direction.abs().to_array();
+    a.sort_by(f64::total_cmp);
+    a[2] - a[1] <= 1e-5 * a[2]
+}
+
+/// The process's rendering lock, which each harness holds while it lives. A test that failed
+/// while holding it leaves it poisoned; the next one goes on.
+fn lock_rendering() -> MutexGuard<'static, ()> {
+    static RENDERING: Mutex<()> = Mutex::new(());
+    RENDERING
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// One frame of two apps in lockstep, as `App::update` runs each but interleaved: both
+/// main worlds first (`first`'s, then `second`'s), then each render world extracts its
+/// own main world and renders. What one app's main world writes can reach only its own
+/// render world.
+pub fn update_in_lockstep(first: &mut App, second: &mut App) {
+    first.sub_apps_mut().main.run_default_schedule();
+    second.sub_apps_mut().main.run_default_schedule();
+    for app in [first, second] {
+        let sub_apps = app.sub_apps_mut();
+        for sub_app in sub_apps.sub_apps.values_mut() {
+            sub_app.extract(sub_apps.main.world_mut());
+            sub_app.update();
+        }
+        sub_apps.main.world_mut().clear_trackers();
+    }
+}
+
 /// Marks the camera that renders into the harness's target (a test may add others).
 #[derive(Component)]
 pub struct HarnessCamera;
@@ -106,10 +152,9 @@ pub struct HarnessCamera;
 pub struct Harness {
     /// The app; [`Self::world_mut`] reaches its main world.
     pub app: App,
-    /// Held while the harness lives: one harness renders at a time. Phong materials take
-    /// their shadow variant from a process-wide flag (`PhongMaterialKey::shadows`), which
-    /// apps rendering side by side would flip under each other.
-    _one_at_a_time: MutexGuard<'static, ()>,
+    /// Held while the harness lives (by both of a [`Self::side_by_side`] pair): one test
+    /// renders at a time, so that each has the render device's threads to itself.
+    _one_at_a_time: Rc<MutexGuard<'static, ()>>,
     target: Handle<Image>,
     width: u32,
     height: u32,
@@ -136,11 +181,38 @@ impl Harness {
         asset_root: String,
         add_plugins: impl FnOnce(&mut App),
     ) -> Self {
-        static RENDERING: Mutex<()> = Mutex::new(());
-        // A test that failed while holding it leaves it poisoned; the next one goes on.
-        let one_at_a_time = RENDERING
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        Self::holding(
+            Rc::new(lock_rendering()),
+            width,
+            height,
+            asset_root,
+            add_plugins,
+        )
+    }
+
+    /// Two harnesses whose apps live side by side in this process, as an editor and its
+    /// preview do, each with what its `add_plugins` adds. [`Self::render_next_frame_beside`]
+    /// runs them in lockstep.
+    pub fn side_by_side(
+        width: u32,
+        height: u32,
+        add_first: impl FnOnce(&mut App),
+        add_second: impl FnOnce(&mut App),
+    ) -> (Self, Self) {
+        let lock = Rc::new(lock_rendering());
+        let asset_root = AssetPlugin::default().file_path;
+        let first = Self::holding(lock.clone(), width, height, asset_root.clone(), add_first);
+        let second = Self::holding(lock, width, height, asset_root, add_second);
+        (first, second)
+    }
+
+    fn holding(
+        one_at_a_time: Rc<MutexGuard<'static, ()>>,
+        width: u32,
+        height: u32,
+        asset_root: String,
+        add_plugins: impl FnOnce(&mut App),
+    ) -> Self {
         let mut app = headless_app_with_assets(asset_root, |app| {
             app.insert_resource(PhongLightCulling::EXACT)
                 .add_plugins(SurfaceInputsPlugin);
@@ -269,13 +341,23 @@ impl Harness {
         FloatImage::from_rows(self.width, self.height, &bytes)
     }
 
+    /// Runs frames of this harness's app and `other`'s in lockstep
+    /// ([`update_in_lockstep`]) until a frame of this one is read back, and returns it.
+    pub fn render_next_frame_beside(&mut self, other: &mut Harness) -> FloatImage {
+        let (width, height) = (self.width as usize, self.height as usize);
+        let bytes = read_back_frame(&mut self.app, &self.target, 16 * width, height, |app| {
+            update_in_lockstep(app, &mut other.app)
+        });
+        FloatImage::from_rows(self.width, self.height, &bytes)
+    }
+
     /// Renders every Phong mesh's world position and normal instead of its color.
     pub fn capture_inputs(&mut self) -> SurfaceInputs {
         self.capture_inputs_of::<PhongMaterial>()
     }
 
     /// Renders the world position and normal of every mesh made of `M` instead of its color.
-    pub fn capture_inputs_of<M: CapturedMaterial>(&mut self) -> SurfaceInputs<M> {
+    pub fn capture_inputs_of<M: PhongSceneMaterial>(&mut self) -> SurfaceInputs<M> {
         self.capture::<M>(false)
     }
 
@@ -287,11 +369,11 @@ impl Harness {
 
     /// As [`Self::capture_inputs_of`], with the UV sets and tangents that texture maps need
     /// and the vertex colors: for extensions of `PhongMaterial` drawn with its maps.
-    pub fn capture_inputs_with_maps_of<M: CapturedMaterial>(&mut self) -> SurfaceInputs<M> {
+    pub fn capture_inputs_with_maps_of<M: PhongSceneMaterial>(&mut self) -> SurfaceInputs<M> {
         self.capture::<M>(true)
     }
 
-    fn capture<M: CapturedMaterial>(&mut self, with_maps: bool) -> SurfaceInputs<M> {
+    fn capture<M: PhongSceneMaterial>(&mut self, with_maps: bool) -> SurfaceInputs<M> {
         let world = self.app.world_mut();
         let meshes: Vec<(Entity, Handle<M>)> = world
             .query::<(Entity, &MeshMaterial3d<M>)>()
@@ -319,7 +401,9 @@ impl Harness {
             .map(|handle| {
                 let material = assets
                     .get(handle)
-                    .map_or_else(PhongMaterial::default, |material| material.phong().clone());
+                    .map_or_else(PhongMaterial::default, |material| {
+                        material.phong_material().cloned().unwrap_or_default()
+                    });
                 (handle.clone(), material)
             })
             .collect();
@@ -421,16 +505,92 @@ impl Harness {
             .as_dvec3()
     }
 
-    /// Compares `rendered` with the reference model on `inputs`, pixel by pixel.
-    pub fn compare(&mut self, rendered: &FloatImage, inputs: &SurfaceInputs) -> Comparison {
+    /// The scene's lights as the reference model takes them, each with its cookie (see
+    /// [`ReferenceScene`]).
+    pub fn reference_scene(&mut self) -> ReferenceScene {
         let lights = self.reference_lights();
-        self.compare_with(rendered, inputs, |material: &PhongMaterial, surface| {
-            Some(reference::shade(
-                surface,
-                &reference::Material::from(material),
-                &lights,
-            ))
+        let world = self.app.world_mut();
+        let mut cookied = world.query::<(
+            &GlobalTransform,
+            &InheritedVisibility,
+            Option<&PhongLightCookie>,
+            AnyOf<(&PhongDirectionalLight, &PhongPointLight, &PhongSpotLight)>,
+        )>();
+        let images = world.resource::<Assets<Image>>();
+        let cookies = cookied
+            .iter(world)
+            // In the order of `reference_lights`, which skips the same lights.
+            .filter(|(transform, visibility, ..)| {
+                visibility.get() && is_finite_transform(transform)
+            })
+            .map(|(transform, _, cookie, (_, point, spot))| {
+                let cookie = cookie?;
+                let spot_angle = spot.map(|spot| spot.outer_angle);
+                let cookie = reference::Cookie::new(
+                    cookie,
+                    images.get(&cookie.image)?,
+                    transform,
+                    spot_angle,
+                    point.is_some(),
+                )?;
+                Some((cookie, point.is_some()))
+            })
+            .collect();
+        ReferenceScene { lights, cookies }
+    }
+
+    /// Compares `rendered` with the reference model on `inputs`, pixel by pixel: the
+    /// [`pixel_model`](crate::pixel_model) given each pixel's inputs, lit by
+    /// [`Self::reference_scene`] (the cookies where the device binds them). Shadows are not
+    /// modelled: a scene whose lights cast them is compared as if they did not.
+    pub fn compare(&mut self, rendered: &FloatImage, inputs: &SurfaceInputs) -> Comparison {
+        let scene = self.reference_scene();
+        let images = pixel_model::loaded_images(self);
+        let flat_triangles = self.flat_shaded_triangles();
+        self.compare_pixels(rendered, inputs, |material, surface, pixel| {
+            let lights = scene.lights_at(surface.position, inputs.every_map_bound)?;
+            let surface = if material.flat_shading {
+                let face = pixel_model::face_normal_at(&flat_triangles, surface.position)?;
+                SurfacePoint {
+                    normal: reference::face_normal(face, surface.normal),
+                    ..*surface
+                }
+            } else {
+                *surface
+            };
+            pixel_model::expected_color(material, &surface, pixel, inputs, &images, &lights)
         })
+    }
+
+    /// The world-space triangles of every mesh drawn with a flat-shaded [`PhongMaterial`].
+    fn flat_shaded_triangles(&mut self) -> Vec<[DVec3; 3]> {
+        let world = self.app.world_mut();
+        let mut drawn =
+            world.query::<(&Mesh3d, &MeshMaterial3d<PhongMaterial>, &GlobalTransform)>();
+        let meshes = world.resource::<Assets<Mesh>>();
+        let materials = world.resource::<Assets<PhongMaterial>>();
+        drawn
+            .iter(world)
+            .filter(|(_, material, _)| {
+                materials
+                    .get(&material.0)
+                    .is_some_and(|material| material.flat_shading)
+            })
+            .filter_map(|(mesh, _, transform)| {
+                Some(pixel_model::world_triangles(
+                    meshes.get(&mesh.0)?,
+                    transform,
+                ))
+            })
+            .flatten()
+            .collect()
+    }
+
+    /// Captures the inputs of every Phong pixel with its maps' and compares `rendered` with
+    /// the reference model on them ([`Self::compare`]): the self-check of `render_scene`.
+    pub fn compare_with_reference(&mut self, rendered: &FloatImage) -> Comparison {
+        let inputs = self.capture_inputs_with_maps();
+        self.compare(rendered, &inputs)
     }
 
     /// Compares `rendered` with `expected(material, surface)` on `inputs`, pixel by pixel;

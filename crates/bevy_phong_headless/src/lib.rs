@@ -11,7 +11,8 @@
 //!   ([`Harness::settle`]), reads frames back ([`Harness::render_next_frame`]) and the
 //!   per-pixel inputs each pixel was lit with ([`Harness::capture_inputs`]), and compares a
 //!   frame with `bevy_phong::reference` pixel by pixel ([`Harness::compare`], giving a
-//!   [`Comparison`]).
+//!   [`Comparison`]), each pixel's expected color given by [`pixel_model`] with every
+//!   material feature and its maps' texels.
 //! - [`read_back_frame`] reads one frame of a render target back (the harness, the
 //!   benchmark), and [`without_row_padding`] strips the GPU copy's row padding (the
 //!   examples' headless runs, which read back from a running app).
@@ -32,6 +33,8 @@ mod float_image;
 mod harness;
 mod pipelines;
 #[cfg(not(target_arch = "wasm32"))]
+pub mod pixel_model;
+#[cfg(not(target_arch = "wasm32"))]
 mod readback;
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -41,7 +44,9 @@ pub use comparison::{Comparison, Expected};
 #[cfg(not(target_arch = "wasm32"))]
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
-pub use harness::{CAMERA_POSITION, CapturedMaterial, Harness, HarnessCamera, SurfaceInputs};
+pub use harness::{
+    CAMERA_POSITION, Harness, HarnessCamera, ReferenceScene, SurfaceInputs, update_in_lockstep,
+};
 pub use pipelines::{
     assert_no_failed_pipelines, failed_pipelines, pipelines_compiling, run_until_settled,
 };
