@@ -5,7 +5,7 @@
 //! (white), shininess 160, and its uncolored ambient `k_a · 0.6 = 0.12` as emissive (this
 //! crate's ambient term is tinted by `k_d`, the seed's is not). The seed ray-marches a box
 //! with rounded edges; here the box is a plain cuboid. The seed's shadows are the light's
-//! shadow maps with the seed's look, [`PhongShadows::SEED_003`]: a shadowed point keeps 10 %
+//! shadow maps that dim the diffuse term only, [`PhongShadows::DIFFUSE_DIMMED`]: a shadowed point keeps 10 %
 //! of the diffuse term and the whole highlight. The seed's diffuse term reads `materialColor / r * r`, which cancels to no
 //! fall-off, so the light has none either. The seed's coordinates are left-handed (x to the
 //! right while looking along +z); x is mirrored here so that the picture is the seed's.
@@ -103,7 +103,7 @@ fn setup(
         PhongPointLight {
             shadows: PhongShadows {
                 resolution: 2048,
-                ..PhongShadows::SEED_003
+                ..PhongShadows::DIFFUSE_DIMMED
             },
             ..default()
         },

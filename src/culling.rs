@@ -28,6 +28,7 @@ use bevy::{
     prelude::{ReflectComponent, ReflectDefault, ReflectResource},
     reflect::Reflect,
 };
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// How the plugin skips the lights that cannot reach a surface point. A resource: insert
@@ -44,9 +45,10 @@ use serde::{Deserialize, Serialize};
 ///     });
 /// }
 /// ```
-#[derive(Resource, Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Resource, Default, Debug, PartialEq, Clone)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct PhongLightCulling {
     /// ε, in the units of light colors (linear RGB, where 1 is a full channel): each of the
     /// `n` point and spot lights is skipped where its attenuated intensity falls below
@@ -133,15 +135,9 @@ impl Default for PhongViewClusters {
 /// The distance (world units) past which a light of largest channel `intensity` with
 /// distance fall-off `1 / (constant + linear·d + quadratic·d²)` stays below `epsilon`:
 /// `f32::INFINITY` when it never does (no fall-off, or `epsilon ≤ 0`), `0` when it never
-/// reaches `epsilon` at all. Computed in `f64`, rounded up.
-///
-/// ```
-/// # use bevy_phong::culling::influence_radius;
-/// // 1 / (1 + 0.09·d + 0.032·d²) falls to 1/256 at about 88 units.
-/// let radius = influence_radius([1.0, 0.09, 0.032], 1.0, 1.0 / 256.0);
-/// assert!((radius - 88.0).abs() < 0.5);
-/// ```
-pub fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
+/// reaches `epsilon` at all. Computed in `f64`, rounded up. For example
+/// `1 / (1 + 0.09·d + 0.032·d²)` falls to 1/256 at about 88 units.
+pub(crate) fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
     if epsilon.is_nan() || epsilon <= 0.0 {
         return f32::INFINITY;
     }
@@ -175,6 +171,12 @@ pub fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_common_opengl_decay_falls_to_one_256th_at_about_88_units() {
+        let radius = influence_radius([1.0, 0.09, 0.032], 1.0, 1.0 / 256.0);
+        assert!((radius - 88.0).abs() < 0.5, "{radius}");
+    }
     use crate::reference;
 
     fn intensity_at(decay: [f32; 3], intensity: f32, distance: f32) -> f64 {

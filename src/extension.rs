@@ -16,7 +16,7 @@
 //!
 //! ```
 //! use bevy::prelude::*;
-//! use bevy_phong::{extension::PhongLightKind, render::linear_rgb};
+//! use bevy_phong::extension::{PhongLightKind, linear_rgb};
 //!
 //! #[derive(Component, Clone)]
 //! #[require(Transform, Visibility)]
@@ -75,7 +75,7 @@
 //!
 //! ```
 //! # use bevy::prelude::*;
-//! # use bevy_phong::{extension::PhongLightKind, render::linear_rgb};
+//! # use bevy_phong::extension::{PhongLightKind, linear_rgb};
 //! # #[derive(Component, Clone)]
 //! # #[require(Transform, Visibility)]
 //! # struct Lamp { color: Color }
@@ -184,7 +184,7 @@
 //!
 //! A kind casts shadows by describing its rays in [`PhongLightKind::shadow`], a
 //! [`PhongShadowRequest`] with one of the
-//! [`PhongShadowProjection`](crate::shadows::PhongShadowProjection) shapes (sunlight, a
+//! [`PhongShadowProjection`] shapes (sunlight, a
 //! parallel beam, a cone, all directions) and [`PhongShadows`](crate::PhongShadows)
 //! settings. The plugin renders the maps with the built-in lights' and hands each light its
 //! slot through [`PhongLightKind::set_shadow`]: store it in a `u32` of the record. The
@@ -211,12 +211,16 @@
 //! with the extended material run the new loop. Per frame, the extension's gather system
 //! checks its change queries and returns when nothing changed.
 
+pub use crate::lights::light_direction;
+pub use crate::render::linear_rgb;
+pub use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
+
 use crate::render::DATA_TEXTURE_MAX_TEXELS;
 use crate::{
     lights::{LightQuery, lit_lights},
     render::{DataTexture, DataTextureWrite, LightChanges, push_visible, words_of},
     schedule::PhongSystems,
-    shadows::{PhongShadowRequest, ShadowRequests, ShadowSlots},
+    shadows::{ShadowRequests, ShadowSlots},
     storage_buffer::{LightBuffer, LightBufferResized, MIN_CAPACITY, init_shader_buffers},
 };
 use bevy::{
@@ -249,7 +253,7 @@ pub trait PhongLightKind: Component {
 
     /// The shadow this light casts, placed by its entity's transform; `None` (the default),
     /// or a request whose settings are off, casts none. See
-    /// [`PhongShadowProjection`](crate::shadows::PhongShadowProjection) for
+    /// [`PhongShadowProjection`] for
     /// the shapes of light that get maps.
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
         let _ = transform;
@@ -298,7 +302,7 @@ impl<L: PhongLightKind> PhongLightKindBuffer<L> {
     /// on every device, WebGL2 included: texel 0 is the [`GpuLightCount`] header, record
     /// `i` starts at texel `1 + i · size_of::<L::Gpu>() / 16`. WGSL reads texel `t` with
     /// `bevy_phong::shaders::data_texture::data_texel(texture, t)`. It holds up to
-    /// [`DATA_TEXTURE_MAX_TEXELS`] texels; past
+    /// `DATA_TEXTURE_MAX_TEXELS` texels; past
     /// them the last records are left out, with a warning.
     pub fn texture(&self) -> &Handle<Image> {
         self.texture.handle()
@@ -400,9 +404,7 @@ pub(crate) fn gather_light_kind<L: PhongLightKind>(
     let buffer_resized = state.buffer.write(&mut buffers, &header, &state.records);
     let texture_resized = write_texture::<L>(state, &mut images, header);
     if buffer_resized || texture_resized {
-        resized.write(LightBufferResized {
-            buffer: state.buffer.handle().clone(),
-        });
+        resized.write(LightBufferResized);
     }
 }
 

@@ -73,7 +73,7 @@ use core::f32::consts::PI;
 
 /// The quadratic decay coefficient (and color factor) that gives Bevy's
 /// `1 / max(d², 10⁻⁴)` fall-off.
-pub const BEVY_FALL_OFF: f32 = 1e4;
+pub(crate) const BEVY_FALL_OFF: f32 = 1e4;
 
 /// Mirrors Bevy's lights into this crate's lights (see the [module docs](self)). Opt-in: add
 /// it beside [`PhongPlugin`](crate::PhongPlugin).

@@ -45,6 +45,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     ("the plugin", &["plugin"]),
     ("glTF", &["gltf"]),
+    ("the testing feature", &["testing"]),
 ];
 
 /// The layer of `module`: its index in [`LAYERS`] (1 for the bottom one, as lib.rs counts)

@@ -59,8 +59,9 @@
 //!   its cluster, and a light that reaches no view costs nothing per fragment. Materials
 //!   without a highlight use a shader variant without the specular term
 //!   ([`PhongMaterialKey`]).
-//! - **The light buffer** ([`render`]) is a storage buffer that the gather system rewrites
-//!   in the frames where a light changed; see that module for how it stays bound.
+//! - **The light buffer** is a storage buffer (under WebGL2's limits, a data texture) that
+//!   the gather system rewrites in the frames where a light changed; [`PhongSceneBindings`]
+//!   binds it, with the clusters and the shadow maps, to each material.
 //! - **Shaders** are embedded WESL modules, imported at `bevy_phong::shaders::NAME`:
 //!   `fragment` (the shader API for extensions: the mapped surface, its lit color, the
 //!   camera's effects), `types`, `lighting` (one function per term of the equation),
@@ -68,22 +69,29 @@
 //! - **New light kinds** plug in from outside the crate: [`extension`] is the guide, with a
 //!   searchlight as the worked example.
 //! - **Invalid input** (a negative range, a NaN color, ...) is replaced by a documented value
-//!   with one warning naming the entity and field: see [`validation`]. Every float has a
-//!   documented range ([`limits`]), chosen so that no finite input overflows to infinity.
+//!   with one warning naming the entity and field, and an [`InvalidInput`] message. Every
+//!   float has a documented range (in its field's docs), chosen so that no finite input
+//!   overflows to infinity.
 //! - **Scene and material files** ([`scene`]): a scene written in RON
 //!   (`*.phong_scene.ron`), spawned by a [`PhongSceneRoot`](scene::PhongSceneRoot) and
 //!   hot-reloaded; a material alone in a `*.phong.ron` file.
 //! - **Texture maps**: base color, specular, emissive and normal maps on [`PhongMaterial`],
 //!   each sampled only by the materials that have it.
-//! - **Shadows** ([`shadows`]): each light's [`PhongShadows`] turns on shadow maps that the
+//! - **Shadows**: each light's [`PhongShadows`] turns on shadow maps that the
 //!   plugin renders (cascades for directional lights, a cube for point lights, one map for
 //!   spot lights), filtered with percentage-closer soft shadows; `NotShadowCaster` and
 //!   `NotShadowReceiver` work as on Bevy's meshes.
 //! - **glTF files** ([`gltf`], feature `gltf`, on by default): [`PhongGltfPlugin`] gives
 //!   each material of a glTF file a `PhongMaterial` made from its metallic/roughness values,
 //!   and the file's lights become Phong lights.
-//! - **[`SurfaceInputsMaterial`]** renders the world position or normal each pixel was lit
-//!   with, for checking a render against [`reference`](mod@reference).
+//!
+//! ## Features
+//!
+//! - `gltf` (default): [`PhongGltfPlugin`] and Bevy's glTF loader.
+//! - `scene` (default): scene and material files ([`scene`]), with `ron` and `serde`.
+//! - `testing`: `bevy_phong::testing`, the internals the crate's own tests, benchmarks and
+//!   render harness read (GPU layouts, gather systems, the limits table, a material that
+//!   renders each pixel's world position and normal). Not for games; not a stable API.
 //!
 //! ## Layers
 //!
@@ -104,7 +112,9 @@
 //! 6. features on top of those: `scene`, `interop`, `extension`, `surface_inputs`;
 //! 7. `plugin`, which adds all of it to an app;
 //! 8. `gltf`, whose [`PhongGltfPlugin`] adds the mirror of Bevy's lights and expects
-//!    [`PhongPlugin`].
+//!    [`PhongPlugin`];
+//! 9. `testing` (only with the `testing` feature), which re-exports the internals that the
+//!    crate's own tests, benchmarks and harness read.
 //!
 //! Tests are exempt (the `#[cfg(test)]` items and files, such as `test_app`): they may use
 //! any layer. A unit test (`layering_tests`) reads the sources and fails on an import that
@@ -118,28 +128,31 @@ pub mod extension;
 pub mod gltf;
 pub mod interop;
 mod lights;
-pub mod limits;
+mod limits;
 mod material;
 mod plugin;
 mod quoting;
 pub mod reference;
-pub mod render;
+mod render;
+#[cfg(feature = "scene")]
 pub mod scene;
 mod scene_variants;
 mod schedule;
-pub mod shadows;
+mod shadows;
 mod storage_buffer;
+#[cfg(feature = "testing")]
 mod surface_inputs;
 #[cfg(test)]
 mod test_app;
-pub mod validation;
+#[cfg(feature = "testing")]
+pub mod testing;
+mod validation;
 mod view_key;
 
 #[cfg(test)]
 mod layering_tests;
 
 pub use culling::{PhongLightCulling, PhongViewClusters};
-pub use displacement::DisplacementUniform;
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
@@ -149,14 +162,13 @@ pub use lights::{
 };
 pub use material::{
     DiffuseKind, DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialKey,
-    PhongMaterialUniform, PhongSceneMaterial, SpecularMode, SpecularModel, UvSet,
+    PhongSceneMaterial, SpecularMode, SpecularModel, UvSet,
 };
 pub use plugin::{PhongMaterialAppExt, PhongPlugin};
+pub use render::PhongSceneBindings;
 pub use schedule::PhongSystems;
 pub use shadows::PhongLit;
-pub use surface_inputs::{
-    SurfaceInput, SurfaceInputUniform, SurfaceInputsKey, SurfaceInputsMaterial, SurfaceInputsPlugin,
-};
+pub use validation::{InvalidInput, Owner};
 
 /// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
 pub mod prelude {
@@ -165,8 +177,10 @@ pub mod prelude {
         PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
         PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSceneMaterial, PhongShadows,
         PhongSpotLight, PhongViewClusters, SpecularMode, SpecularModel,
-        scene::{PhongScene, PhongSceneCamera, PhongSceneRoot},
     };
+
+    #[cfg(feature = "scene")]
+    pub use crate::scene::{PhongScene, PhongSceneCamera, PhongSceneRoot};
 
     #[cfg(feature = "gltf")]
     pub use crate::gltf::PhongGltfPlugin;

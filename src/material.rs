@@ -21,6 +21,7 @@ use bevy::{
     },
     shader::ShaderRef,
 };
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// Path of the material's fragment shader among the crate's embedded assets.
@@ -29,13 +30,14 @@ pub(crate) const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/ph
 pub(crate) const PHONG_PREPASS_SHADER: &str = "embedded://bevy_phong/shaders/phong_prepass.wesl";
 
 /// How the highlight of a light is shaped (SPEC.md's `H`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
 pub enum SpecularModel {
-    /// `max(R·V, 0)^α` with `R` the light reflected about the normal (seeds 000–002).
+    /// `max(R·V, 0)^α` with `R` the light reflected about the normal.
     #[default]
     Phong,
-    /// `max(N·H, 0)^α` with `H = normalize(L + V)`, the half vector (seed 003). For the same
+    /// `max(N·H, 0)^α` with `H = normalize(L + V)`, the half vector. For the same
     /// look as Phong, use about four times the shininess.
     BlinnPhong,
 }
@@ -51,7 +53,8 @@ impl SpecularModel {
 }
 
 /// How the diffuse term of each light is shaped from `N·L` (SPEC.md, "Stylized shading").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
 pub enum DiffuseMode {
     /// `max(N·L, 0)` (Lambert's).
@@ -72,7 +75,8 @@ pub enum DiffuseMode {
 }
 
 /// How the highlight of each light is drawn (SPEC.md, "Stylized shading").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
 pub enum SpecularMode {
     /// `H` as the specular model gives it.
@@ -90,7 +94,8 @@ pub enum SpecularMode {
 
 /// How the environment map's color joins the lit color (three.js's `combine`), weighted by
 /// `k = reflectivity` times the specular map's red channel (1 without one).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
 pub enum EnvironmentCombine {
     /// `mix(lit, lit ⊙ environment, k)`: the environment tints the surface.
@@ -142,7 +147,7 @@ pub enum EnvironmentCombine {
 ///
 /// The material holds only surface data. The lights, their clusters and the shadow maps
 /// are the plugin's: its bind group gets them from the render world when it is built (see
-/// [`crate::render`]).
+/// `crate::render`).
 #[derive(Asset, Clone, Debug, Reflect)]
 #[reflect(Default, Debug, Clone)]
 pub struct PhongMaterial {
@@ -153,8 +158,7 @@ pub struct PhongMaterial {
     pub ambient_factor: f32,
     /// Specular reflectance `k_s`. Default white.
     pub specular_color: Color,
-    /// Scalar multiplier on `k_s`, `≥ 0` (seed 000's `specularFactor`; `0` turns the
-    /// highlight off). Default `1`.
+    /// Scalar multiplier on `k_s`, `≥ 0` (`0` turns the highlight off). Default `1`.
     pub specular_strength: f32,
     /// Highlight exponent `α`, `≥ 0`: higher is a smaller, sharper highlight. Default `32`.
     pub shininess: f32,
@@ -169,7 +173,7 @@ pub struct PhongMaterial {
     /// "Stylized shading"). A ramp whose left half is not black lights the surface past the
     /// terminator. Load it as linear data (`is_srgb: false`) to read its bytes as they are.
     /// Ignored with another diffuse mode; left out under WebGL2
-    /// ([`crate::render::binds_every_map`]), where the bands are drawn. Default none.
+    /// (`crate::render::binds_every_map`), where the bands are drawn. Default none.
     #[dependency]
     pub toon_ramp_texture: Option<Handle<Image>>,
     /// How each light's highlight is drawn: as computed, as a toon spot, or not at all.
@@ -206,7 +210,7 @@ pub struct PhongMaterial {
     pub emissive_texture: Option<Handle<Image>>,
     /// Multiplies the output alpha by its green channel (three.js's `alphaMap`): a
     /// grayscale cut-out or fade without touching the base color map. Load it as linear
-    /// data (`is_srgb: false`). Left out under WebGL2 ([`crate::render::binds_every_map`]).
+    /// data (`is_srgb: false`). Left out under WebGL2 (`crate::render::binds_every_map`).
     /// Default none.
     #[dependency]
     pub alpha_map_texture: Option<Handle<Image>>,
@@ -223,7 +227,7 @@ pub struct PhongMaterial {
     /// and `Δv` are the changes of `h` one texel along `u` and `v` (of its largest mip) and
     /// `T`, `B` the normal map's tangent frame (SPEC.md, "Bump map"). It needs UVs and
     /// tangents, as the normal map. Load it as linear data (`is_srgb: false`). Left out under
-    /// WebGL2 ([`crate::render::binds_every_map`]). Default none.
+    /// WebGL2 (`crate::render::binds_every_map`). Default none.
     #[dependency]
     pub bump_map_texture: Option<Handle<Image>>,
     /// How far a height step of 1 between neighbouring texels tilts the normal: at 1 such
@@ -282,7 +286,7 @@ pub struct PhongMaterial {
     /// many of the depth buffer's smallest steps (wgpu's constant depth bias, truncated to
     /// an integer), so that coplanar surfaces such as decals draw in a chosen order; also
     /// Bevy's sorting bias. As `StandardMaterial::depth_bias`. NaN becomes 0 and values
-    /// beyond ±2.1·10⁹ are clamped ([`limits::DEPTH_BIAS`]), with a warning. Default `0`.
+    /// beyond ±2.1·10⁹ are clamped (`limits::DEPTH_BIAS`), with a warning. Default `0`.
     pub depth_bias: f32,
     /// Light baked into a texture (three.js's `lightMap`): its RGB times
     /// [`light_map_intensity`](Self::light_map_intensity) is added to the ambient light the
@@ -314,7 +318,7 @@ pub struct PhongMaterial {
     /// [`refraction_ratio`](Self::refraction_ratio)), reads it at a mip level as wide as
     /// the highlight's lobe (SPEC.md, "Environment map"), and
     /// [`environment_combine`](Self::environment_combine) joins it to the lit color. Not
-    /// drawn on unlit materials, nor under WebGL2 ([`crate::render::binds_every_map`]).
+    /// drawn on unlit materials, nor under WebGL2 (`crate::render::binds_every_map`).
     /// Default none.
     #[dependency]
     pub environment_map: Option<Handle<Image>>,

@@ -12,10 +12,6 @@ use crate::{
         PhongCookies, PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters,
         carry_scene_variants, gather_cookies, gather_lights, refresh_material_bind_groups,
     },
-    scene::{
-        PhongMaterialLoader, PhongScene, PhongSceneCamera, PhongSceneLoader, PhongSceneRoot,
-        spawn_phong_scenes,
-    },
     scene_variants::SceneVariants,
     schedule::{PhongSystems, configure_phong_systems},
     shadows::PhongLit,
@@ -26,7 +22,7 @@ use crate::{
     },
 };
 use bevy::{
-    app::{App, Plugin, PostUpdate, PreUpdate},
+    app::{App, Plugin, PostUpdate},
     asset::{AssetApp, Assets, embedded_asset, load_internal_asset},
     camera::visibility::VisibilitySystems,
     ecs::schedule::{IntoScheduleConfigs, common_conditions::resource_exists},
@@ -39,7 +35,7 @@ use core::hash::Hash;
 
 /// Adds Phong lighting to an app: the light components and [`PhongAmbientLight`], the
 /// gather system that writes them into the light buffer each frame, [`PhongMaterial`], and
-/// the loaders of scene and material files ([`crate::scene`]).
+/// the loaders of scene and material files ([`crate::scene`], feature `scene`).
 ///
 /// Add it after Bevy's `DefaultPlugins` (it needs the render plugin to draw; without a
 /// render app, as under `MinimalPlugins`, it still gathers lights, which is what ECS-only
@@ -70,11 +66,6 @@ impl Plugin for PhongPlugin {
             .register_type::<PhongShadows>()
             .register_type::<PhongCascades>()
             .register_type::<SpecularModel>()
-            .register_type::<PhongSceneRoot>()
-            .register_type::<PhongSceneCamera>()
-            .init_asset::<PhongScene>()
-            .register_asset_loader(PhongSceneLoader)
-            .add_systems(PreUpdate, spawn_phong_scenes)
             .register_asset_reflect::<PhongMaterial>()
             .add_message::<InvalidInput>()
             .add_systems(
@@ -146,8 +137,9 @@ impl Plugin for PhongPlugin {
             );
         }
         if app.get_sub_app(RenderApp).is_none() {
-            app.init_asset::<PhongMaterial>()
-                .register_asset_loader(PhongMaterialLoader);
+            app.init_asset::<PhongMaterial>();
+            #[cfg(feature = "scene")]
+            crate::scene::add_scene_files(app);
             return;
         }
         crate::shadows::add_shadow_rendering(app);
@@ -162,8 +154,9 @@ impl Plugin for PhongPlugin {
             bevy::render::RenderStartup,
             crate::render::announce_scene_data_path,
         );
-        app.add_phong_material::<PhongMaterial>()
-            .register_asset_loader(PhongMaterialLoader);
+        app.add_phong_material::<PhongMaterial>();
+        #[cfg(feature = "scene")]
+        crate::scene::add_scene_files(app);
     }
 }
 

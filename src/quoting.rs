@@ -16,6 +16,7 @@ pub(crate) fn bounded(value: &str) -> String {
 
 /// `value` in double quotes (escaped as Rust's `{:?}` does), cut as [`bounded`] cuts it:
 /// `"#fffff…ff…" (52,428,800 characters)`.
+#[cfg(feature = "scene")]
 pub(crate) fn quoted(value: &str) -> String {
     match cut(value) {
         None => format!("{value:?}"),
@@ -31,6 +32,7 @@ pub(crate) fn quoted(value: &str) -> String {
 /// [`MAX_QUOTED_CHARS`] cut, its length named after it. RON's and serde's messages repeat
 /// the offending text there (an unknown field's name, a string where a number belongs); a
 /// quote that is never closed runs to the end of the message.
+#[cfg(feature = "scene")]
 pub(crate) fn shorten_quoted_spans(message: &str) -> String {
     let mut shortened = String::with_capacity(message.len().min(4 * 1024));
     let mut rest = message;
@@ -63,6 +65,7 @@ pub(crate) fn shorten_quoted_spans(message: &str) -> String {
 
 /// The byte index of the `delimiter` that closes a span starting at `text`; inside double
 /// quotes a backslash escapes the next character.
+#[cfg(feature = "scene")]
 fn closing_delimiter(text: &str, delimiter: char) -> Option<usize> {
     let mut escaped = false;
     for (index, character) in text.char_indices() {

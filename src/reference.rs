@@ -3,7 +3,7 @@
 //!
 //! The shader computes the same equation in `f32`; the tests render a scene, read back each
 //! pixel's color together with the world position and normal it was lit with (see
-//! [`SurfaceInputsMaterial`](crate::SurfaceInputsMaterial)), and compare the color with
+//! `SurfaceInputsMaterial`), and compare the color with
 //! [`shade`] evaluated on those inputs. A textured material is first given the texels of
 //! the fragment ([`Material::mapped`], [`mapped_normal`]).
 //!
@@ -19,7 +19,7 @@
 //! - `power(0, 0) = 1`;
 //! - an attenuation denominator at or below 1 (a `Decay` of all zeros included) gives 1;
 //! - a [`PhongMaterial`]'s values, and a spot light's angles, are first brought into their
-//!   ranges ([`crate::limits`]) as its uniform and light record do.
+//!   ranges (`crate::limits`) as its uniform and light record do.
 
 use crate::{
     culling::influence_radius,
@@ -40,7 +40,7 @@ mod cookies;
 mod environment;
 mod hemisphere;
 mod normals;
-mod stylized;
+pub(crate) mod stylized;
 mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
@@ -50,7 +50,7 @@ pub use environment::{
 };
 pub use hemisphere::Hemisphere;
 pub use normals::{bumped_normal, face_normal, mapped_normal};
-pub use stylized::{Rim, ToonRamp, diffuse_factor, highlight_factor, near_a_step, rim_factor};
+pub use stylized::{Rim, ToonRamp, diffuse_factor, highlight_factor, rim_factor};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;
 
@@ -170,7 +170,7 @@ pub struct Lights {
 impl Lights {
     /// These lights as [`PhongLightCulling`](crate::PhongLightCulling) with `epsilon`
     /// leaves them: each of the `n` point and spot lights' range shortened to its
-    /// [`influence_radius`] for `epsilon / n`, and the
+    /// `influence_radius` for `epsilon / n`, and the
     /// lights that reach nowhere left out. With `epsilon = 0`, the lights unchanged.
     pub fn culled(&self, epsilon: f32) -> Lights {
         let count = self
@@ -457,8 +457,8 @@ pub fn phong_light(
 }
 
 /// `H(N, L, V)` for unit `N`, `L` and `V` with `N·L > 0`:
-/// Phong `max(R·V, 0)^α` with `R = 2(N·L)N - L` (seed 002), Blinn-Phong `max(N·H, 0)^α` with
-/// `H = normalize(L + V)` (seed 003).
+/// Phong `max(R·V, 0)^α` with `R = 2(N·L)N - L` (SPEC.md), Blinn-Phong `max(N·H, 0)^α` with
+/// `H = normalize(L + V)`.
 pub fn highlight(
     model: SpecularModel,
     normal: DVec3,
@@ -490,7 +490,7 @@ pub fn power(base: f64, exponent: f64) -> f64 {
     }
 }
 
-/// `A(d) = min(1, 1 / (c + l·d + q·d²))`, and 0 past `range` (seeds 000 and 001).
+/// `A(d) = min(1, 1 / (c + l·d + q·d²))`, and 0 past `range` (SPEC.md's fall-off).
 pub fn attenuation(
     distance: f64,
     [constant, linear, quadratic]: [f64; 3],
@@ -508,9 +508,9 @@ pub fn attenuation(
 }
 
 /// `S_cone = edge · max(cosθ, 0)^exponent`, where `edge` is
-/// `clamp((cosθ - cos_outer) / (cos_inner - cos_outer), 0, 1)` (seed 004's soft edge) or,
-/// when the inner cone is not narrower than the outer one, `step(cos_outer, cosθ)` (seed
-/// 000's hard edge).
+/// `clamp((cosθ - cos_outer) / (cos_inner - cos_outer), 0, 1)` (a soft edge) or,
+/// when the inner cone is not narrower than the outer one, `step(cos_outer, cosθ)` (a
+/// hard edge).
 pub fn spot_cone(cos_theta: f64, cos_inner: f64, cos_outer: f64, exponent: f64) -> f64 {
     let edge = if cos_inner > cos_outer {
         ((cos_theta - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0)
@@ -535,7 +535,7 @@ fn position(transform: &GlobalTransform) -> DVec3 {
     transform.translation().as_dvec3()
 }
 
-/// The material's values brought into their ranges ([`crate::limits`]), exactly as its
+/// The material's values brought into their ranges (`crate::limits`), exactly as its
 /// uniform (`PhongMaterialUniform`) brings them.
 impl From<&PhongMaterial> for Material {
     fn from(material: &PhongMaterial) -> Self {
@@ -662,7 +662,7 @@ impl Light {
     }
 
     /// The reference form of a spot light entity, its angles brought into `[0, π]` as its
-    /// light record's are ([`crate::limits::SPOT_ANGLE`]).
+    /// light record's are (`crate::limits::SPOT_ANGLE`).
     pub fn spot(light: &PhongSpotLight, transform: &GlobalTransform) -> Self {
         Light::Spot {
             position: position(transform),

@@ -17,7 +17,7 @@ use bevy::{
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PhongSystems {
     /// After this set, every light component, the ambient light and every material changed
-    /// this frame holds only valid values (see [`crate::validation`]).
+    /// this frame holds only valid values (see `crate::validation`).
     Validate,
     /// Each light kind asks for the shadows its lights cast this frame.
     RequestShadows,

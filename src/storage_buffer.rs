@@ -21,18 +21,15 @@ pub(crate) fn init_shader_buffers(app: &mut App) {
     }
 }
 
-/// Sent when a light buffer's byte size changed, so that the render world made a new GPU
-/// buffer for it: every material bind group that holds the old one must be rebuilt.
+/// Sent when a light buffer's byte size changed (or the cookie atlas was made again), so that
+/// the render world made a new GPU resource for it: every material bind group that holds
+/// the old one must be rebuilt.
 ///
 /// Crate-internal: the crate's own systems send and read it. It is `pub` only because the
-/// public gather systems ([`gather_lights`](crate::render::gather_lights),
-/// [`assign_lights_to_clusters`](crate::render::assign_lights_to_clusters)) name it in
-/// their parameters; no public path leads to it.
+/// gather systems that `bevy_phong::testing` shows name it in their parameters; no public
+/// path leads to it.
 #[derive(Message, Clone, Debug)]
-pub struct LightBufferResized {
-    /// The buffer that was resized.
-    pub buffer: Handle<ShaderBuffer>,
-}
+pub struct LightBufferResized;
 
 /// Smallest number of records a buffer holds room for. A runtime-sized WGSL array needs at
 /// least one element to bind; a few more spare the first resizes.

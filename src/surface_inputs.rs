@@ -1,6 +1,6 @@
 //! [`SurfaceInputsMaterial`]: renders the per-pixel inputs of the lighting equation.
 
-use crate::{DisplacementUniform, PhongMaterial};
+use crate::{PhongMaterial, displacement::DisplacementUniform};
 use bevy::{
     app::{App, Plugin},
     asset::{Asset, Handle, embedded_asset},

@@ -26,7 +26,7 @@ use bevy::{
 };
 use bevy_phong::{
     prelude::*,
-    render::{assign_lights_to_clusters, gather_lights},
+    testing::{assign_lights_to_clusters, gather_lights},
 };
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::time::{Duration, Instant};

@@ -13,10 +13,11 @@ use bevy::{
 };
 use bevy_phong::{
     Decay, PhongMaterial, PhongShadows,
-    extension::{PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin},
+    extension::{
+        PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin, PhongShadowProjection,
+        PhongShadowRequest, light_direction, linear_rgb,
+    },
     prelude::PhongMaterialAppExt,
-    render::{light_direction, linear_rgb},
-    shadows::{PhongShadowProjection, PhongShadowRequest},
 };
 use bytemuck::{Pod, Zeroable};
 use serde::{Deserialize, Serialize};

@@ -4,8 +4,8 @@
 use crate::light::{BeamShape, Searchlight, beam_up};
 use bevy::prelude::*;
 use bevy_phong::{
+    extension::light_direction,
     reference::{self, SurfacePoint},
-    render::light_direction,
 };
 use glam::DVec3;
 

@@ -50,11 +50,11 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// it wide and dim, a smooth one gathers it into a bright point.
 ///
 /// Invalid numbers are replaced, never propagated: a NaN `metallic` becomes 0 and a NaN
-/// roughness 0.5 ([`METALLIC`], [`ROUGHNESS`]; both are clamped to `[0, 1]`), and the
-/// colors are brought into [`limits`] as the material's own validation does (NaN channels
+/// roughness 0.5 (`METALLIC`, `ROUGHNESS`; both are clamped to `[0, 1]`), and the
+/// colors are brought into `limits` as the material's own validation does (NaN channels
 /// become 0, alpha 1). The result never holds a NaN.
 ///
-/// What has no counterpart is left out (see [`unmapped_gltf_features`]): the
+/// What has no counterpart is left out (see `unmapped_gltf_features`): the
 /// metallic/roughness map, other UV sets than the first for the base color, emissive and
 /// normal maps, transmission, volume, clearcoat and anisotropy. When `label` is
 /// `Some`, one warning naming it lists them.

@@ -22,8 +22,5 @@ mod material;
 mod plugin;
 
 pub use handler::{PHONG_LABEL_SUFFIX, phong_material_label};
-pub use material::{
-    DIELECTRIC_F0, METALLIC, ROUGHNESS, SHININESS_RANGE, normalization, phong_material_from_gltf,
-    shininess_from_roughness, unmapped_gltf_features,
-};
+pub use material::phong_material_from_gltf;
 pub use plugin::PhongGltfPlugin;

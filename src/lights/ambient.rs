@@ -2,6 +2,7 @@
 
 use bevy::prelude::{ReflectDefault, ReflectResource};
 use bevy::{color::Color, ecs::resource::Resource, reflect::Reflect};
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// Light that reaches every surface from every direction, without a position, a direction or
@@ -11,12 +12,13 @@ use serde::{Deserialize, Serialize};
 /// There is one per scene: change it with `ResMut<PhongAmbientLight>`.
 ///
 /// [`PhongMaterial`]: crate::PhongMaterial
-#[derive(Resource, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Resource, Clone, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Resource, Default, Debug, Clone)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct PhongAmbientLight {
     /// Intensity as a color, converted to linear RGB; each channel `0` to `1e6`
-    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1.
+    /// (`MAX_INTENSITY`), so it may exceed 1.
     /// Default: linear gray `0.1`.
     pub color: Color,
 }

@@ -31,12 +31,12 @@ use bevy::{
 /// The light's diffuse and specular colors are multiplied by the image's color there
 /// (bilinear between texels, clamped to `[0, 1]`: a cookie only takes light away), or by its
 /// red channel alone with [`red_only`](Self::red_only). The image is copied into the crate's
-/// cookie atlas, each layer [`COOKIE_RESOLUTION`](crate::limits::COOKIE_RESOLUTION) texels
+/// cookie atlas, each layer `COOKIE_RESOLUTION` texels
 /// square, as 8-bit sRGB (see SPEC.md, "Light cookies").
 ///
 /// A light with a cookie is never clustered: it is lit by every fragment's loop, as a
 /// shadow-casting light is. Cookies are left out under WebGL2
-/// ([`crate::render::binds_every_map`]), with a warning: the light is drawn without its
+/// (`crate::render::binds_every_map`), with a warning: the light is drawn without its
 /// cookie there. An image that is not loaded yet, or whose format cannot be read on the
 /// CPU (compressed formats), leaves the light untinted (with a warning for the latter).
 #[derive(Component, Clone, Debug, Default, Reflect)]

@@ -1,6 +1,7 @@
 //! Distance attenuation of point and spot lights.
 
 use bevy::{prelude::ReflectDefault, reflect::Reflect};
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// How a point or spot light fades with distance `d` (world units) from the light:
@@ -11,13 +12,14 @@ use serde::{Deserialize, Serialize};
 ///
 /// The `min(1, …)` keeps a light that sits on a surface finite. All three coefficients are
 /// multipliers of `1`, `d` and `d²`, each `0` to `1e6`
-/// ([`MAX_DECAY`](crate::limits::MAX_DECAY)); at least one should be positive (a `Decay` of
+/// (`MAX_DECAY`); at least one should be positive (a `Decay` of
 /// all zeros means "no fall-off": `A = 1`).
 ///
 /// The default, [`Decay::NONE`], does not fade.
-#[derive(Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct Decay {
     /// Constant term `c`. Default `1`.
     pub constant: f32,
@@ -31,7 +33,7 @@ impl Decay {
     /// No fall-off: `A(d) = 1` at every distance.
     pub const NONE: Self = Self::new(1.0, 0.0, 0.0);
 
-    /// Seed 004's point light, the common OpenGL choice for a light meant to reach about
+    /// The common OpenGL choice for a light meant to reach about
     /// 50 units: `1 / (1 + 0.09·d + 0.032·d²)`, which is 0.44 at 5 units, 0.12 at 14 and
     /// 0.01 at 50.
     pub const DISTANCE_50: Self = Self::new(1.0, 0.09, 0.032);

@@ -9,6 +9,7 @@ use bevy::{
     reflect::Reflect,
     transform::components::Transform,
 };
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// A light whose rays are all parallel, like the sun: no position, no fall-off.
@@ -16,13 +17,14 @@ use serde::{Deserialize, Serialize};
 /// The rays travel along the entity's local -Z axis (Bevy's forward, so
 /// `Transform::looking_to(direction, Vec3::Y)` aims it); translation and scale are ignored.
 /// A hidden entity ([`Visibility::Hidden`]) gives no light.
-#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Component, Default, Debug, Clone)]
 #[require(Transform, Visibility)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct PhongDirectionalLight {
     /// Diffuse intensity, converted to linear RGB; each channel `0` to `1e6`
-    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1. Default white.
+    /// (`MAX_INTENSITY`), so it may exceed 1. Default white.
     pub color: Color,
     /// Specular intensity, in the same range; `None` (the default) uses
     /// [`color`](Self::color).

@@ -3,6 +3,7 @@
 
 use bevy::prelude::{ReflectDefault, ReflectResource};
 use bevy::{color::Color, ecs::resource::Resource, math::Vec3, reflect::Reflect};
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// Ambient light that depends on which way a surface faces, as three.js's `HemisphereLight`:
@@ -18,12 +19,13 @@ use serde::{Deserialize, Serialize};
 ///
 /// [`PhongAmbientLight`]: crate::PhongAmbientLight
 /// [`PhongMaterial`]: crate::PhongMaterial
-#[derive(Resource, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Resource, Clone, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Resource, Default, Debug, Clone)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct PhongHemisphereLight {
     /// The light from above (along `up`), linear RGB intensity as a color; each channel `0`
-    /// to `1e6` ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)). Default: a pale sky blue,
+    /// to `1e6` (`MAX_INTENSITY`). Default: a pale sky blue,
     /// linear `(0.3, 0.35, 0.4)`.
     pub sky_color: Color,
     /// The light from below, as `sky_color`. Default: a dim brown, linear

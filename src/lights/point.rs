@@ -9,19 +9,21 @@ use bevy::{
     reflect::Reflect,
     transform::components::Transform,
 };
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// A light that shines from the entity's position in every direction, fading with distance
 /// by its [`Decay`] and cut off at `range`.
 ///
 /// Rotation and scale of the entity are ignored. A hidden entity gives no light.
-#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Component, Default, Debug, Clone)]
 #[require(Transform, Visibility)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct PhongPointLight {
     /// Diffuse intensity, converted to linear RGB; each channel `0` to `1e6`
-    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1. Default white.
+    /// (`MAX_INTENSITY`), so it may exceed 1. Default white.
     pub color: Color,
     /// Specular intensity, in the same range; `None` (the default) uses
     /// [`color`](Self::color).

@@ -2,6 +2,7 @@
 //! [`PhongCascades`].
 
 use bevy::{prelude::ReflectDefault, reflect::Reflect};
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// How a light casts shadows (SPEC.md, "Shadows"). Off by default, as Bevy's lights.
@@ -12,12 +13,13 @@ use serde::{Deserialize, Serialize};
 /// shadow; meshes with `NotShadowReceiver` are lit as if nothing were in the way.
 ///
 /// Values out of range are replaced with one warning naming the entity and field (see
-/// [`crate::validation`]): a NaN bias, softness or fraction counts as 0 and a NaN
+/// `crate::validation`): a NaN bias, softness or fraction counts as 0 and a NaN
 /// `near_distance` as 0.1; biases and softness are clamped to `[0, 1e6]`, fractions to
 /// `[0, 1]`, `near_distance` to `[1e-6, 1e6]`, the resolution to `[16, 4096]`.
-#[derive(Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
-#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "scene", serde(default, deny_unknown_fields))]
 pub struct PhongShadows {
     /// Whether the light casts shadows. Default `false`.
     pub enabled: bool,
@@ -75,8 +77,9 @@ impl PhongShadows {
         ..Self::OFF
     };
 
-    /// Seed 003's look: shadows dim the diffuse term to 10 % and leave the highlight whole.
-    pub const SEED_003: Self = Self {
+    /// Shadows that dim the diffuse term to 10 % and leave the highlight whole, the look of
+    /// classic per-pixel lighting demos.
+    pub const DIFFUSE_DIMMED: Self = Self {
         diffuse_in_shadow: 0.1,
         specular_in_shadow: 1.0,
         ..Self::ON
@@ -92,9 +95,10 @@ impl PhongShadows {
 /// each cascade is a shadow map covering one slice of the view's depth, nearer slices with
 /// finer texels. Every active 3D camera gets cascades of its own, fitted to its own view
 /// (cameras with the same frustum share them); the settings here apply to each.
-#[derive(Clone, Copy, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]
-#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "scene", serde(default, deny_unknown_fields))]
 pub struct PhongCascades {
     /// Number of cascades, `1..=4`. Default 4.
     pub count: u32,

@@ -9,6 +9,7 @@ use bevy::{
     reflect::Reflect,
     transform::components::Transform,
 };
+#[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
 /// A light that shines from the entity's position into a cone around its local -Z axis.
@@ -19,13 +20,14 @@ use serde::{Deserialize, Serialize};
 /// `cos(θ)^exponent` darkens the cone towards its rim. Distance fall-off is as for
 /// [`PhongPointLight`](crate::PhongPointLight). Scale is ignored; a hidden entity gives no
 /// light.
-#[derive(Component, Clone, Debug, PartialEq, Reflect, Serialize, Deserialize)]
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Component, Default, Debug, Clone)]
 #[require(Transform, Visibility)]
-#[serde(default)]
+#[cfg_attr(feature = "scene", serde(default))]
 pub struct PhongSpotLight {
     /// Diffuse intensity, converted to linear RGB; each channel `0` to `1e6`
-    /// ([`MAX_INTENSITY`](crate::limits::MAX_INTENSITY)), so it may exceed 1. Default white.
+    /// (`MAX_INTENSITY`), so it may exceed 1. Default white.
     pub color: Color,
     /// Specular intensity, in the same range; `None` (the default) uses
     /// [`color`](Self::color).
@@ -38,14 +40,14 @@ pub struct PhongSpotLight {
     /// Shadow settings. Default off.
     pub shadows: PhongShadows,
     /// Half-angle of the fully lit core, in radians, `0 ≤ inner ≤ outer`.
-    /// Default 12.5° (seed 004).
+    /// Default 12.5°.
     pub inner_angle: f32,
     /// Half-angle where the light reaches zero, in radians, `inner ≤ outer ≤ π` (180°; past
     /// 90° the cone lights behind the light too); a cone with `outer_angle = 0` is empty and
-    /// gives no light. Default 17.5° (seed 004).
+    /// gives no light. Default 17.5°.
     pub outer_angle: f32,
     /// Exponent of the `cos(θ)^exponent` rim darkening, `0` to `1e6`
-    /// ([`MAX_EXPONENT`](crate::limits::MAX_EXPONENT)). Default `0` (none).
+    /// (`MAX_EXPONENT`). Default `0` (none).
     pub exponent: f32,
 }
 

@@ -133,6 +133,7 @@ pub fn highlight_factor(mode: SpecularMode, h: f64) -> f64 {
 /// Where a shader's `f32` may land on the other side of a discontinuity of the modes: a toon
 /// step at `N·L` (hard bands) or a hard toon spot at `h`, within `margin` of it. Pixels there
 /// are not judged.
+#[cfg(any(test, feature = "testing"))]
 pub fn near_a_step(
     diffuse: DiffuseMode,
     specular: SpecularMode,

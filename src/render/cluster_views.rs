@@ -45,11 +45,13 @@ impl Default for PhongLightClusters {
 
 impl PhongLightClusters {
     /// How many views have clusters (0 when no light is clustered).
+    #[cfg(any(test, feature = "testing"))]
     pub fn view_count(&self) -> u32 {
         self.clusters.header().view_count
     }
 
     /// The cluster data last written (see `render::clusters` for its layout).
+    #[cfg(any(test, feature = "testing"))]
     pub fn data(&self) -> &[u32] {
         self.clusters.data()
     }
@@ -169,9 +171,7 @@ pub fn assign_lights_to_clusters(
                 .buffer
                 .write(&mut buffers, state.clusters.header(), state.clusters.data());
         if was_resized {
-            resized.write(LightBufferResized {
-                buffer: PHONG_LIGHT_CLUSTER_BUFFER,
-            });
+            resized.write(LightBufferResized);
         }
     }
 }

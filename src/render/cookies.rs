@@ -172,9 +172,7 @@ pub fn gather_cookies(
     }
     if rebuild {
         // A new atlas texture: the materials' bind groups are made again.
-        resized.write(LightBufferResized {
-            buffer: super::PHONG_LIGHT_BUFFER,
-        });
+        resized.write(LightBufferResized);
     }
 }
 

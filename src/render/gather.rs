@@ -361,9 +361,7 @@ pub fn gather_lights(
         .buffer
         .write(&mut buffers, &state.header, &state.records)
     {
-        resized.write(LightBufferResized {
-            buffer: state.buffer.handle().clone(),
-        });
+        resized.write(LightBufferResized);
     }
 }
 

@@ -3,7 +3,7 @@
 //! bind group takes from the render world when Bevy prepares the material.
 
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
-use crate::DisplacementUniform;
+use crate::displacement::DisplacementUniform;
 use crate::material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform};
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{

@@ -56,33 +56,27 @@ mod material_upkeep;
 mod record_cache;
 mod scene_texture;
 
-/// How a cookie image becomes a layer of the atlas; defined with the cookie, below the
-/// reference model, which reads the same layer.
-pub use crate::lights::cookie_layer_texels;
-/// For an extension's [`PhongLightKind::to_gpu`], beside [`linear_rgb`]; defined with the
-/// lights, whose readers all share it.
-///
-/// [`PhongLightKind::to_gpu`]: crate::extension::PhongLightKind::to_gpu
-pub use crate::lights::light_direction;
-/// The key of a view, by which the shader finds the view's clusters; defined below the
-/// shadows, which key their cascades by it too.
-pub use crate::view_key::view_key;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
 pub(crate) use cookie_atlas::PHONG_COOKIE_ATLAS;
 pub use cookies::{PhongCookies, gather_cookies};
-pub use data_texture::{DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH};
+pub use data_texture::DATA_TEXTURE_MAX_TEXELS;
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub(crate) use gather::{LightChanges, push_visible};
 pub use gather::{PhongLightBuffer, gather_lights};
-pub use gpu_types::{GpuClustersHeader, GpuCookie, GpuLight, GpuLightsHeader};
+pub use gpu_types::{GpuClustersHeader, GpuLight, GpuLightsHeader};
 pub use light_records::linear_rgb;
-pub use material_bindings::{PhongSceneBindings, binds_every_map};
+pub use material_bindings::PhongSceneBindings;
 pub(crate) use material_upkeep::{
     carry_scene_variants, refresh_material_bind_groups, schedule_light_buffers_before,
 };
 pub(crate) use scene_texture::{
     PHONG_SCENE_TEXTURE, STORAGE_BUFFERS_NEEDED, announce_scene_data_path, needs_scene_texture,
     pack_scene_texture,
+};
+/// For [`crate::testing`]: what the crate's own tests and benchmarks read.
+#[cfg(feature = "testing")]
+pub use {
+    data_texture::DATA_TEXTURE_WIDTH, gpu_types::GpuCookie, material_bindings::binds_every_map,
 };
 
 use bevy::{

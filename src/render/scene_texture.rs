@@ -123,9 +123,7 @@ pub(crate) fn pack_scene_texture(
     }
     if scene.texture.write(&mut images, &packed.words) == DataTextureWrite::Resized {
         // A new size is a new GPU texture: bind groups holding the old one are rebuilt.
-        resized.write(LightBufferResized {
-            buffer: PHONG_LIGHT_BUFFER,
-        });
+        resized.write(LightBufferResized);
     }
 }
 

@@ -15,14 +15,14 @@
 //! absolute path or another asset source (`name://`) is refused with an error naming its
 //! field. Text quoted in an error is cut to 80 characters, its full length named. Light and
 //! material values outside their ranges (a negative color, say) are replaced at run time,
-//! with a warning, as for any light ([`crate::validation`]).
+//! with a warning, as for any light (`crate::validation`).
 //!
 //! Hot reload needs Bevy's `file_watcher` feature (it is off in this crate's own
 //! dependencies; enable it in the game's).
 
 mod color;
 mod description;
-mod error;
+pub(crate) mod error;
 mod loader;
 mod material_file;
 mod relative_path;
@@ -34,7 +34,7 @@ pub use description::{
     LightDescription, MaterialSource, MeshDescription, ObjectDescription, PhongSceneDescription,
     TransformDescription,
 };
-pub use error::{SceneFileError, parse_ron};
+pub use error::SceneFileError;
 pub(crate) use error::{read_ron, scene_color};
 pub use loader::{PhongScene, PhongSceneLoader, SceneLight};
 pub use material_file::{
@@ -44,6 +44,19 @@ pub use material_file::{
 pub(crate) use relative_path::relative_path;
 pub(crate) use spawn::spawn_phong_scenes;
 pub use spawn::{PhongSceneCamera, PhongSceneRoot};
+
+/// Adds scene and material files to `app` (after [`PhongMaterial`](crate::PhongMaterial)'s
+/// asset type): their loaders, [`PhongScene`] and the system that spawns each
+/// [`PhongSceneRoot`].
+pub(crate) fn add_scene_files(app: &mut bevy::app::App) {
+    use bevy::asset::AssetApp;
+    app.register_type::<PhongSceneRoot>()
+        .register_type::<PhongSceneCamera>()
+        .init_asset::<PhongScene>()
+        .register_asset_loader(PhongSceneLoader)
+        .register_asset_loader(PhongMaterialLoader)
+        .add_systems(bevy::app::PreUpdate, spawn_phong_scenes);
+}
 
 #[cfg(test)]
 mod hostile_file_tests;

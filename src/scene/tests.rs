@@ -3,6 +3,7 @@
 //! version.
 
 use super::*;
+use crate::scene::error::parse_ron;
 use crate::{PhongDirectionalLight, PhongMaterial, PhongPlugin, PhongPointLight, PhongSpotLight};
 use bevy::{
     asset::{AssetLoadFailedEvent, AssetPlugin, UnapprovedPathMode},

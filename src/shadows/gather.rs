@@ -140,6 +140,7 @@ pub struct PhongShadowViews {
 impl PhongShadowViews {
     /// The views last written, in layer order: each shadow-casting light's views are
     /// consecutive, the first holding their count (see [`GpuShadowView`]).
+    #[cfg(any(test, feature = "testing"))]
     pub fn views(&self) -> &[GpuShadowView] {
         &self.records
     }
@@ -339,9 +340,7 @@ pub(crate) fn gather_shadows(
         variants.soft_shadows = soft_shadows;
     }
     if buffer_resized || next.layout != frame.layout {
-        resized.write(LightBufferResized {
-            buffer: PHONG_SHADOW_VIEW_BUFFER,
-        });
+        resized.write(LightBufferResized);
     }
     *frame = next;
     if slots.0 != new_slots {

@@ -57,6 +57,8 @@ mod views;
 pub use cameras::PhongLit;
 pub(crate) use gather::{PHONG_SHADOW_VIEW_BUFFER, ShadowFrame, gather_shadows};
 pub use gather::{PhongShadowViews, ShadowSlots};
+/// For [`crate::testing`].
+#[cfg(feature = "testing")]
 pub use gpu_types::{GpuShadowView, GpuShadowViewsHeader};
 pub(crate) use render::{
     ShadowAtlas, ShadowCasterPipeline, ShadowDraws, extract_shadow_frame, prepare_shadow_atlas,

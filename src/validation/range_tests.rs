@@ -3,7 +3,9 @@
 //! material uniform never hold a non-finite value or one above the bound.
 
 use super::*;
-use crate::{PhongMaterialUniform, reference, render::PhongLightBuffer, test_app::test_app};
+use crate::{
+    material::PhongMaterialUniform, reference, render::PhongLightBuffer, test_app::test_app,
+};
 use bevy::{
     color::{Alpha, ColorToComponents},
     ecs::message::Messages,

@@ -12,9 +12,9 @@ use bevy::{
     transform::TransformPlugin,
 };
 use bevy_phong::{
-    PhongMaterial, PhongMaterialUniform, PhongPlugin,
-    render::PhongLightBuffer,
+    PhongMaterial, PhongPlugin,
     scene::{PhongScene, PhongSceneRoot},
+    testing::{PhongLightBuffer, PhongMaterialUniform},
 };
 use std::{
     collections::BTreeMap,

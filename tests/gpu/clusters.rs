@@ -19,7 +19,7 @@ use bevy::{
 };
 use bevy_phong::{
     prelude::*,
-    render::{PhongLightBuffer, PhongLightClusters, view_key},
+    testing::{PhongLightBuffer, PhongLightClusters, view_key},
 };
 use bevy_phong_headless::{CAMERA_POSITION, Harness, HarnessCamera, SurfaceInputs};
 

@@ -16,7 +16,7 @@ use bevy::{
     prelude::*,
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
-use bevy_phong::{limits::COOKIE_RESOLUTION, prelude::*, reference};
+use bevy_phong::{prelude::*, reference, testing::limits::COOKIE_RESOLUTION};
 use bevy_phong_headless::Harness;
 use glam::DVec3;
 

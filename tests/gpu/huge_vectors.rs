@@ -11,9 +11,9 @@
 use crate::frames::{SIZE, TOLERANCE};
 use bevy::prelude::*;
 use bevy_phong::{
-    limits::MAX_INTENSITY,
     prelude::*,
     reference::{self, Light},
+    testing::limits::MAX_INTENSITY,
 };
 use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 use glam::DVec3;

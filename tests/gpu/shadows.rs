@@ -32,7 +32,7 @@ use bevy::{
 use bevy_phong::{
     prelude::*,
     reference::{self, Shadowing, SurfacePoint},
-    shadows::{GpuShadowView, PhongShadowViews},
+    testing::{GpuShadowView, PhongShadowViews},
 };
 use bevy_phong_headless::{CAMERA_POSITION, FloatImage, Harness, HarnessCamera, SurfaceInputs};
 use glam::{DMat3, DVec3};

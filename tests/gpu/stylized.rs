@@ -163,7 +163,7 @@ fn stylized_modes_follow_the_reference_model() {
                 if ramp
                     .as_ref()
                     .is_some_and(|ramp| ramp.near_an_edge(n_dot_l, 1e-4))
-                    || reference::near_a_step(
+                    || bevy_phong::testing::near_a_step(
                         reference_material.diffuse_mode,
                         reference_material.specular_mode,
                         n_dot_l,

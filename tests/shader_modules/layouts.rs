@@ -4,10 +4,9 @@
 
 use crate::library::library;
 use bevy::render::render_resource::ShaderType;
-use bevy_phong::{
+use bevy_phong::testing::{
+    GpuClustersHeader, GpuLight, GpuLightsHeader, GpuShadowView, GpuShadowViewsHeader,
     PhongMaterialUniform,
-    render::{GpuClustersHeader, GpuLight, GpuLightsHeader},
-    shadows::{GpuShadowView, GpuShadowViewsHeader},
 };
 use std::mem::offset_of;
 

@@ -13,7 +13,7 @@ use bevy::{
     },
     shader::{Shader, ShaderDefVal, ShaderImport, Source},
 };
-use bevy_phong::{PhongPlugin, SurfaceInputsPlugin};
+use bevy_phong::{PhongPlugin, testing::SurfaceInputsPlugin};
 use bevy_phong_headless::headless_plugins;
 use std::{
     borrow::Cow,
@@ -473,7 +473,7 @@ pub fn device_defs(storage_buffers: u32) -> Vec<ShaderDefVal> {
         ),
         ShaderDefVal::Bool(
             "PHONG_STORAGE_BUFFERS".into(),
-            storage_buffers >= bevy_phong::render::PhongSceneBindings::STORAGE_BUFFERS_NEEDED,
+            storage_buffers >= bevy_phong::PhongSceneBindings::STORAGE_BUFFERS_NEEDED,
         ),
     ]
 }

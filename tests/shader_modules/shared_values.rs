@@ -12,9 +12,8 @@ use bevy::{
     },
 };
 use bevy_phong::{
-    PhongMaterial, PhongMaterialUniform, SpecularModel,
-    render::{GpuClustersHeader, PhongSceneBindings},
-    shadows::GpuShadowView,
+    PhongMaterial, PhongSceneBindings, SpecularModel,
+    testing::{GpuClustersHeader, GpuShadowView, PhongMaterialUniform},
 };
 use naga::{Expression, Literal};
 
@@ -214,7 +213,7 @@ fn every_data_texture_has_the_rust_width() {
     let module = library().module("bevy_phong::shaders::data_texture", &[]);
     assert_eq!(
         constant(&module, "DATA_TEXTURE_WIDTH"),
-        bevy_phong::render::DATA_TEXTURE_WIDTH
+        bevy_phong::testing::DATA_TEXTURE_WIDTH
     );
 }
 

@@ -15,10 +15,9 @@ use bevy::{
     },
 };
 use bevy_phong::{
-    SurfaceInput, SurfaceInputsMaterial, SurfaceInputsPlugin,
     prelude::*,
     reference::{self, SurfacePoint},
-    validation::is_finite_transform,
+    testing::{SurfaceInput, SurfaceInputsMaterial, SurfaceInputsPlugin, is_finite_transform},
 };
 use std::{
     collections::HashMap,
@@ -56,7 +55,7 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
     /// The second UV set in xy (zeros where the mesh has none).
     pub second_uvs: Option<FloatImage>,
     /// Whether the render device binds every map of a material (see
-    /// `bevy_phong::render::binds_every_map`; not under WebGL2's limits).
+    /// `bevy_phong::testing::binds_every_map`; not under WebGL2's limits).
     pub every_map_bound: bool,
     /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
@@ -447,9 +446,9 @@ impl Harness {
     }
 
     /// Whether the render device binds every map of a material (see
-    /// `bevy_phong::render::binds_every_map`).
+    /// `bevy_phong::testing::binds_every_map`).
     pub fn binds_every_map(&self) -> bool {
-        bevy_phong::render::binds_every_map(self.render_device())
+        bevy_phong::testing::binds_every_map(self.render_device())
     }
 
     /// The features the render device was created with (fewer under WebGL2's limits).

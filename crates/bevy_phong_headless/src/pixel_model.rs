@@ -118,7 +118,7 @@ pub fn sampled_uv<M: Material>(
 ) -> Option<[f64; 2]> {
     let uv_and_sign = inputs.uvs.as_ref()?.pixels[pixel];
     let uv = DVec2::new(uv_and_sign[0].into(), uv_and_sign[1].into());
-    let transform = bevy_phong::limits::uv_transform(material.uv_transform);
+    let transform = bevy_phong::testing::limits::uv_transform(material.uv_transform);
     Some(reference::transformed_uv(transform, uv).to_array())
 }
 
@@ -206,7 +206,7 @@ pub fn lit_normal<M: Material>(
         let along_u = texel(handle, [uv[0] + step[0], uv[1]])?.x;
         let along_v = texel(handle, [uv[0], uv[1] + step[1]])?.x;
         let slope = DVec2::new(along_u - height, along_v - height);
-        let scale = f64::from(bevy_phong::limits::SIGNED_SCALE.apply(material.bump_scale));
+        let scale = f64::from(bevy_phong::testing::limits::SIGNED_SCALE.apply(material.bump_scale));
         normal = reference::bumped_normal(normal, surface.normal, tangent, slope, scale);
     }
     Some(normal)

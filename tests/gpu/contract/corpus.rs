@@ -6,9 +6,9 @@
 use super::kernel::GpuCase;
 use bevy::prelude::*;
 use bevy_phong::{
-    Decay, PhongDirectionalLight, PhongMaterial, PhongMaterialUniform, PhongPointLight,
-    PhongSpotLight, SpecularModel,
+    Decay, PhongDirectionalLight, PhongMaterial, PhongPointLight, PhongSpotLight, SpecularModel,
     reference::{self, SurfacePoint},
+    testing::PhongMaterialUniform,
 };
 use glam::DVec3;
 

@@ -21,7 +21,7 @@ use bevy::{
     },
     shader::{Shader, ShaderCacheError},
 };
-use bevy_phong::render::{DATA_TEXTURE_WIDTH, GpuLight};
+use bevy_phong::testing::{DATA_TEXTURE_WIDTH, GpuLight};
 use bevy_phong_headless::headless_app;
 use bytemuck::{Pod, Zeroable};
 
