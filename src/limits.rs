@@ -22,10 +22,7 @@
 //!
 //! [`PhongMaterial`]: crate::PhongMaterial
 
-use bevy::{
-    color::LinearRgba,
-    math::{Affine2, Vec3},
-};
+use bevy::{color::LinearRgba, math::Affine2};
 use core::fmt;
 
 /// The largest light intensity channel and material color channel or factor (see the
@@ -105,11 +102,6 @@ impl Limits {
         } else {
             value.clamp(self.min, self.max)
         }
-    }
-
-    /// [`apply`](Self::apply) on each component.
-    pub fn apply_vec3(self, value: Vec3) -> Vec3 {
-        Vec3::from_array(value.to_array().map(|c| self.apply(c)))
     }
 }
 

@@ -1,5 +1,9 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
+mod ranges;
+
+pub(crate) use ranges::{NumberVisitor, visit_numbers};
+
 use crate::displacement::DisplacementUniform;
 use crate::limits;
 use crate::scene_variants::SceneVariants;
@@ -494,15 +498,14 @@ impl PhongMaterialUniform {
 // draws with an invalid value before `validate_materials` has replaced it.
 impl From<&PhongMaterial> for PhongMaterialUniform {
     fn from(material: &PhongMaterial) -> Self {
-        let base_color = limits::linear_color(material.base_color.to_linear());
-        let specular = limits::INTENSITY.apply_vec3(material.specular_color.to_linear().to_vec3())
-            * limits::INTENSITY.apply(material.specular_strength);
+        let material = material.in_range();
+        let specular = material.specular_color.to_linear().to_vec3() * material.specular_strength;
         Self {
-            base_color: base_color.to_vec4(),
+            base_color: material.base_color.to_linear().to_vec4(),
             specular,
-            shininess: limits::EXPONENT.apply(material.shininess),
-            emissive: limits::INTENSITY.apply_vec3(material.emissive.to_vec3()),
-            ambient_factor: limits::INTENSITY.apply(material.ambient_factor),
+            shininess: material.shininess,
+            emissive: material.emissive.to_vec3(),
+            ambient_factor: material.ambient_factor,
             flags: material.specular_model.shader_flag()
                 | if material.flip_normal_map_y {
                     Self::FLIP_NORMAL_MAP_Y
@@ -515,54 +518,50 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
                     0
                 },
             alpha_cutoff: match material.alpha_mode {
-                AlphaMode::Mask(cutoff) => limits::ALPHA_CUTOFF.apply(cutoff),
+                AlphaMode::Mask(cutoff) => cutoff,
                 _ => 0.0,
             },
-            uv_transform: Mat3::from(limits::uv_transform(material.uv_transform)),
-            light_map_intensity: limits::INTENSITY.apply(material.light_map_intensity),
-            ao_map_intensity: limits::INTENSITY.apply(material.ao_map_intensity),
-            reflectivity: limits::FRACTION.apply(material.reflectivity),
-            refraction_ratio: material
-                .refraction_ratio
-                .map_or(0.0, |ratio| limits::REFRACTION_RATIO.apply(ratio)),
-            bump_scale: limits::SIGNED_SCALE.apply(material.bump_scale),
+            uv_transform: Mat3::from(material.uv_transform),
+            light_map_intensity: material.light_map_intensity,
+            ao_map_intensity: material.ao_map_intensity,
+            reflectivity: material.reflectivity,
+            refraction_ratio: material.refraction_ratio.unwrap_or(0.0),
+            bump_scale: material.bump_scale,
             style: Self::style_of(material.diffuse_mode, material.specular_mode),
-            rim: (limits::INTENSITY.apply_vec3(material.rim_color.to_vec3())
-                * limits::INTENSITY.apply(material.rim_strength))
-            .extend(limits::EXPONENT.apply(material.rim_power)),
+            rim: (material.rim_color.to_vec3() * material.rim_strength).extend(material.rim_power),
         }
     }
 }
 
 impl PhongMaterialUniform {
-    /// `(wrap, bands, band smoothing, highlight smoothing)` of the modes, each brought into
-    /// its range ([`limits::FRACTION`], [`limits::TOON_BANDS`]); `(0, 1, 0, 0)` for the
-    /// modes without numbers.
-    pub fn style_of(diffuse: DiffuseMode, specular: SpecularMode) -> Vec4 {
+    /// `(wrap, bands, band smoothing, highlight smoothing)` of the modes (their numbers in
+    /// range: see [`PhongMaterial::in_range`]); `(0, 1, 0, 0)` for the modes without numbers.
+    fn style_of(diffuse: DiffuseMode, specular: SpecularMode) -> Vec4 {
         let mut style = Vec4::new(0.0, 1.0, 0.0, 0.0);
         match diffuse {
             DiffuseMode::Lambert => {}
-            DiffuseMode::Wrap(wrap) => style.x = limits::FRACTION.apply(wrap),
+            DiffuseMode::Wrap(wrap) => style.x = wrap,
             DiffuseMode::Toon { bands, smoothing } => {
-                style.y = bands.clamp(1, limits::TOON_BANDS) as f32;
-                style.z = limits::FRACTION.apply(smoothing);
+                style.y = bands as f32;
+                style.z = smoothing;
             }
         }
         if let SpecularMode::Toon { smoothing } = specular {
-            style.w = limits::FRACTION.apply(smoothing);
+            style.w = smoothing;
         }
         style
     }
 }
 
-/// The material's displacement as the vertex stage reads it, each value brought into its
-/// range ([`limits::SIGNED_SCALE`], [`limits::uv_transform`]).
+/// The material's displacement as the vertex stage reads it, each value in its range
+/// ([`PhongMaterial::in_range`]).
 impl From<&PhongMaterial> for DisplacementUniform {
     fn from(material: &PhongMaterial) -> Self {
+        let material = material.in_range();
         Self {
-            uv_transform: Mat3::from(limits::uv_transform(material.uv_transform)),
-            scale: limits::SIGNED_SCALE.apply(material.displacement_scale),
-            bias: limits::SIGNED_SCALE.apply(material.displacement_bias),
+            uv_transform: Mat3::from(material.uv_transform),
+            scale: material.displacement_scale,
+            bias: material.displacement_bias,
         }
     }
 }

@@ -535,52 +535,29 @@ fn position(transform: &GlobalTransform) -> DVec3 {
     transform.translation().as_dvec3()
 }
 
-/// The material's values brought into their ranges (`crate::limits`), exactly as its
-/// uniform (`PhongMaterialUniform`) brings them.
+/// The material's values brought into their ranges, by the same walk over its numbers as
+/// validation and its uniform (`PhongMaterial::in_range`).
 impl From<&PhongMaterial> for Material {
     fn from(material: &PhongMaterial) -> Self {
-        let channels = |color: Color| {
-            limits::INTENSITY
-                .apply_vec3(color.to_linear().to_vec3())
-                .as_dvec3()
-        };
+        let material = material.in_range();
+        let channels = |color: Color| color.to_linear().to_vec3().as_dvec3();
         Self {
             diffuse: channels(material.base_color),
-            ambient_factor: limits::INTENSITY.apply(material.ambient_factor).into(),
+            ambient_factor: material.ambient_factor.into(),
             specular: channels(material.specular_color),
-            specular_strength: limits::INTENSITY.apply(material.specular_strength).into(),
-            shininess: limits::EXPONENT.apply(material.shininess).into(),
+            specular_strength: material.specular_strength.into(),
+            shininess: material.shininess.into(),
             specular_model: material.specular_model,
-            emissive: channels(material.emissive.into()),
-            diffuse_mode: clamped_diffuse(material.diffuse_mode),
+            emissive: material.emissive.to_vec3().as_dvec3(),
+            diffuse_mode: material.diffuse_mode,
             toon_ramp: None,
-            specular_mode: match material.specular_mode {
-                SpecularMode::Toon { smoothing } => SpecularMode::Toon {
-                    smoothing: limits::FRACTION.apply(smoothing),
-                },
-                mode => mode,
-            },
+            specular_mode: material.specular_mode,
             rim: Rim {
-                color: limits::INTENSITY
-                    .apply_vec3(material.rim_color.to_vec3())
-                    .as_dvec3()
-                    * f64::from(limits::INTENSITY.apply(material.rim_strength)),
-                power: limits::EXPONENT.apply(material.rim_power).into(),
+                color: material.rim_color.to_vec3().as_dvec3() * f64::from(material.rim_strength),
+                power: material.rim_power.into(),
                 lit_side: material.rim_lit_side,
             },
         }
-    }
-}
-
-/// `mode` with its numbers in their ranges, as the material's uniform holds them.
-fn clamped_diffuse(mode: DiffuseMode) -> DiffuseMode {
-    match mode {
-        DiffuseMode::Lambert => DiffuseMode::Lambert,
-        DiffuseMode::Wrap(wrap) => DiffuseMode::Wrap(limits::FRACTION.apply(wrap)),
-        DiffuseMode::Toon { bands, smoothing } => DiffuseMode::Toon {
-            bands: bands.clamp(1, limits::TOON_BANDS),
-            smoothing: limits::FRACTION.apply(smoothing),
-        },
     }
 }
 

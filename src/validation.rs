@@ -8,16 +8,31 @@
 //!
 //! | field | range | NaN becomes | outside the range |
 //! |---|---|---|---|
-//! | any color channel (lights, ambient, `base_color`, `specular_color`, `emissive`) | 0 to 1e6, linear RGB | `0` | clamped |
-//! | any color's alpha | 0 to 1 | `1` | clamped |
+//! | any light color channel, the ambient light's, the hemisphere light's | 0 to 1e6, linear RGB | `0` | clamped |
 //! | `Decay` coefficients | 0 to 1e6 | `0` | clamped (a `Decay` of all zeros does not fade) |
 //! | `range` | above 0; `∞` means unlimited | `None` (unlimited) | `≤ 0`: `None` |
 //! | spot `inner_angle`, `outer_angle` | 0 to π radians (0° to 180°) | `0` (an outer angle of 0 lights nothing) | clamped |
 //! | spot `inner_angle` | at most `outer_angle` | | `outer_angle` (a hard edge) |
-//! | spot `exponent`, material `shininess` | 0 to 1e6 | `0` | clamped |
-//! | material `specular_strength`, `ambient_factor` | 0 to 1e6 | `0` | clamped |
-//! | material `AlphaMode::Mask` cutoff | 0 to 1 | `0.5` | clamped |
+//! | spot `exponent` | 0 to 1e6 | `0` | clamped |
+//! | a light's `shadows` and `cascades` | each field's documented range | its default | clamped |
 //! | a light's transform | finite translation and rotation | the light is skipped while it lasts | |
+//!
+//! A material's numbers, each named as [`PhongMaterial`]'s field (one walk over them is
+//! shared by validation, the material's uniform and the reference model):
+//!
+//! | field | range | NaN becomes | outside the range |
+//! |---|---|---|---|
+//! | `base_color`, `specular_color`, `emissive`, `rim_color` | channels 0 to 1e6 (linear RGB), alpha 0 to 1 | `0`, alpha `1` | clamped |
+//! | `ambient_factor`, `specular_strength`, `rim_strength`, `light_map_intensity`, `ao_map_intensity` | 0 to 1e6 | `0` | clamped |
+//! | `shininess`, `rim_power` | 0 to 1e6 | `0` | clamped |
+//! | `diffuse_mode` | wrap and smoothing 0 to 1, toon bands 1 to 256 | `0` (bands: none is NaN) | clamped |
+//! | `specular_mode` | toon smoothing 0 to 1 | `0` | clamped |
+//! | `alpha_mode` | a `Mask` cutoff 0 to 1 | `0.5` | clamped |
+//! | `bump_scale`, `displacement_scale`, `displacement_bias` | -1e6 to 1e6 | `0` | clamped |
+//! | `uv_transform` | every number finite | the identity | the identity |
+//! | `depth_bias` | what wgpu's `i32` holds (±2.1e9) | `0` | clamped |
+//! | `reflectivity` | 0 to 1 | `0` | clamped |
+//! | `refraction_ratio` | 0 to 1e6 | `1` | clamped |
 //!
 //! Each replacement is also sent as an [`InvalidInput`] message, for tools and tests. Its
 //! value is quoted at most 80 characters long.
@@ -28,7 +43,7 @@ use crate::{
         PhongPointLight, PhongShadows, PhongSpotLight,
     },
     limits::{self, Limits},
-    material::{DiffuseMode, PhongMaterial, SpecularMode},
+    material::{NumberVisitor, PhongMaterial, visit_numbers},
     quoting::bounded,
 };
 use bevy::{
@@ -44,8 +59,7 @@ use bevy::{
         world::Ref,
     },
     log::warn,
-    math::Vec3,
-    prelude::AlphaMode,
+    math::{Affine2, Vec3},
     transform::components::GlobalTransform,
 };
 use core::fmt;
@@ -140,29 +154,6 @@ impl Checker {
     }
 
     /// A scalar in the range of `limits`.
-    /// The numbers of the diffuse and specular modes.
-    fn stylized_modes(&mut self, material: &mut PhongMaterial) {
-        match &mut material.diffuse_mode {
-            DiffuseMode::Lambert => {}
-            DiffuseMode::Wrap(wrap) => self.scalar("diffuse_mode", wrap, limits::FRACTION),
-            DiffuseMode::Toon { bands, smoothing } => {
-                self.scalar("diffuse_mode", smoothing, limits::FRACTION);
-                let fixed = (*bands).clamp(1, limits::TOON_BANDS);
-                if fixed != *bands {
-                    self.replace(
-                        "diffuse_mode",
-                        format!("bands {bands}"),
-                        format!("bands {fixed} (allowed: 1 to {})", limits::TOON_BANDS),
-                    );
-                    *bands = fixed;
-                }
-            }
-        }
-        if let SpecularMode::Toon { smoothing } = &mut material.specular_mode {
-            self.scalar("specular_mode", smoothing, limits::FRACTION);
-        }
-    }
-
     fn scalar(&mut self, field: &'static str, value: &mut f32, limits: Limits) {
         let fixed = limits.apply(*value);
         // NaN never equals itself: it is replaced.
@@ -295,55 +286,9 @@ impl Checker {
         }
     }
 
-    /// Every float of a material.
+    /// Every number of a material, as [`visit_numbers`] lists them.
     fn material(&mut self, material: &mut PhongMaterial) {
-        self.color("base_color", &mut material.base_color);
-        self.color("specular_color", &mut material.specular_color);
-        self.scalar("shininess", &mut material.shininess, limits::EXPONENT);
-        let strength = &mut material.specular_strength;
-        self.scalar("specular_strength", strength, limits::INTENSITY);
-        let ambient_factor = &mut material.ambient_factor;
-        self.scalar("ambient_factor", ambient_factor, limits::INTENSITY);
-        let mut emissive: Color = material.emissive.into();
-        self.color("emissive", &mut emissive);
-        material.emissive = emissive.to_linear();
-        if let AlphaMode::Mask(cutoff) = &mut material.alpha_mode {
-            self.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
-        }
-        self.scalar("depth_bias", &mut material.depth_bias, limits::DEPTH_BIAS);
-        self.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
-        self.stylized_modes(material);
-        let mut rim: Color = material.rim_color.into();
-        self.color("rim_color", &mut rim);
-        material.rim_color = rim.to_linear();
-        self.scalar(
-            "rim_strength",
-            &mut material.rim_strength,
-            limits::INTENSITY,
-        );
-        self.scalar("rim_power", &mut material.rim_power, limits::EXPONENT);
-        let scale = &mut material.displacement_scale;
-        self.scalar("displacement_scale", scale, limits::SIGNED_SCALE);
-        let bias = &mut material.displacement_bias;
-        self.scalar("displacement_bias", bias, limits::SIGNED_SCALE);
-        let reflectivity = &mut material.reflectivity;
-        self.scalar("reflectivity", reflectivity, limits::FRACTION);
-        if let Some(ratio) = &mut material.refraction_ratio {
-            self.scalar("refraction_ratio", ratio, limits::REFRACTION_RATIO);
-        }
-        let intensity = &mut material.light_map_intensity;
-        self.scalar("light_map_intensity", intensity, limits::INTENSITY);
-        let intensity = &mut material.ao_map_intensity;
-        self.scalar("ao_map_intensity", intensity, limits::INTENSITY);
-        let uv_transform = limits::uv_transform(material.uv_transform);
-        if uv_transform != material.uv_transform {
-            self.replace(
-                "uv_transform",
-                format!("{:?}", material.uv_transform),
-                "the identity".into(),
-            );
-            material.uv_transform = uv_transform;
-        }
+        visit_numbers(material, self);
     }
 
     /// Logs and sends what was replaced.
@@ -351,6 +296,43 @@ impl Checker {
         for invalid in self.found {
             warn!("{invalid}");
             messages.write(invalid);
+        }
+    }
+}
+
+/// Validation's walk over a material's numbers: each out of its range is replaced, with a
+/// warning naming the field.
+impl NumberVisitor for Checker {
+    fn scalar(&mut self, field: &'static str, value: &mut f32, limits: Limits) {
+        Checker::scalar(self, field, value, limits);
+    }
+
+    fn color(&mut self, field: &'static str, value: &mut LinearRgba) {
+        let fixed = limits::linear_color(*value);
+        // NaN never equals itself: a NaN channel is replaced.
+        if fixed != *value {
+            self.replace(field, color_text(*value), color_text(fixed));
+            *value = fixed;
+        }
+    }
+
+    fn count(&mut self, field: &'static str, value: &mut u32, max: u32) {
+        let fixed = (*value).clamp(1, max);
+        if fixed != *value {
+            self.replace(
+                field,
+                format!("bands {value}"),
+                format!("bands {fixed} (allowed: 1 to {max})"),
+            );
+            *value = fixed;
+        }
+    }
+
+    fn uv_transform(&mut self, field: &'static str, value: &mut Affine2) {
+        let fixed = limits::uv_transform(*value);
+        if fixed != *value {
+            self.replace(field, format!("{value:?}"), "the identity".into());
+            *value = fixed;
         }
     }
 }
@@ -711,7 +693,7 @@ mod tests {
             .iter()
             .map(|warning| warning.field)
             .collect();
-        assert_eq!(fields, ["depth_bias", "uv_transform"]);
+        assert_eq!(fields, ["uv_transform", "depth_bias"]);
         let material = app
             .world()
             .resource::<Assets<PhongMaterial>>()

@@ -216,10 +216,10 @@ fn validation_the_uniform_and_the_reference_apply_the_same_material_ranges() {
         fields,
         [
             "base_color",
-            "specular_color",
-            "shininess",
-            "specular_strength",
             "ambient_factor",
+            "specular_color",
+            "specular_strength",
+            "shininess",
             "emissive",
             "alpha_mode"
         ]
