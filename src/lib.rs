@@ -119,6 +119,22 @@
 //! Tests are exempt (the `#[cfg(test)]` items and files, such as `test_app`): they may use
 //! any layer. A unit test (`layering_tests`) reads the sources and fails on an import that
 //! points up or sideways.
+//!
+//! ## Worlds
+//!
+//! Bevy runs a main world (the game's entities, `PostUpdate`) and a render world (extracted
+//! copies, the `Render` schedule); values cross only through extraction. Each module's
+//! part:
+//!
+//! | module | main world | render world |
+//! |---|---|---|
+//! | `lights`, `culling`, `validation`, `scene`, `interop`, `gltf`, `schedule` | all of it | |
+//! | `render` | the gathers: light records, clusters, cookies, the data texture (`gather`, `cluster_views`, `clusters`, `cookies`, `light_records`, `record_cache`, `scene_texture`) | the material bind groups (`material_bindings`) and their order after the uploads (`material_upkeep`, which also marks materials in the main world) |
+//! | `shadows` | which lights cast, the views and casters (`gather`, `sources`, `request`, `cameras`, `views`) | the shadow passes (`render`, `posed`, `deformed`, `displaced`) |
+//! | `material`, `scene_variants` | the asset and the scene's variants | the key and the pipeline (`specialize`) |
+//! | `extension` | a kind's gather | its binding |
+//! | `displacement`, `surface_inputs` | | vertex stages, a capture material |
+//! | `reference`, `limits`, `direction`, `quoting`, `view_key` | pure functions | |
 
 pub mod culling;
 mod direction;

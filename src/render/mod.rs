@@ -43,18 +43,22 @@
 //! data texture instead (`scene_texture`, read in WGSL through `bevy_phong::shaders::scene`), chosen
 //! once at render startup from the device's limits; see `docs/design/webgl2.md`.
 
+// The main world's part: from light entities and cameras to the buffers' bytes.
 mod cluster_views;
 mod clusters;
 mod cookie_atlas;
 mod cookies;
 mod data_texture;
 mod gather;
-mod gpu_types;
 mod light_records;
-mod material_bindings;
-mod material_upkeep;
 mod record_cache;
 mod scene_texture;
+// Both: the byte layouts the two sides share; keeping materials on the current buffers
+// (marked in the main world, ordered in the render world).
+mod gpu_types;
+mod material_upkeep;
+// The render world's part: binding the uploaded buffers to each material.
+mod material_bindings;
 
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
 pub(crate) use cookie_atlas::PHONG_COOKIE_ATLAS;
