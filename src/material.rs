@@ -2,7 +2,7 @@
 
 mod ranges;
 
-pub(crate) use ranges::{NumberVisitor, visit_numbers};
+pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};
 
 use crate::displacement::DisplacementUniform;
 use crate::limits;

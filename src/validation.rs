@@ -43,7 +43,7 @@ use crate::{
         PhongPointLight, PhongShadows, PhongSpotLight,
     },
     limits::{self, Limits},
-    material::{NumberVisitor, PhongMaterial, visit_numbers},
+    material::{NumberVisitor, PhongMaterial, visit_color, visit_numbers},
     quoting::bounded,
 };
 use bevy::{
@@ -135,16 +135,10 @@ impl Checker {
         });
     }
 
-    /// A linear color in [`limits::INTENSITY`]'s range, its alpha in [`limits::ALPHA`]'s.
+    /// A linear color in [`limits::INTENSITY`]'s range, its alpha in [`limits::ALPHA`]'s: the
+    /// rule of a material's colors ([`NumberVisitor::color`]), for a light's [`Color`].
     fn color(&mut self, field: &'static str, color: &mut Color) {
-        let linear = color.to_linear();
-        let fixed = limits::linear_color(linear);
-        // NaN never equals itself: a NaN channel is replaced.
-        if fixed == linear {
-            return;
-        }
-        self.replace(field, color_text(linear), color_text(fixed));
-        *color = fixed.into();
+        visit_color(self, field, color);
     }
 
     fn optional_color(&mut self, field: &'static str, color: &mut Option<Color>) {

@@ -28,13 +28,13 @@ pub(crate) trait NumberVisitor {
 
 /// Walks every number of `material` with `visitor`, in the order of the fields.
 pub(crate) fn visit_numbers(material: &mut PhongMaterial, visitor: &mut impl NumberVisitor) {
-    color(visitor, "base_color", &mut material.base_color);
+    visit_color(visitor, "base_color", &mut material.base_color);
     visitor.scalar(
         "ambient_factor",
         &mut material.ambient_factor,
         limits::INTENSITY,
     );
-    color(visitor, "specular_color", &mut material.specular_color);
+    visit_color(visitor, "specular_color", &mut material.specular_color);
     let strength = &mut material.specular_strength;
     visitor.scalar("specular_strength", strength, limits::INTENSITY);
     visitor.scalar("shininess", &mut material.shininess, limits::EXPONENT);
@@ -79,7 +79,11 @@ pub(crate) fn visit_numbers(material: &mut PhongMaterial, visitor: &mut impl Num
 
 /// A [`Color`] field, visited as the linear color it is drawn with; written back only where
 /// the visitor changed it, so that a color in range keeps its color space.
-fn color(visitor: &mut impl NumberVisitor, field: &'static str, value: &mut Color) {
+pub(crate) fn visit_color(
+    visitor: &mut impl NumberVisitor,
+    field: &'static str,
+    value: &mut Color,
+) {
     let linear = value.to_linear();
     let mut visited = linear;
     visitor.color(field, &mut visited);

@@ -30,16 +30,21 @@ pub(crate) fn refresh_material_bind_groups<M: Material>(
 
 /// Keeps the scene's shader variant of every material of type `M` made of a
 /// [`PhongMaterial`](crate::PhongMaterial) equal to the app's [`SceneVariants`]: a material
-/// that differs (one just added, or every one where the scene's variant changed this frame)
-/// is modified, so that the render world prepares it again, with the new key, in the same
-/// frame. The variant travels with the material's extraction: each app has its own, and the
-/// render world reads the one of the frame it draws.
+/// that differs (one just added or replaced, or every one where the scene's variant changed
+/// this frame) is modified; frames where neither the variant nor `M`'s assets changed cost
+/// nothing. The render world prepares each modified one again, with the new key, in the
+/// same frame. The variant travels with the material's extraction: each app has its own,
+/// and the render world reads the one of the frame it draws.
 ///
 /// Runs in [`PhongSystems::RefreshMaterials`](crate::PhongSystems::RefreshMaterials).
 pub(crate) fn carry_scene_variants<M: PhongSceneMaterial>(
     variants: Res<SceneVariants>,
     mut materials: ResMut<Assets<M>>,
 ) {
+    // Only a new variant, or a material added or changed since the last run, can differ.
+    if !variants.is_changed() && !materials.is_changed() {
+        return;
+    }
     let stale: Vec<AssetId<M>> = materials
         .iter()
         .filter(|(_, material)| {
@@ -82,6 +87,7 @@ where
 }
 
 use bevy::ecs::{
+    change_detection::DetectChanges,
     schedule::IntoScheduleConfigs,
     system::{Res, ResMut},
 };

@@ -17,7 +17,7 @@ use bevy::{
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
 use bevy_phong::{prelude::*, reference, testing::limits::COOKIE_RESOLUTION};
-use bevy_phong_headless::Harness;
+use bevy_phong_headless::{Harness, pixel_model::near_a_cube_edge};
 use glam::DVec3;
 
 /// A cookie image at the atlas's size, 8-bit sRGB: copied into the atlas unchanged.
@@ -45,14 +45,6 @@ fn cookie_image(texel: impl Fn(u32, u32) -> [u8; 3]) -> Image {
 /// A wave from 0 to 255 along `t` with period `period` texels.
 fn wave(t: u32, period: f32) -> u8 {
     (127.5 + 127.5 * (t as f32 * core::f32::consts::TAU / period).sin()).round() as u8
-}
-
-/// Whether `direction`'s two largest components are within 10⁻⁵ of each other (relative):
-/// on a cube edge.
-fn near_a_cube_edge(direction: DVec3) -> bool {
-    let mut a = direction.abs().to_array();
-    a.sort_by(f64::total_cmp);
-    a[2] - a[1] <= 1e-5 * a[2]
 }
 
 #[test]

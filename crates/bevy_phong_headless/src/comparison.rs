@@ -129,6 +129,18 @@ impl Comparison {
         }
     }
 
+    /// Asserts that fewer than a fifth of the lit pixels went unjudged (texel edges, the
+    /// alpha mask's cutoff, cube edges: see [`crate::pixel_model`]), so that a comparison
+    /// cannot pass by judging next to nothing.
+    pub fn assert_mostly_judged(&self, case: &str) {
+        assert!(
+            self.skipped_pixels < self.lit_pixels / 5,
+            "{case}: too few pixels judged: {} lit, {} unjudged",
+            self.lit_pixels,
+            self.skipped_pixels
+        );
+    }
+
     fn write_pngs(&self, case: &str) -> PathBuf {
         let directory = render_tests_directory();
         std::fs::create_dir_all(&directory).expect("create target/render-tests");

@@ -26,7 +26,10 @@ use std::{
 };
 
 use crate::{
-    Comparison, FloatImage, app::headless_app_with_assets, assert_no_failed_pipelines, pixel_model,
+    Comparison, FloatImage,
+    app::headless_app_with_assets,
+    assert_no_failed_pipelines,
+    pixel_model::{self, near_a_cube_edge},
     read_back_frame, run_until_settled,
 };
 
@@ -107,14 +110,6 @@ impl ReferenceScene {
         }
         Some(lights)
     }
-}
-
-/// Whether `direction`'s two largest components are within 10⁻⁵ of each other (relative):
-/// on a cube edge.
-fn near_a_cube_edge(direction: DVec3) -> bool {
-    let mut a = direction.abs().to_array();
-    a.sort_by(f64::total_cmp);
-    a[2] - a[1] <= 1e-5 * a[2]
 }
 
 /// The process's rendering lock, which each harness holds while it lives. A test that failed
@@ -466,31 +461,7 @@ impl Harness {
 
     /// The scene's lights as the reference model takes them.
     pub fn reference_lights(&mut self) -> reference::Lights {
-        let world = self.app.world_mut();
-        let ambient = world.resource::<PhongAmbientLight>().into();
-        let hemisphere = world
-            .get_resource::<bevy_phong::PhongHemisphereLight>()
-            .map(reference::Hemisphere::from);
-        let mut lights = Vec::new();
-        let mut visible = world.query::<(
-            &GlobalTransform,
-            &InheritedVisibility,
-            AnyOf<(&PhongDirectionalLight, &PhongPointLight, &PhongSpotLight)>,
-        )>();
-        for (transform, visibility, (directional, point, spot)) in visible.iter(world) {
-            // As the gather system: hidden lights and lights at a non-finite place are skipped.
-            if !visibility.get() || !is_finite_transform(transform) {
-                continue;
-            }
-            lights.extend(directional.map(|l| reference::Light::directional(l, transform)));
-            lights.extend(point.map(|l| reference::Light::point(l, transform)));
-            lights.extend(spot.map(|l| reference::Light::spot(l, transform)));
-        }
-        reference::Lights {
-            ambient,
-            hemisphere,
-            lights,
-        }
+        self.reference_scene().lights
     }
 
     /// The camera position, as the shader's view uniform holds it.
@@ -507,35 +478,51 @@ impl Harness {
     /// The scene's lights as the reference model takes them, each with its cookie (see
     /// [`ReferenceScene`]).
     pub fn reference_scene(&mut self) -> ReferenceScene {
-        let lights = self.reference_lights();
         let world = self.app.world_mut();
-        let mut cookied = world.query::<(
+        let ambient = world.resource::<PhongAmbientLight>().into();
+        let hemisphere = world
+            .get_resource::<bevy_phong::PhongHemisphereLight>()
+            .map(reference::Hemisphere::from);
+        let mut visible = world.query::<(
             &GlobalTransform,
             &InheritedVisibility,
             Option<&PhongLightCookie>,
             AnyOf<(&PhongDirectionalLight, &PhongPointLight, &PhongSpotLight)>,
         )>();
         let images = world.resource::<Assets<Image>>();
-        let cookies = cookied
-            .iter(world)
-            // In the order of `reference_lights`, which skips the same lights.
-            .filter(|(transform, visibility, ..)| {
-                visibility.get() && is_finite_transform(transform)
-            })
-            .map(|(transform, _, cookie, (_, point, spot))| {
-                let cookie = cookie?;
-                let spot_angle = spot.map(|spot| spot.outer_angle);
-                let cookie = reference::Cookie::new(
-                    cookie,
-                    images.get(&cookie.image)?,
-                    transform,
-                    spot_angle,
-                    point.is_some(),
-                )?;
-                Some((cookie, point.is_some()))
-            })
-            .collect();
-        ReferenceScene { lights, cookies }
+        let mut lights = Vec::new();
+        let mut cookies = Vec::new();
+        for (transform, visibility, cookie, (directional, point, spot)) in visible.iter(world) {
+            // As the gather system: hidden lights and lights at a non-finite place are skipped.
+            if !visibility.get() || !is_finite_transform(transform) {
+                continue;
+            }
+            // Each light of the entity, with the cookie as it lies on that light's kind.
+            let kinds = [
+                directional.map(|l| (reference::Light::directional(l, transform), None, false)),
+                point.map(|l| (reference::Light::point(l, transform), None, true)),
+                spot.map(|l| {
+                    let light = reference::Light::spot(l, transform);
+                    (light, Some(l.outer_angle), false)
+                }),
+            ];
+            for (light, spot_angle, cube) in kinds.into_iter().flatten() {
+                let cookie = cookie.and_then(|cookie| {
+                    let image = images.get(&cookie.image)?;
+                    reference::Cookie::new(cookie, image, transform, spot_angle, cube)
+                });
+                lights.push(light);
+                cookies.push(cookie.map(|cookie| (cookie, cube)));
+            }
+        }
+        ReferenceScene {
+            lights: reference::Lights {
+                ambient,
+                hemisphere,
+                lights,
+            },
+            cookies,
+        }
     }
 
     /// Compares `rendered` with the reference model on `inputs`, pixel by pixel: the

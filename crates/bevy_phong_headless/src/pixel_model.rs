@@ -369,6 +369,14 @@ pub fn expected_color(
     lit_color(material, surface, pixel, inputs, &texels, images, lights)
 }
 
+/// Whether `direction`'s two largest components are within 10⁻⁵ of each other (relative):
+/// on a cube edge, where a device's `f32` may pick the other face of a cube map.
+pub fn near_a_cube_edge(direction: DVec3) -> bool {
+    let mut a = direction.abs().to_array();
+    a.sort_by(f64::total_cmp);
+    a[2] - a[1] <= 1e-5 * a[2]
+}
+
 /// The world-space triangles of `mesh` placed by `transform` (none without positions).
 pub fn world_triangles(mesh: &Mesh, transform: &GlobalTransform) -> Vec<[DVec3; 3]> {
     let Some(positions) = mesh
