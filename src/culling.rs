@@ -137,7 +137,7 @@ impl Default for PhongViewClusters {
 /// `f32::INFINITY` when it never does (no fall-off, or `epsilon ≤ 0`), `0` when it never
 /// reaches `epsilon` at all. Computed in `f64`, rounded up. For example
 /// `1 / (1 + 0.09·d + 0.032·d²)` falls to 1/256 at about 88 units.
-pub(crate) fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
+pub fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
     if epsilon.is_nan() || epsilon <= 0.0 {
         return f32::INFINITY;
     }

@@ -205,42 +205,85 @@
 //!
 //! The searchlight's beams each request a `Beam`: one orthographic map along the beam.
 //!
+//! ## 7. Clusters
+//!
+//! A kind whose lights end somewhere is put in the crate's per-view light clusters, so that
+//! a fragment loops only over the lights that may reach it and a light far from every
+//! camera costs no fragment anything. Three optional functions say where a light ends:
+//! [`PhongLightKind::reach`] (how far it lights, world units, given its share of
+//! [`PhongLightCulling::epsilon`]; with [`PhongLightKind::SHARES_EPSILON`] a light that
+//! fades stops where it falls below that share, as the built-in lights do, by
+//! [`influence_radius`]), [`PhongLightKind::set_reach`] (stored in the record for the
+//! shader to cut the light off there) and [`PhongLightKind::bounding_sphere`] (a sphere
+//! holding everything it lights that far). The plugin writes the lights without a sphere
+//! first and those with one after them, and lists each of those in the clusters its sphere
+//! meets, in the kind's own slot of each cluster's record. The buffer's header
+//! ([`GpuLightCount`]) says where the clustered ones start and which slot is the kind's;
+//! `bevy_phong::shaders::clusters` finds a fragment's entries:
+//!
+//! ```wgsl
+//! import bevy_phong::shaders::clusters::{kind_entries, kind_record};
+//!
+//! let header = data_texel(lamps, 0u); // [count, clustered_first, cluster_slot, 0]
+//! for (var i = 0u; i < header.y; i += 1u) {
+//!     color += lamp_term(input.surface, lamp_at(i));
+//! }
+//! let entries = kind_entries(header.z, header.y, header.x, input.surface.position);
+//! for (var entry = entries.first; entry < entries.end; entry += 1u) {
+//!     let i = kind_record(entries, entry);
+//!     if i < header.x { // past a full data texture's count, records were left out
+//!         color += lamp_term(input.surface, lamp_at(i));
+//!     }
+//! }
+//! ```
+//!
+//! In a view without clusters (a camera that appeared after the lights were listed, or no
+//! light clustered at all) `kind_entries` gives every clustered record: exact either way.
+//! The searchlight gives each beam an optional `range`; its sphere holds the prism of its
+//! cross-section that long.
+//!
 //! ## What it costs the built-in lights
 //!
-//! Nothing per pixel: `PhongMaterial`'s shader is not changed by an extension; only meshes
-//! with the extended material run the new loop. Per frame, the extension's gather system
-//! checks its change queries and returns when nothing changed.
+//! Nothing per pixel beyond the clusters' one word per kind in each cluster record (the
+//! built-in lights and one kind share a 16-byte record; each further four kinds add 16
+//! bytes): `PhongMaterial`'s shader is not changed by an extension; only meshes with the
+//! extended material run the new loop. Per frame, the extension's gather system checks its
+//! change queries and returns when nothing changed. A kind that shares ε makes each light's
+//! share smaller (`n` counts its lights too).
 
 pub use crate::lights::light_direction;
 pub use crate::render::linear_rgb;
 pub use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 
-use crate::render::DATA_TEXTURE_MAX_TEXELS;
+pub use crate::culling::influence_radius;
+pub use bevy::shape::BoundingSphere;
+
+mod gather;
+
 use crate::{
+    culling::PhongLightCulling,
     lights::{LightQuery, lit_lights},
-    render::{DataTexture, DataTextureWrite, LightChanges, push_visible, words_of},
+    render::{
+        DataTexture, ExtensionClusterSlots, SharedEpsilonLights, assign_lights_to_clusters,
+        gather_lights,
+    },
     schedule::PhongSystems,
-    shadows::{ShadowRequests, ShadowSlots},
-    storage_buffer::{LightBuffer, LightBufferResized, MIN_CAPACITY, init_shader_buffers},
+    shadows::ShadowRequests,
+    storage_buffer::{LightBuffer, MIN_CAPACITY, init_shader_buffers},
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
     asset::{AssetApp, Assets, Handle},
     ecs::{
-        change_detection::DetectChanges,
-        component::Component,
-        message::MessageWriter,
-        resource::Resource,
-        schedule::IntoScheduleConfigs,
-        system::{Res, ResMut},
+        component::Component, resource::Resource, schedule::IntoScheduleConfigs, system::ResMut,
     },
     image::Image,
-    log::warn_once,
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
 use bytemuck::{Pod, Zeroable};
 use core::marker::PhantomData;
+use gather::{count_sharing_lights, gather_light_kind};
 
 /// A light component that an extension adds, gathered into its own GPU buffer by
 /// [`PhongLightKindPlugin`].
@@ -248,8 +291,40 @@ pub trait PhongLightKind: Component {
     /// The record the shader reads for one light: `#[repr(C)]`, a multiple of 16 bytes.
     type Gpu: Pod + Send + Sync;
 
+    /// Whether these lights take a share of [`PhongLightCulling::epsilon`] with the point
+    /// and spot lights: then `n`, which ε is divided by, counts them too, and
+    /// [`Self::reach`] is given the same per-light ε. Set it when `reach` uses ε, so that
+    /// ε bounds what all the skipped lights leave out together. Default `false`.
+    const SHARES_EPSILON: bool = false;
+
     /// The record of this light, placed by its entity's transform.
     fn to_gpu(&self, transform: &GlobalTransform) -> Self::Gpu;
+
+    /// How far the light of `record` reaches, world units: past it the light may be skipped.
+    /// `epsilon` is the light's share of [`PhongLightCulling::epsilon`] (linear RGB; `0` for
+    /// the exact model, and for a kind without [`Self::SHARES_EPSILON`]): a light that fades
+    /// may stop where it falls below it, as the built-in lights do ([`influence_radius`]). `f32::INFINITY` (the default) reaches
+    /// everywhere; `0` leaves the light out of the buffer.
+    fn reach(record: &Self::Gpu, epsilon: f32) -> f32 {
+        let _ = (record, epsilon);
+        f32::INFINITY
+    }
+
+    /// Stores the light's [`Self::reach`] in its record, for the shader to cut the light
+    /// off there (where the kind's reach is not a fixed field). The default stores nothing.
+    fn set_reach(record: &mut Self::Gpu, reach: f32) {
+        let _ = (record, reach);
+    }
+
+    /// A sphere holding every point that the light of `record` lights within `reach` (a
+    /// finite [`Self::reach`]), for the per-view light clusters: a kind that gives one is
+    /// listed only in the clusters its sphere meets, so a fragment loops only over the
+    /// lights that may reach it (see the module documentation, "Clusters"). `None` (the
+    /// default): every fragment loops over the light.
+    fn bounding_sphere(record: &Self::Gpu, reach: f32) -> Option<BoundingSphere> {
+        let _ = (record, reach);
+        None
+    }
 
     /// The shadow this light casts, placed by its entity's transform; `None` (the default),
     /// or a request whose settings are off, casts none. See
@@ -269,14 +344,22 @@ pub trait PhongLightKind: Component {
     }
 }
 
-/// The 16-byte header of an extension's light buffer: the number of records that follow.
+/// The 16-byte header of an extension's light buffer: the number of records that follow,
+/// those every fragment loops over first, then those found through the clusters.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightCount {
     /// Number of records.
     pub count: u32,
+    /// The first record of the clustered lights (those with a
+    /// [`PhongLightKind::bounding_sphere`]): records `0..clustered_first` are lit
+    /// everywhere, `clustered_first..count` where their cluster lists them.
+    pub clustered_first: u32,
+    /// The kind's slot in the clusters' records, for
+    /// `bevy_phong::shaders::clusters::kind_entries`.
+    pub cluster_slot: u32,
     /// Unused; the records start at a 16-byte boundary.
-    pub padding: [u32; 3],
+    pub padding: u32,
 }
 
 /// Every visible `L`, for a material to bind: as a storage buffer ([`Self::handle`]) and
@@ -287,8 +370,18 @@ pub struct PhongLightKindBuffer<L: PhongLightKind> {
     buffer: LightBuffer,
     texture: DataTexture,
     records: Vec<L::Gpu>,
+    /// The clustered records while the others are gathered.
+    clustered: Vec<L::Gpu>,
     /// The header and records as `u32`s, for the texture.
     words: Vec<u32>,
+    /// The last header written.
+    header: GpuLightCount,
+    /// The kind's slot in the clusters.
+    cluster_slot: u32,
+    /// The kind's place in [`SharedEpsilonLights`] when it shares ε.
+    epsilon_share: Option<usize>,
+    /// The per-light ε and culling of the last gather.
+    gathered_with: Option<(u32, PhongLightCulling)>,
 }
 
 impl<L: PhongLightKind> PhongLightKindBuffer<L> {
@@ -308,9 +401,15 @@ impl<L: PhongLightKind> PhongLightKindBuffer<L> {
         self.texture.handle()
     }
 
-    /// The records last written.
+    /// The records last written: those lit everywhere, then the clustered ones
+    /// ([`Self::header`]).
     pub fn records(&self) -> &[L::Gpu] {
         &self.records
+    }
+
+    /// The header last written.
+    pub fn header(&self) -> &GpuLightCount {
+        &self.header
     }
 }
 
@@ -342,17 +441,36 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
             .resource_mut::<Assets<ShaderBuffer>>()
             .reserve_handle();
         let texture = world.resource_mut::<Assets<Image>>().reserve_handle();
+        let cluster_slot = world
+            .get_resource_or_init::<ExtensionClusterSlots>()
+            .add_slot();
+        let epsilon_share = L::SHARES_EPSILON.then(|| {
+            world
+                .get_resource_or_init::<SharedEpsilonLights>()
+                .add_kind()
+        });
         app.insert_resource(PhongLightKindBuffer::<L> {
             buffer: LightBuffer::new(buffer),
             texture: DataTexture::new(texture),
             records: Vec::with_capacity(MIN_CAPACITY),
+            clustered: Vec::new(),
             words: Vec::new(),
+            header: GpuLightCount::default(),
+            cluster_slot,
+            epsilon_share,
+            gathered_with: None,
         })
         .add_systems(
             PostUpdate,
             (
                 request_kind_shadows::<L>.in_set(PhongSystems::RequestShadows),
-                gather_light_kind::<L>.in_set(PhongSystems::GatherLights),
+                (
+                    count_sharing_lights::<L>.before(gather_lights),
+                    gather_light_kind::<L>
+                        .after(gather_lights)
+                        .before(assign_lights_to_clusters),
+                )
+                    .in_set(PhongSystems::GatherLights),
             ),
         );
     }
@@ -370,76 +488,15 @@ fn request_kind_shadows<L: PhongLightKind>(
     }
 }
 
-/// Writes every visible `L` into its buffer when any of them or their shadow slots changed
-/// (and on the first run).
-pub(crate) fn gather_light_kind<L: PhongLightKind>(
-    lights: LightQuery<L>,
-    slots: Res<ShadowSlots>,
-    mut changes: LightChanges<L>,
-    mut state: ResMut<PhongLightKindBuffer<L>>,
-    mut buffers: ResMut<Assets<ShaderBuffer>>,
-    mut images: ResMut<Assets<Image>>,
-    mut resized: MessageWriter<LightBufferResized>,
-) {
-    let changed = changes.any() || slots.is_changed();
-    if !changed && state.buffer.capacity() > 0 {
-        return;
-    }
-    let state = &mut *state;
-    state.records.clear();
-    let count = push_visible(
-        &lights,
-        |entity| slots.get(entity),
-        &mut state.records,
-        |light, transform, shadow| {
-            let mut record = light.to_gpu(transform);
-            L::set_shadow(&mut record, shadow);
-            record
-        },
-    );
-    let header = GpuLightCount {
-        count,
-        padding: [0; 3],
-    };
-    let buffer_resized = state.buffer.write(&mut buffers, &header, &state.records);
-    let texture_resized = write_texture::<L>(state, &mut images, header);
-    if buffer_resized || texture_resized {
-        resized.write(LightBufferResized);
-    }
-}
-
-/// Writes the header and records into the kind's data texture, leaving out the last records
-/// past its capacity (with a warning). Returns whether the texture changed size.
-fn write_texture<L: PhongLightKind>(
-    state: &mut PhongLightKindBuffer<L>,
-    images: &mut Assets<Image>,
-    mut header: GpuLightCount,
-) -> bool {
-    let record_texels = size_of::<L::Gpu>() / 16;
-    let room = (DATA_TEXTURE_MAX_TEXELS - 1) / record_texels;
-    if state.records.len() > room {
-        warn_once!(
-            "bevy_phong: {} {} lights do not fit their data texture ({room} do): the last ones are left out",
-            state.records.len(),
-            core::any::type_name::<L>()
-        );
-        header.count = room as u32;
-    }
-    let kept = &state.records[..state.records.len().min(room)];
-    state.words.clear();
-    state.words.extend(words_of(bytemuck::bytes_of(&header)));
-    state.words.extend(words_of(bytemuck::cast_slice(kept)));
-    state.texture.write(images, &state.words) == DataTextureWrite::Resized
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::{
         PhongPointLight,
+        render::{PhongLightBuffer, PhongLightClusters, VIEW_WORDS},
         test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame},
     };
-    use bevy::prelude::{Transform, Visibility};
+    use bevy::prelude::{Camera3d, Transform, Vec3, Visibility};
 
     #[derive(Component, Clone)]
     #[require(Transform, Visibility)]
@@ -464,6 +521,104 @@ mod tests {
 
     fn with_lamps(app: &mut App) {
         app.add_plugins(PhongLightKindPlugin::<Lamp>::default());
+    }
+
+    /// A light of a kind with a reach: a sphere of `range` around it.
+    #[derive(Component, Clone)]
+    #[require(Transform, Visibility)]
+    struct Beacon {
+        range: f32,
+    }
+
+    impl PhongLightKind for Beacon {
+        type Gpu = GpuLamp;
+        const SHARES_EPSILON: bool = true;
+        fn to_gpu(&self, transform: &GlobalTransform) -> GpuLamp {
+            GpuLamp {
+                position: transform.translation().to_array(),
+                padding: self.range,
+            }
+        }
+        fn reach(record: &GpuLamp, _epsilon: f32) -> f32 {
+            record.padding
+        }
+        fn bounding_sphere(record: &GpuLamp, reach: f32) -> Option<BoundingSphere> {
+            Some(BoundingSphere::new(Vec3::from(record.position), reach))
+        }
+    }
+
+    #[test]
+    fn a_far_light_of_a_kind_with_reach_is_looped_over_by_no_fragment() {
+        let mut app = test_app(|app| {
+            app.add_plugins((
+                PhongLightKindPlugin::<Lamp>::default(),
+                PhongLightKindPlugin::<Beacon>::default(),
+            ));
+        });
+        let world = app.world_mut();
+        world.spawn((
+            Camera3d::default(),
+            Transform::from_xyz(0.0, 2.0, 10.0).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
+        let at = |x: f32| Transform::from_xyz(x, 0.0, 0.0);
+        world.spawn((Beacon { range: 2.0 }, at(0.0)));
+        world.spawn((Beacon { range: 2.0 }, at(1000.0)));
+        world.spawn((Beacon { range: 0.0 }, at(0.0)));
+        world.spawn((
+            Beacon {
+                range: f32::INFINITY,
+            },
+            at(1000.0),
+        ));
+        app.update();
+
+        // Every fragment loops over records `0..clustered_first`, then over its cluster's
+        // entries of the kind's slot (or, in a view without clusters, the rest).
+        let beacons = app.world().resource::<PhongLightKindBuffer<Beacon>>();
+        let header = *beacons.header();
+        let index_at = |x: f32, range: f32| {
+            beacons
+                .records()
+                .iter()
+                .position(|record| record.position[0] == x && record.padding == range)
+                .unwrap() as u32
+        };
+        let (near, far, unlimited) = (
+            index_at(0.0, 2.0),
+            index_at(1000.0, 2.0),
+            index_at(1000.0, f32::INFINITY),
+        );
+        assert_eq!(header.count, 3, "a light that reaches nowhere is left out");
+        assert_eq!((header.clustered_first, unlimited), (1, 0));
+        assert!(far >= header.clustered_first && near >= header.clustered_first);
+        assert_eq!(
+            header.cluster_slot, 3,
+            "after the built-in slots and the Lamp's"
+        );
+
+        let clusters = app.world().resource::<PhongLightClusters>();
+        assert_eq!(clusters.view_count(), 1);
+        let (data, words) = (clusters.data(), clusters.cluster_words() as usize);
+        assert_eq!(words, 8, "slots 0 to 3 and the end of the last: two texels");
+        let records = &data[data[1] as usize..];
+        let view = &data[..VIEW_WORDS];
+        let cluster_count = (view[2] * view[3] * view[4]) as usize;
+        let slot = header.cluster_slot as usize;
+        let mut listed = Vec::new();
+        for record in records[..cluster_count * words].chunks_exact(words) {
+            let (first, end) = (record[slot] as usize, record[slot + 1] as usize);
+            listed.extend_from_slice(&data[first..end]);
+        }
+        assert!(listed.contains(&near), "the light in view is listed");
+        assert!(!listed.contains(&far), "the far one in no cluster");
+
+        // The three lit beacons take their share of ε with the built-in lights.
+        let epsilon = app.world().resource::<PhongLightCulling>().epsilon;
+        let per_light = app
+            .world()
+            .resource::<PhongLightBuffer>()
+            .per_light_epsilon();
+        assert_eq!(per_light, epsilon / 4.0, "4 beacons give light");
     }
 
     #[test]

@@ -9,8 +9,9 @@ use crate::{
     },
     material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
     render::{
-        PhongCookies, PhongLightBuffer, PhongLightClusters, assign_lights_to_clusters,
-        carry_scene_variants, gather_cookies, gather_lights, refresh_material_bind_groups,
+        ExtensionClusterSlots, PhongCookies, PhongLightBuffer, PhongLightClusters,
+        SharedEpsilonLights, assign_lights_to_clusters, carry_scene_variants, gather_cookies,
+        gather_lights, refresh_material_bind_groups,
     },
     scene_variants::SceneVariants,
     schedule::{PhongSystems, configure_phong_systems},
@@ -53,6 +54,8 @@ impl Plugin for PhongPlugin {
             .init_resource::<PhongLightBuffer>()
             .init_resource::<PhongCookies>()
             .init_resource::<PhongLightClusters>()
+            .init_resource::<ExtensionClusterSlots>()
+            .init_resource::<SharedEpsilonLights>()
             .add_message::<LightBufferResized>()
             .register_type::<PhongAmbientLight>()
             .register_type::<PhongHemisphereLight>()
@@ -103,6 +106,7 @@ impl Plugin for PhongPlugin {
             load_shader_library!(app, "shaders/data_texture.wesl");
             load_shader_library!(app, "shaders/scene.wesl");
             load_shader_library!(app, "shaders/view_key.wesl");
+            load_shader_library!(app, "shaders/clusters.wesl");
             load_shader_library!(app, "shaders/shading.wesl");
             load_shader_library!(app, "shaders/normals.wesl");
             load_shader_library!(app, "shaders/uv.wesl");

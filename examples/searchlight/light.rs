@@ -14,8 +14,8 @@ use bevy::{
 use bevy_phong::{
     Decay, PhongMaterial, PhongShadows,
     extension::{
-        PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin, PhongShadowProjection,
-        PhongShadowRequest, light_direction, linear_rgb,
+        BoundingSphere, PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin,
+        PhongShadowProjection, PhongShadowRequest, influence_radius, light_direction, linear_rgb,
     },
     prelude::PhongMaterialAppExt,
 };
@@ -90,6 +90,10 @@ pub struct Searchlight {
     pub edge: f32,
     /// Fall-off with the distance along the beam. Default none.
     pub decay: Decay,
+    /// How far along the beam it lights, world units; `None` (the default) without end.
+    /// With a range, or a `decay` and the plugin's ε (`PhongLightCulling`), the beam is
+    /// listed only in the light clusters it reaches.
+    pub range: Option<f32>,
     /// Shadow settings: the beam's parallel rays get one orthographic shadow map. Default
     /// off.
     pub shadows: PhongShadows,
@@ -106,6 +110,7 @@ impl Default for Searchlight {
             shape: BeamShape::Circle,
             edge: 0.0,
             decay: Decay::NONE,
+            range: None,
             shadows: PhongShadows::default(),
             shadow_distance: 50.0,
         }
@@ -126,7 +131,8 @@ pub struct GpuSearchlight {
     /// The shadow slot (`PhongLightKind::set_shadow`).
     pub shadow: u32,
     pub specular: [f32; 3],
-    pub padding1: f32,
+    /// How far along the beam it lights (`PhongLightKind::set_reach`).
+    pub reach: f32,
     pub decay: [f32; 3],
     pub padding2: f32,
 }
@@ -139,6 +145,8 @@ pub fn beam_up(transform: &GlobalTransform, direction: Vec3) -> Vec3 {
 
 impl PhongLightKind for Searchlight {
     type Gpu = GpuSearchlight;
+    // A beam that fades takes its share of ε, as the crate's point and spot lights do.
+    const SHARES_EPSILON: bool = true;
 
     fn to_gpu(&self, transform: &GlobalTransform) -> GpuSearchlight {
         let direction = light_direction(transform);
@@ -152,8 +160,36 @@ impl PhongLightKind for Searchlight {
             color: linear_rgb(self.color),
             specular: linear_rgb(self.specular.unwrap_or(self.color)),
             decay: self.decay.to_array(),
+            reach: self.range.unwrap_or(f32::INFINITY),
             ..default()
         }
+    }
+
+    /// The range, shortened to where the beam has faded below `epsilon` (its largest
+    /// channel times its decay).
+    fn reach(record: &GpuSearchlight, epsilon: f32) -> f32 {
+        let intensity = record
+            .color
+            .into_iter()
+            .chain(record.specular)
+            .fold(0.0, f32::max);
+        record
+            .reach
+            .min(influence_radius(record.decay, intensity, epsilon))
+    }
+
+    fn set_reach(record: &mut GpuSearchlight, reach: f32) {
+        record.reach = reach;
+    }
+
+    /// The prism of the beam's cross-section, `reach` long: its soft edge reaches at most
+    /// `radius + 2·edge` from the axis (a triangle's corner; a circle's `radius + edge`, a
+    /// square's or diamond's `radius + √2·edge`).
+    fn bounding_sphere(record: &GpuSearchlight, reach: f32) -> Option<BoundingSphere> {
+        let half_length = 0.5 * reach;
+        let center = Vec3::from(record.position) + Vec3::from(record.direction) * half_length;
+        let radius = half_length.hypot(record.radius + 2.0 * record.edge);
+        Some(BoundingSphere::new(center, radius))
     }
 
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {

@@ -40,6 +40,8 @@ pub struct ReferenceSearchlight {
     pub shape: BeamShape,
     pub edge: f64,
     pub decay: [f64; 3],
+    /// How far along the beam it lights; `None` without end.
+    pub range: Option<f64>,
 }
 
 impl ReferenceSearchlight {
@@ -56,6 +58,7 @@ impl ReferenceSearchlight {
             shape: light.shape,
             edge: light.edge.into(),
             decay: light.decay.to_array().map(f64::from),
+            range: light.range.map(f64::from),
         }
     }
 
@@ -101,7 +104,7 @@ pub fn searchlight_term(
     if coverage == 0.0 {
         return DVec3::ZERO;
     }
-    let attenuation = reference::attenuation(along, light.decay, None);
+    let attenuation = reference::attenuation(along, light.decay, light.range);
     let light_term = reference::phong_light(
         surface,
         material,

@@ -3,7 +3,10 @@
 
 use super::{
     PHONG_LIGHT_CLUSTER_BUFFER,
-    clusters::{ClusterView, DepthSlices, LightClusters, keep_distinct_views},
+    clusters::{
+        ClusterSlot, ClusterView, DepthSlices, LightClusters, keep_distinct_views,
+        light_sphere_bits,
+    },
     gather::PhongLightBuffer,
 };
 use crate::culling::PhongViewClusters;
@@ -31,6 +34,42 @@ pub struct PhongLightClusters {
     buffer: LightBuffer,
     clusters: LightClusters,
     views: Vec<ClusterView>,
+    /// The spheres of the clustered point lights, then those of the spot lights, as the
+    /// last build read them from the light buffer.
+    point_spheres: Vec<[u32; 4]>,
+    spot_spheres: Vec<[u32; 4]>,
+}
+
+/// The clustered lights of each extension kind ([`crate::extension::PhongLightKind`]), as
+/// their gathers leave them: slot `2 + i` of the clusters is `slots[i]` (slots 0 and 1 are
+/// the built-in point and spot lights).
+#[derive(Resource, Debug, Default)]
+pub struct ExtensionClusterSlots {
+    slots: Vec<ExtensionSlot>,
+}
+
+/// One extension kind's clustered lights: the index of the first in the kind's buffer (the
+/// others follow it), and each one's bounding sphere.
+#[derive(Debug, Default)]
+pub struct ExtensionSlot {
+    pub first: u32,
+    pub spheres: Vec<[u32; 4]>,
+}
+
+impl ExtensionClusterSlots {
+    /// The slot of the clusters that built-in point lights take; spot lights take the next.
+    const BUILT_IN_SLOTS: usize = 2;
+
+    /// A new kind's cluster slot (2 for the first kind added, then 3, ...).
+    pub fn add_slot(&mut self) -> u32 {
+        self.slots.push(ExtensionSlot::default());
+        (Self::BUILT_IN_SLOTS + self.slots.len() - 1) as u32
+    }
+
+    /// The lights of cluster slot `slot` (from [`Self::add_slot`]), to be rewritten.
+    pub fn slot_mut(&mut self, slot: u32) -> &mut ExtensionSlot {
+        &mut self.slots[slot as usize - Self::BUILT_IN_SLOTS]
+    }
 }
 
 impl Default for PhongLightClusters {
@@ -39,6 +78,8 @@ impl Default for PhongLightClusters {
             buffer: LightBuffer::new(PHONG_LIGHT_CLUSTER_BUFFER),
             clusters: LightClusters::default(),
             views: Vec::new(),
+            point_spheres: Vec::new(),
+            spot_spheres: Vec::new(),
         }
     }
 }
@@ -48,6 +89,12 @@ impl PhongLightClusters {
     #[cfg(any(test, feature = "testing"))]
     pub fn view_count(&self) -> u32 {
         self.clusters.header().view_count
+    }
+
+    /// `u32` words per cluster record in the data last written.
+    #[cfg(any(test, feature = "testing"))]
+    pub fn cluster_words(&self) -> u32 {
+        self.clusters.header().cluster_words
     }
 
     /// The cluster data last written (see `render::clusters` for its layout).
@@ -111,7 +158,7 @@ fn clip_from_view(camera: &Camera, projection: &Projection) -> Mat4 {
     }
 }
 
-/// Lists the clustered lights of [`PhongLightBuffer`] in the clusters of every active 3D
+/// Lists the clustered lights of [`PhongLightBuffer`] and of every extension kind in the clusters of every active 3D
 /// camera's view and writes them into the cluster buffer, when a light or a view changed
 /// (and on the first run); otherwise it touches nothing, so no GPU buffer is uploaded.
 ///
@@ -119,6 +166,7 @@ fn clip_from_view(camera: &Camera, projection: &Projection) -> Mat4 {
 /// Bevy has updated the cameras' frusta.
 pub fn assign_lights_to_clusters(
     lights: Res<PhongLightBuffer>,
+    extension_lights: Res<ExtensionClusterSlots>,
     cameras: CameraQuery,
     mut state: ResMut<PhongLightClusters>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
@@ -153,6 +201,7 @@ pub fn assign_lights_to_clusters(
     // The lights' records are rewritten only in frames where a light changed: otherwise only
     // the views can have changed the clusters.
     let unchanged = !lights.is_changed()
+        && !extension_lights.is_changed()
         && state.clusters.was_built_for(&state.views)
         && state.buffer.capacity() > 0;
     if unchanged {
@@ -162,14 +211,38 @@ pub fn assign_lights_to_clusters(
     let first = (header.directional_count + header.point_count + header.spot_count) as usize;
     let spots = first + header.clustered_point_count as usize;
     let end = spots + header.clustered_spot_count as usize;
-    let rebuilt = state
-        .clusters
-        .build(&state.views, lights.records(), first..spots, spots..end);
-    if rebuilt || state.buffer.capacity() == 0 {
-        let was_resized =
-            state
-                .buffer
-                .write(&mut buffers, state.clusters.header(), state.clusters.data());
+    let records = lights.records();
+    let PhongLightClusters {
+        buffer,
+        clusters,
+        views,
+        point_spheres,
+        spot_spheres,
+    } = state;
+    point_spheres.clear();
+    point_spheres.extend(records[first..spots].iter().map(light_sphere_bits));
+    spot_spheres.clear();
+    spot_spheres.extend(records[spots..end].iter().map(light_sphere_bits));
+    let built_in = [
+        ClusterSlot {
+            first: first as u32,
+            spheres: point_spheres,
+        },
+        ClusterSlot {
+            first: spots as u32,
+            spheres: spot_spheres,
+        },
+    ];
+    let slots: Vec<ClusterSlot> = built_in
+        .into_iter()
+        .chain(extension_lights.slots.iter().map(|slot| ClusterSlot {
+            first: slot.first,
+            spheres: &slot.spheres,
+        }))
+        .collect();
+    let rebuilt = clusters.build(views, &slots);
+    if rebuilt || buffer.capacity() == 0 {
+        let was_resized = buffer.write(&mut buffers, clusters.header(), clusters.data());
         if was_resized {
             resized.write(LightBufferResized);
         }

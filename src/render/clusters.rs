@@ -14,18 +14,19 @@
 //! The data, after [`GpuClustersHeader`], is `u32` words: one record of [`VIEW_WORDS`] per
 //! view, `[key, first, tiles.x, tiles.y, slices, logarithmic, scale, bias]` (`scale` and
 //! `bias` as `f32` bits; `first` the word where its cluster records start); then every
-//! view's cluster records `[first, point_count, spot_count, 0]` (x fastest, then y, then
-//! slice), whose point lights are `data[first..]` and spot lights follow, each an index
-//! into the light buffer; then those indices.
+//! view's cluster records (x fastest, then y, then slice) of the header's `cluster_words`
+//! each ([`cluster_words`]); then the entries they point into. The lights come in slots
+//! ([`ClusterSlot`]: the built-in point lights, the spot lights, then each extension
+//! kind's); a cluster record `[s_0, s_1, …, s_K]` (zero-padded) lists slot `k`'s lights as
+//! the entries `data[s_k..s_{k+1}]`, each the index of a light in its slot's buffer. With
+//! the two built-in slots a record is `[s_0, s_1, s_2, 0]`: one 16-byte texel.
 
 use super::gpu_types::{GpuClustersHeader, GpuLight};
 use bevy::math::{DMat4, DVec3, DVec4, Mat4, UVec2, Vec3};
-use std::ops::{Range, RangeInclusive};
+use std::ops::RangeInclusive;
 
 /// `u32` words per view record.
 pub const VIEW_WORDS: usize = GpuClustersHeader::VIEW_WORDS as usize;
-/// `u32` words per cluster record.
-const CLUSTER_WORDS: usize = GpuClustersHeader::CLUSTER_WORDS as usize;
 
 /// How a view's depth `d` (world units in front of the camera, view space `-z`) is cut into
 /// slices: slice `floor(f(d) · scale + bias)`, clamped to `0..count`, where `f` is `log2` for
@@ -265,16 +266,26 @@ fn tiles_met(
     met.map(|(first, last)| first..=last)
 }
 
+/// The lights of one cluster slot, as a build is given them: slot 0 holds the built-in
+/// point lights, slot 1 the spot lights, each later slot an extension kind's lights
+/// ([`crate::extension::PhongLightKind::bounding_sphere`]).
+#[derive(Clone, Copy, Debug)]
+pub struct ClusterSlot<'a> {
+    /// The index the first sphere's light has in its buffer; the others follow it.
+    pub first: u32,
+    /// Each light's bounding sphere, as bits ([`sphere_bits`]).
+    pub spheres: &'a [[u32; 4]],
+}
+
 /// Every view's clusters as last built, and the scratch space they are built in (kept
 /// between frames: no allocation once the scene's size is reached).
 #[derive(Debug, Default)]
 pub struct LightClusters {
     header: GpuClustersHeader,
     data: Vec<u32>,
+    /// (the word of a cluster record that counts, then places, a slot's entries; the entry).
     pairs: Vec<(u32, u32)>,
     built_from: BuiltFrom,
-    /// The spheres of the lights a build is asked for, compared with `built_from`'s.
-    spheres: Vec<[u32; 4]>,
 }
 
 /// The input of a build, compared with the next one: the same input gives the same
@@ -282,31 +293,45 @@ pub struct LightClusters {
 #[derive(Debug, Default)]
 struct BuiltFrom {
     views: Vec<ClusterView>,
-    /// Each light's position and range, as bits ([`sphere_bits`]).
+    /// Every slot's spheres, slot after slot.
     spheres: Vec<[u32; 4]>,
-    points: Range<usize>,
-    spots: Range<usize>,
+    /// Each slot's first index and number of spheres.
+    slots: Vec<(u32, usize)>,
 }
 
 impl BuiltFrom {
-    fn is(
-        &self,
-        views: &[ClusterView],
-        spheres: &[[u32; 4]],
-        points: &Range<usize>,
-        spots: &Range<usize>,
-    ) -> bool {
+    fn is(&self, views: &[ClusterView], slots: &[ClusterSlot]) -> bool {
+        let mut spheres = self.spheres.as_slice();
         self.views == views
-            && self.points == *points
-            && self.spots == *spots
-            && self.spheres == spheres
+            && self.slots.len() == slots.len()
+            && self.slots.iter().zip(slots).all(|(&(first, count), slot)| {
+                let (these, rest) = spheres.split_at(count.min(spheres.len()));
+                spheres = rest;
+                first == slot.first && these == slot.spheres
+            })
+    }
+
+    fn set(&mut self, views: &[ClusterView], slots: &[ClusterSlot]) {
+        self.views.clear();
+        self.views.extend_from_slice(views);
+        self.spheres.clear();
+        self.slots.clear();
+        for slot in slots {
+            self.spheres.extend_from_slice(slot.spheres);
+            self.slots.push((slot.first, slot.spheres.len()));
+        }
     }
 }
 
-/// A light's position and range, as bits.
-fn sphere_bits(light: &GpuLight) -> [u32; 4] {
-    let [x, y, z] = light.position;
-    [x, y, z, light.range].map(f32::to_bits)
+/// A sphere at `center` of radius `radius`, as bits: what a [`ClusterSlot`] holds.
+pub fn sphere_bits(center: Vec3, radius: f32) -> [u32; 4] {
+    let [x, y, z] = center.to_array();
+    [x, y, z, radius].map(f32::to_bits)
+}
+
+/// A built-in point or spot light's sphere of reach, as bits.
+pub fn light_sphere_bits(light: &GpuLight) -> [u32; 4] {
+    sphere_bits(Vec3::from(light.position), light.range)
 }
 
 /// The center and radius of a sphere from [`sphere_bits`].
@@ -315,13 +340,21 @@ fn sphere(bits: &[u32; 4]) -> (Vec3, f32) {
     (Vec3::new(x, y, z), range)
 }
 
+/// Whether a sphere at `center` of radius `radius` is finite, so that clusters can hold it.
+pub fn is_finite_sphere(center: Vec3, radius: f32) -> bool {
+    radius < f32::MAX && (center - radius).is_finite() && (center + radius).is_finite()
+}
+
 /// Whether `light` (a point or spot light) has a finite sphere of reach that clusters can
 /// hold.
 pub fn has_finite_reach(light: &GpuLight) -> bool {
-    let center = Vec3::from(light.position);
-    light.range < f32::MAX
-        && (center - light.range).is_finite()
-        && (center + light.range).is_finite()
+    is_finite_sphere(Vec3::from(light.position), light.range)
+}
+
+/// `u32` words of each cluster record for `slots` slots: the start of each slot's entries
+/// and the end of the last, padded to whole 16-byte texels.
+pub fn cluster_words(slots: usize) -> usize {
+    (slots + 1).div_ceil(4) * 4
 }
 
 impl LightClusters {
@@ -340,39 +373,25 @@ impl LightClusters {
         &self.data
     }
 
-    /// Lists the point lights `lights[points]` and the spot lights `lights[spots]` (every
-    /// one with [`has_finite_reach`]; `spots` follows `points`) in the clusters of each of
-    /// `views` that they may meet. Returns `false`, keeping the clusters as they are, when
-    /// these are the views and lights of the last build, at the same places with the same
-    /// ranges. With no light or no view there is no cluster: the header says 0 views.
-    pub fn build(
-        &mut self,
-        views: &[ClusterView],
-        lights: &[GpuLight],
-        points: Range<usize>,
-        spots: Range<usize>,
-    ) -> bool {
-        debug_assert_eq!(points.end, spots.start);
-        // One pass over the records: the rest of the build reads these 16 bytes per light.
-        self.spheres.clear();
-        self.spheres
-            .extend(lights[points.start..spots.end].iter().map(sphere_bits));
-        if self.built_from.is(views, &self.spheres, &points, &spots) {
+    /// Lists the lights of every slot (every sphere finite: [`is_finite_sphere`]) in the
+    /// clusters of each of `views` that they may meet. Returns `false`, keeping the clusters
+    /// as they are, when these are the views and spheres of the last build. With no light or
+    /// no view there is no cluster: the header says 0 views.
+    pub fn build(&mut self, views: &[ClusterView], slots: &[ClusterSlot]) -> bool {
+        if self.built_from.is(views, slots) {
             return false;
         }
-        std::mem::swap(&mut self.built_from.spheres, &mut self.spheres);
-        self.built_from.views.clear();
-        self.built_from.views.extend_from_slice(views);
-        (self.built_from.points, self.built_from.spots) = (points.clone(), spots.clone());
+        self.built_from.set(views, slots);
         self.data.clear();
         self.pairs.clear();
-        let bounded = &self.built_from.spheres;
-        if bounded.is_empty() || views.is_empty() {
+        let words = cluster_words(slots.len());
+        if slots.iter().all(|slot| slot.spheres.is_empty()) || views.is_empty() {
             self.header = GpuClustersHeader::EMPTY;
             return true;
         }
         self.header = GpuClustersHeader {
             view_count: views.len() as u32,
+            cluster_words: words as u32,
             ..GpuClustersHeader::EMPTY
         };
 
@@ -380,54 +399,62 @@ impl LightClusters {
         let mut first = views.len() * VIEW_WORDS;
         for view in views {
             self.data.extend(view.record(first as u32));
-            first += view.cluster_count() * CLUSTER_WORDS;
+            first += view.cluster_count() * words;
         }
         let records_end = first;
         self.data.resize(records_end, 0);
 
-        // Count each cluster's point lights (word 1) and spot lights (word 2), and note every
-        // (cluster record, light) pair.
+        // Count each cluster's entries of slot k in its word k, and note every (that word,
+        // entry) pair: per view, slot by slot, each slot's lights in order.
         let (data, pairs) = (&mut self.data, &mut self.pairs);
         for (view_index, view) in views.iter().enumerate() {
             let bounds = ViewBounds::new(view);
             let view_first = data[view_index * VIEW_WORDS + 1] as usize;
             let (columns, rows) = (view.tiles.x as usize, view.tiles.y as usize);
-            for (index, bits) in bounded.iter().enumerate() {
-                let light_index = points.start + index;
-                let word = if light_index < points.end { 1 } else { 2 };
-                let (center, radius) = sphere(bits);
-                let Some([xs, ys, slices]) = bounds.clusters_met(center, radius) else {
-                    continue;
-                };
-                for slice in slices {
-                    for y in ys.clone() {
-                        let row = (slice as usize * rows + y as usize) * columns;
-                        for x in xs.clone() {
-                            let record = view_first + CLUSTER_WORDS * (row + x as usize);
-                            data[record + word] += 1;
-                            pairs.push((record as u32, light_index as u32));
+            for (k, slot) in slots.iter().enumerate() {
+                for (index, bits) in slot.spheres.iter().enumerate() {
+                    let entry = slot.first + index as u32;
+                    let (center, radius) = sphere(bits);
+                    let Some([xs, ys, slices]) = bounds.clusters_met(center, radius) else {
+                        continue;
+                    };
+                    for slice in slices {
+                        for y in ys.clone() {
+                            let row = (slice as usize * rows + y as usize) * columns;
+                            for x in xs.clone() {
+                                let word = view_first + words * (row + x as usize) + k;
+                                data[word] += 1;
+                                pairs.push((word as u32, entry));
+                            }
                         }
                     }
                 }
             }
         }
-        // Give each cluster its first index (word 0) and a write cursor (word 3).
+        // Turn each count into a write cursor at its slot's start; word K holds the end.
+        let slot_count = slots.len();
         let mut next = records_end as u32;
-        for record in data[views.len() * VIEW_WORDS..].chunks_exact_mut(CLUSTER_WORDS) {
-            record[0] = next;
-            record[3] = next;
-            next += record[1] + record[2];
+        for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(words) {
+            for word in &mut record[..slot_count] {
+                let count = *word;
+                *word = next;
+                next += count;
+            }
+            record[slot_count] = next;
         }
         data.resize(next as usize, 0);
-        // Per view, the pairs are in light order, points before spots: so is each list.
-        for &(record, light_index) in pairs.iter() {
-            let cursor = &mut data[record as usize + 3];
+        for &(word, entry) in pairs.iter() {
+            let cursor = &mut data[word as usize];
             let slot = *cursor as usize;
             *cursor += 1;
-            data[slot] = light_index;
+            data[slot] = entry;
         }
-        for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(CLUSTER_WORDS) {
-            record[3] = 0;
+        // Each cursor has moved to the end of its slot, the start of the next: move them back.
+        let mut start = records_end as u32;
+        for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(words) {
+            record.copy_within(0..slot_count - 1, 1);
+            record[0] = start;
+            start = record[slot_count];
         }
         true
     }

@@ -66,7 +66,43 @@ impl Default for PhongLightBuffer {
     }
 }
 
+/// How many lit lights of each extension kind that shares ε
+/// ([`PhongLightKind::SHARES_EPSILON`](crate::extension::PhongLightKind::SHARES_EPSILON))
+/// there are, kind by kind: the gather splits ε among them and the point and spot lights.
+#[derive(Resource, Debug, Default)]
+pub struct SharedEpsilonLights {
+    counts: Vec<u32>,
+}
+
+impl SharedEpsilonLights {
+    /// A new kind's place.
+    pub(crate) fn add_kind(&mut self) -> usize {
+        self.counts.push(0);
+        self.counts.len() - 1
+    }
+
+    /// Kind `kind`'s count.
+    pub(crate) fn count(&self, kind: usize) -> u32 {
+        self.counts[kind]
+    }
+
+    /// Sets kind `kind`'s count.
+    pub(crate) fn set_count(&mut self, kind: usize, count: u32) {
+        self.counts[kind] = count;
+    }
+
+    fn total(&self) -> usize {
+        self.counts.iter().map(|&count| count as usize).sum()
+    }
+}
+
 impl PhongLightBuffer {
+    /// The ε each light gets, of [`PhongLightCulling::epsilon`], in the last gather: `ε / n`
+    /// for the `n` lit point and spot lights and lights of extension kinds that share ε.
+    pub(crate) fn per_light_epsilon(&self) -> f32 {
+        self.per_light_epsilon
+    }
+
     /// What was last written: the ambient light and the count of each kind.
     pub fn header(&self) -> &GpuLightsHeader {
         &self.header
@@ -225,6 +261,7 @@ pub fn gather_lights(
     ambient: Res<PhongAmbientLight>,
     hemisphere: Option<Res<PhongHemisphereLight>>,
     culling: Res<PhongLightCulling>,
+    sharing: Res<SharedEpsilonLights>,
     directional: LightQuery<PhongDirectionalLight>,
     point: TrackedLightQuery<PhongPointLight>,
     spot: TrackedLightQuery<PhongSpotLight>,
@@ -247,6 +284,7 @@ pub fn gather_lights(
         hemisphere.as_ref().is_some_and(DetectChanges::is_changed),
         hemisphere.is_some() != state.hemisphere,
         culling.is_changed(),
+        sharing.is_changed(),
         slots.is_changed(),
         cookies.is_changed(),
         state.capacity() == 0,
@@ -272,7 +310,7 @@ pub fn gather_lights(
         |light: &GpuLight| culling.clusters && has_finite_reach(light) && light.shadow == 0;
     // The point lights, then the spot lights, written once in place. ε bounds the sum of
     // what every skipped light leaves out: each of the `count` lit point and spot lights
-    // gets ε / count. The count is known once they are read, so they are written with the
+    // (and lights of extension kinds that share ε) gets ε / count. The count is known once they are read, so they are written with the
     // last gather's per-light ε, and written again in a frame where the count changed.
     let first_point = records.len();
     let mut epsilon = state.per_light_epsilon;
@@ -296,7 +334,7 @@ pub fn gather_lights(
                 &clustered,
             ),
         ];
-        let count = pushed[0].lit + pushed[1].lit;
+        let count = pushed[0].lit + pushed[1].lit + sharing.total();
         let per_light_epsilon = culling.epsilon / count.max(1) as f32;
         if per_light_epsilon.to_bits() == epsilon.to_bits() {
             break pushed;

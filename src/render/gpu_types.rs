@@ -128,16 +128,19 @@ impl GpuLightsHeader {
 
 /// The fixed part at the start of the light cluster buffer (`PhongLightClusters` in WGSL,
 /// before its `data` array): 16 bytes. The array holds [`VIEW_WORDS`](Self::VIEW_WORDS)
-/// words per view, then [`CLUSTER_WORDS`](Self::CLUSTER_WORDS) per cluster of each view,
-/// then light indices; `render::clusters` describes them.
+/// words per view, then `cluster_words` per cluster of each view, then the entries;
+/// `render::clusters` describes them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuClustersHeader {
     /// Number of views whose clusters the data holds; 0 when no light is clustered (or no
     /// camera renders).
     pub view_count: u32,
+    /// `u32` words per cluster record: one per slot of lights, one more for the end of the
+    /// last, padded to a multiple of 4 (4 for the built-in lights alone).
+    pub cluster_words: u32,
     /// Unused; the array that follows starts at a 16-byte boundary.
-    pub padding: [u32; 3],
+    pub padding: [u32; 2],
 }
 
 impl GpuClustersHeader {
@@ -145,14 +148,11 @@ impl GpuClustersHeader {
     /// depth_scale, depth_bias]`.
     pub const VIEW_WORDS: u32 = 8;
 
-    /// `u32` words per cluster record: `[first, point_count, spot_count, 0]`, the cluster's
-    /// point lights at `data[first..]` and its spot lights after them.
-    pub const CLUSTER_WORDS: u32 = 4;
-
     /// No views, no clusters.
     pub const EMPTY: Self = Self {
         view_count: 0,
-        padding: [0; 3],
+        cluster_words: 4,
+        padding: [0; 2],
     };
 }
 

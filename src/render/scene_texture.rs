@@ -266,7 +266,7 @@ mod tests {
         let clusters_start = packed.words[1] as usize * 4;
         assert_eq!(
             &packed.words[clusters_start..clusters_start + 4],
-            &[0, 0, 0, 0],
+            &[0, GpuClustersHeader::EMPTY.cluster_words, 0, 0],
             "no views"
         );
         // Room for 28 texels, 1 + 4 + 5 · 4 + 1 + 1 = 27 used (an empty clusters header is one

@@ -4,6 +4,8 @@
 //!   reference model, on each pixel's own inputs;
 //! - `searchlight`: the same for the searchlight example's extension, its surfaces with
 //!   their maps and vertex colors (the crate's shader API);
+//! - `searchlight_clusters`: searchlights of finite reach in the light clusters, lit
+//!   exactly, and a far beam looped over by no fragment;
 //! - `clusters`: per-view light clusters against the reference model, around the frustum,
 //!   with two cameras and through 0 → 3,000 → 0 lights; the shader finds its own view;
 //! - `culling`: light clusters and ε culling against the reference model;
@@ -66,6 +68,7 @@ mod mutations;
 mod random;
 mod scene_files;
 mod searchlight;
+mod searchlight_clusters;
 #[path = "../../examples/searchlight/reference.rs"]
 mod searchlight_reference;
 mod self_check;

@@ -24,7 +24,7 @@ const HARD_EDGE_BAND: f64 = 1e-4;
 /// At most this share of the lit pixels may sit in that band (it is a thin line).
 const MAX_SKIPPED_SHARE: f64 = 0.02;
 
-fn searchlit_scene() -> (Harness, SurfaceInputs<SearchlitMaterial>) {
+pub(crate) fn searchlit_scene() -> (Harness, SurfaceInputs<SearchlitMaterial>) {
     let mut harness = Harness::with_plugins(128, 128, |app| {
         app.add_plugins(SearchlightPlugin);
     });
@@ -85,7 +85,7 @@ fn reference_searchlights(harness: &mut Harness) -> Vec<ReferenceSearchlight> {
 
 /// Renders the next frame and compares it with Phong lighting plus every searchlight term,
 /// leaving out pixels on a hard beam boundary.
-fn check_searchlit(
+pub(crate) fn check_searchlit(
     harness: &mut Harness,
     inputs: &SurfaceInputs<SearchlitMaterial>,
     case: &str,

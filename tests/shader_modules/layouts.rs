@@ -111,6 +111,10 @@ fn light_clusters_header_matches_wgsl_phong_light_clusters() {
     let (_, members) = wgsl_struct(&types_module(), "PhongLightClusters");
     let rust = [
         ("view_count", offset_of!(GpuClustersHeader, view_count)),
+        (
+            "cluster_words",
+            offset_of!(GpuClustersHeader, cluster_words),
+        ),
         ("padding", offset_of!(GpuClustersHeader, padding)),
         ("data", size_of::<GpuClustersHeader>()),
     ];

@@ -1,5 +1,40 @@
 use super::*;
 use bevy::math::{Quat, UVec3, Vec2, Vec4Swizzles};
+use std::ops::Range;
+
+/// `u32` words per cluster record with the two built-in slots.
+const CLUSTER_WORDS: usize = 4;
+
+impl LightClusters {
+    /// Builds the clusters of the built-in point lights `lights[points]` and spot lights
+    /// `lights[spots]`, as `assign_lights_to_clusters` does.
+    fn build_lights(
+        &mut self,
+        views: &[ClusterView],
+        lights: &[GpuLight],
+        points: Range<usize>,
+        spots: Range<usize>,
+    ) -> bool {
+        let spheres = |range: &Range<usize>| -> Vec<[u32; 4]> {
+            lights[range.clone()]
+                .iter()
+                .map(light_sphere_bits)
+                .collect()
+        };
+        let (point_spheres, spot_spheres) = (spheres(&points), spheres(&spots));
+        let slots = [
+            ClusterSlot {
+                first: points.start as u32,
+                spheres: &point_spheres,
+            },
+            ClusterSlot {
+                first: spots.start as u32,
+                spheres: &spot_spheres,
+            },
+        ];
+        self.build(views, &slots)
+    }
+}
 
 fn point(position: Vec3, range: f32) -> GpuLight {
     GpuLight {
@@ -71,11 +106,7 @@ fn lights_at(clusters: &LightClusters, view_index: usize, position: Vec3) -> Vec
     let cluster = UVec3::new(tile.x, tile.y, slice);
     let record = words[1] as usize
         + CLUSTER_WORDS * (cluster.x + tiles.x * (cluster.y + tiles.y * cluster.z)) as usize;
-    let (first, count) = (
-        data[record] as usize,
-        (data[record + 1] + data[record + 2]) as usize,
-    );
-    data[first..first + count].to_vec()
+    data[data[record] as usize..data[record + 2] as usize].to_vec()
 }
 
 /// Every light listed in some cluster of some view.
@@ -86,8 +117,7 @@ fn listed_anywhere(clusters: &LightClusters) -> std::collections::BTreeSet<u32> 
         let first = data[view_index * VIEW_WORDS + 1] as usize;
         let records = &data[first..first + view.cluster_count() * CLUSTER_WORDS];
         for record in records.chunks_exact(CLUSTER_WORDS) {
-            let start = record[0] as usize;
-            listed.extend(&data[start..start + (record[1] + record[2]) as usize]);
+            listed.extend(&data[record[0] as usize..record[2] as usize]);
         }
     }
     listed
@@ -187,7 +217,7 @@ fn every_point_a_light_reaches_in_a_view_lists_that_light() {
     ];
     let lights = scattered_lights(300, 24.0, Vec3::ZERO);
     let mut clusters = LightClusters::default();
-    assert!(clusters.build(&views, &lights, 0..200, 200..300));
+    assert!(clusters.build_lights(&views, &lights, 0..200, 200..300));
     for view_index in 0..views.len() {
         let drawn =
             assert_every_reached_point_lists_its_light(&clusters, view_index, near, &lights, 200);
@@ -218,7 +248,7 @@ fn lights_just_outside_the_frustum_that_reach_into_it_are_listed_and_the_rest_ar
         straddling_near,
     ];
     let mut clusters = LightClusters::default();
-    clusters.build(&[view], &lights, 0..5, 5..5);
+    clusters.build_lights(&[view], &lights, 0..5, 5..5);
     let listed = listed_anywhere(&clusters);
     let listed_anywhere = |index: u32| listed.contains(&index);
     assert!(
@@ -240,10 +270,11 @@ fn lights_just_outside_the_frustum_that_reach_into_it_are_listed_and_the_rest_ar
     // The camera inside a light: every tile's nearest cluster lists it.
     let tiles = (view.tiles.x * view.tiles.y) as usize;
     let nearest = &clusters.data()[VIEW_WORDS..VIEW_WORDS + tiles * CLUSTER_WORDS];
-    assert!(nearest.chunks_exact(CLUSTER_WORDS).all(|record| {
-        let first = record[0] as usize;
-        clusters.data()[first..first + (record[1] + record[2]) as usize].contains(&3)
-    }));
+    assert!(
+        nearest
+            .chunks_exact(CLUSTER_WORDS)
+            .all(|record| { clusters.data()[record[0] as usize..record[2] as usize].contains(&3) })
+    );
 }
 
 #[test]
@@ -263,7 +294,7 @@ fn far_flung_lights_are_listed_only_where_they_reach() {
         lights.push(point(Vec3::NEG_Z * far, far));
     }
     let mut clusters = LightClusters::default();
-    clusters.build(
+    clusters.build_lights(
         &[view],
         &lights,
         0..lights.len(),
@@ -308,7 +339,7 @@ fn a_light_is_listed_only_in_the_views_it_reaches() {
         point(Vec3::new(50.0, 0.0, 0.0), 2.0),
     ];
     let mut clusters = LightClusters::default();
-    clusters.build(&[left, right], &lights, 0..2, 2..2);
+    clusters.build_lights(&[left, right], &lights, 0..2, 2..2);
     assert_eq!(lights_at(&clusters, 0, Vec3::new(-50.0, 0.0, 0.0)), vec![0]);
     assert_eq!(lights_at(&clusters, 1, Vec3::new(50.0, 0.0, 0.0)), vec![1]);
     assert_eq!(clusters.header().view_count, 2);
@@ -323,19 +354,73 @@ fn clusters_list_point_lights_before_spot_lights() {
         point(Vec3::Y * 0.2, 1.0),
     ];
     let mut clusters = LightClusters::default();
-    clusters.build(&[view], &lights, 0..1, 1..3);
+    clusters.build_lights(&[view], &lights, 0..1, 1..3);
     let data = clusters.data();
     let records = &data[VIEW_WORDS..VIEW_WORDS + view.cluster_count() * CLUSTER_WORDS];
     let mut spots_seen = 0;
     for record in records.chunks_exact(CLUSTER_WORDS) {
-        let [first, points, spots, unused] = [record[0], record[1], record[2], record[3]];
+        let record: [u32; 4] = record.try_into().unwrap();
+        let [first, spot, end, unused] = record.map(|word| word as usize);
         assert_eq!(unused, 0);
-        let listed = &data[first as usize..(first + points + spots) as usize];
-        assert!(listed[..points as usize].iter().all(|&index| index == 0));
-        assert!(listed[points as usize..].iter().all(|&index| index > 0));
-        spots_seen += spots;
+        assert!(data[first..spot].iter().all(|&index| index == 0));
+        assert!(data[spot..end].iter().all(|&index| index > 0));
+        spots_seen += end - spot;
     }
     assert!(spots_seen > 0);
+}
+
+#[test]
+fn each_slot_lists_its_lights_in_its_own_range() {
+    let view = perspective_view(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 0.8, 1.0, 0.1, 100.0);
+    // Three extension kinds beside the built-in slots: 5 slots, 8 words a record. Each slot
+    // has one light at the origin and one far off to the side, which no cluster lists.
+    let near = sphere_bits(Vec3::ZERO, 1.0);
+    let far = sphere_bits(Vec3::X * 1000.0, 1.0);
+    let spheres = [near, far];
+    let slots: Vec<ClusterSlot> = [10, 20, 0, 7, 3]
+        .into_iter()
+        .map(|first| ClusterSlot {
+            first,
+            spheres: &spheres,
+        })
+        .collect();
+    let mut clusters = LightClusters::default();
+    assert!(clusters.build(&[view], &slots));
+    assert_eq!(clusters.header().cluster_words, 8);
+    assert_eq!(cluster_words(2), 4, "the built-in slots alone: one texel");
+    assert_eq!(cluster_words(3), 4, "and one extension kind");
+    let data = clusters.data();
+    let records = &data[VIEW_WORDS..VIEW_WORDS + view.cluster_count() * 8];
+    let mut met = 0;
+    for record in records.chunks_exact(8) {
+        assert_eq!(record[6..], [0, 0], "padding");
+        for (k, slot) in slots.iter().enumerate() {
+            let entries = &data[record[k] as usize..record[k + 1] as usize];
+            assert!(entries.len() <= 1, "slot {k} lists its far light nowhere");
+            assert!(entries.iter().all(|&entry| entry == slot.first));
+            met += entries.len();
+        }
+    }
+    assert!(met >= 5, "each slot's near light is listed somewhere");
+    let origin = lights_in_slots(&clusters, Vec3::ZERO, 5);
+    assert_eq!(origin, [vec![10], vec![20], vec![0], vec![7], vec![3]]);
+}
+
+/// Each slot's entries in the cluster that holds `position` in view 0.
+fn lights_in_slots(clusters: &LightClusters, position: Vec3, slots: usize) -> Vec<Vec<u32>> {
+    let data = clusters.data();
+    let words = clusters.header().cluster_words as usize;
+    let view = clusters.built_from.views[0];
+    let clip = (view.clip_from_view * view.view_from_world) * position.extend(1.0);
+    let ndc = clip.xy() / clip.w;
+    let tile = ((ndc * 0.5 + 0.5) * view.tiles.as_vec2()).as_uvec2();
+    let depth = -(view.view_from_world * position.extend(1.0)).z;
+    let slice = view.slices.slice_of(f64::from(depth));
+    let index = tile.x + view.tiles.x * (tile.y + view.tiles.y * slice);
+    let record = &data[data[1] as usize + words * index as usize..][..words];
+    (0..slots)
+        .map(|k| data[record[k] as usize..record[k + 1] as usize].to_vec())
+        .collect()
 }
 
 #[test]
@@ -343,27 +428,27 @@ fn the_same_input_keeps_the_clusters_and_any_change_rebuilds_them() {
     let view = perspective_view(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 0.8, 1.0, 0.1, 100.0);
     let mut lights = vec![point(Vec3::ZERO, 1.0), point(Vec3::splat(1.0), 1.0)];
     let mut clusters = LightClusters::default();
-    assert!(clusters.build(&[view], &lights, 0..2, 2..2));
+    assert!(clusters.build_lights(&[view], &lights, 0..2, 2..2));
     let first = clusters.data().to_vec();
-    assert!(!clusters.build(&[view], &lights, 0..2, 2..2));
+    assert!(!clusters.build_lights(&[view], &lights, 0..2, 2..2));
     assert_eq!(clusters.data(), first);
 
     lights[1].range = 0.5;
-    assert!(clusters.build(&[view], &lights, 0..2, 2..2));
+    assert!(clusters.build_lights(&[view], &lights, 0..2, 2..2));
     let mut moved = view;
     moved.view_from_world *= Mat4::from_translation(Vec3::X);
-    assert!(clusters.build(&[moved], &lights, 0..2, 2..2));
-    assert!(clusters.build(&[moved], &lights, 0..1, 1..2));
+    assert!(clusters.build_lights(&[moved], &lights, 0..2, 2..2));
+    assert!(clusters.build_lights(&[moved], &lights, 0..1, 1..2));
 }
 
 #[test]
 fn no_lights_or_no_views_make_no_clusters() {
     let view = perspective_view(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 0.8, 1.0, 0.1, 100.0);
     let mut clusters = LightClusters::default();
-    clusters.build(&[view], &[], 0..0, 0..0);
+    clusters.build_lights(&[view], &[], 0..0, 0..0);
     assert_eq!(clusters.header().view_count, 0);
     assert!(clusters.data().is_empty());
-    clusters.build(&[], &[point(Vec3::ZERO, 1.0)], 0..1, 1..1);
+    clusters.build_lights(&[], &[point(Vec3::ZERO, 1.0)], 0..1, 1..1);
     assert_eq!(clusters.header().view_count, 0);
 }
 
