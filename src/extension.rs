@@ -196,7 +196,7 @@
 //! // Per light: (diffuse factor, specular factor); `input.surface.receives_shadows` already
 //! // honours `NotShadowReceiver`. The flag `PHONG_SHADOWS` is set only while some light
 //! // casts shadows: without it the shadow code is left out, which keeps scenes without
-//! // shadows as fast as before (see `PhongMaterialKey::shadows`).
+//! // shadows as fast as before (see `MaterialFeatures::SHADOWS`).
 //! var shadow = vec2<f32>(1.0);
 //! @if(PHONG_SHADOWS)
 //! shadow = shadow_factors(lamp.shadow, input.surface, to_light, lamp.position);

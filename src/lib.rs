@@ -177,8 +177,8 @@ pub use lights::{
     PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
 };
 pub use material::{
-    DiffuseKind, DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialKey,
-    PhongSceneMaterial, SpecularMode, SpecularModel, UvSet,
+    DiffuseMode, EnvironmentCombine, MaterialFeatures, PhongMaterial, PhongMaterialKey,
+    PhongSceneMaterial, SpecularMode, SpecularModel,
 };
 pub use plugin::{PhongMaterialAppExt, PhongPlugin};
 pub use render::PhongSceneBindings;

@@ -12,7 +12,7 @@ use bevy::{
     },
     shader::ShaderDefVal,
 };
-use bevy_phong::{DiffuseKind, EnvironmentCombine, PhongMaterialKey, UvSet};
+use bevy_phong::{MaterialFeatures, PhongMaterialKey};
 use std::collections::BTreeSet;
 
 /// One set of shader defs, with a name that says where it comes from.
@@ -176,84 +176,85 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
 
 /// Every `PhongMaterialKey`: each of its switches on and off.
 fn material_keys() -> Vec<PhongMaterialKey> {
+    use MaterialFeatures as F;
+    let of = |features: &[(bool, MaterialFeatures)]| {
+        features
+            .iter()
+            .filter(|(on, _)| *on)
+            .fold(F::NONE, |all, &(_, feature)| all.with(feature))
+    };
     let key = |bits: u32| {
         let bit = |index: u32| bits & (1 << index) != 0;
         PhongMaterialKey {
-            specular: bit(0),
-            base_color_texture: bit(1),
-            specular_texture: bit(2),
-            emissive_texture: bit(3),
-            normal_map: bit(4),
-            alpha_mask: bit(5),
-            shadows: bit(6),
-            soft_shadows: bit(7),
-            double_sided: bit(8),
-            uv_transform: bit(9),
-            unlit: false,
-            no_fog: false,
+            features: of(&[
+                (!bit(0), F::NO_SPECULAR),
+                (bit(1), F::BASE_COLOR_TEXTURE),
+                (bit(2), F::SPECULAR_TEXTURE),
+                (bit(3), F::EMISSIVE_TEXTURE),
+                (bit(4), F::NORMAL_MAP),
+                (bit(5), F::ALPHA_MASK),
+                (bit(6), F::SHADOWS),
+                // Soft shadows only where some light casts shadows.
+                (bit(6) && bit(7), F::SOFT_SHADOWS),
+                // No shader def: a pipeline setting.
+                (bit(8), F::DOUBLE_SIDED),
+                (bit(9), F::UV_TRANSFORM),
+            ]),
             // Neither changes a shader def.
             cull_mode: Some(bevy::render::render_resource::Face::Back),
             depth_bias: 0,
-            light_map: None,
-            ao_map: None,
-            alpha_map: false,
-            environment: None,
-            refraction: false,
-            bump_map: false,
-            flat_shading: false,
-            camera_environment: false,
-            // A vertex-stage switch: `displaced_vertex` composes its shaders.
-            displacement: false,
-            diffuse: DiffuseKind::Lambert,
-            toon_specular: false,
-            rim: None,
-            hemisphere: false,
-            cookies: false,
         }
     };
     let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
     // Each of the rest changes only a few steps: they are composed with no map and with
-    // every map, under each kind of shadows (`EXTRA_DEF_SETS`).
-    let extras: Vec<fn(&mut PhongMaterialKey)> = vec![
-        |key| key.unlit = true,
-        |key| key.no_fog = true,
-        |key| (key.unlit, key.no_fog) = (true, true),
-        |key| key.light_map = Some(UvSet::First),
-        |key| key.light_map = Some(UvSet::Second),
-        |key| key.ao_map = Some(UvSet::First),
-        |key| key.ao_map = Some(UvSet::Second),
-        |key| (key.light_map, key.ao_map) = (Some(UvSet::Second), Some(UvSet::First)),
-        |key| key.alpha_map = true,
-        |key| key.environment = Some(EnvironmentCombine::Multiply),
-        |key| key.environment = Some(EnvironmentCombine::Mix),
-        |key| key.environment = Some(EnvironmentCombine::Add),
-        |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Multiply), true),
-        |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Mix), true),
-        |key| (key.environment, key.refraction) = (Some(EnvironmentCombine::Add), true),
-        |key| key.bump_map = true,
-        |key| key.flat_shading = true,
-        |key| (key.bump_map, key.flat_shading) = (true, true),
-        |key| (key.environment, key.camera_environment) = (Some(EnvironmentCombine::Mix), true),
-        |key| {
-            key.environment = Some(EnvironmentCombine::Add);
-            (key.refraction, key.camera_environment) = (true, true);
-        },
-        |key| key.diffuse = DiffuseKind::Wrap,
-        |key| key.diffuse = DiffuseKind::Toon,
-        |key| (key.specular, key.toon_specular) = (true, true),
-        |key| (key.diffuse, key.specular, key.toon_specular) = (DiffuseKind::Toon, true, true),
-        |key| key.rim = Some(false),
-        |key| key.rim = Some(true),
-        |key| key.diffuse = DiffuseKind::ToonRamp,
-        |key| key.hemisphere = true,
-        |key| key.cookies = true,
-    ];
+    // every map, under each kind of shadows (`EXTRA_DEF_SETS`). Each adds its features and
+    // takes out the second (a highlight switched on).
+    let environment = F::ENVIRONMENT_MAP;
+    let extras: Vec<(MaterialFeatures, MaterialFeatures)> = [
+        F::UNLIT,
+        F::NO_FOG,
+        F::UNLIT.with(F::NO_FOG),
+        F::LIGHT_MAP,
+        F::LIGHT_MAP_UV_B,
+        F::AO_MAP,
+        F::AO_MAP_UV_B,
+        F::LIGHT_MAP_UV_B.with(F::AO_MAP),
+        F::ALPHA_MAP,
+        environment,
+        environment.with(F::ENV_MIX),
+        environment.with(F::ENV_ADD),
+        environment.with(F::ENV_REFRACTION),
+        environment.with(F::ENV_MIX).with(F::ENV_REFRACTION),
+        environment.with(F::ENV_ADD).with(F::ENV_REFRACTION),
+        F::BUMP_MAP,
+        F::FLAT_SHADING,
+        F::BUMP_MAP.with(F::FLAT_SHADING),
+        environment.with(F::ENV_MIX).with(F::ENV_CAMERA),
+        environment
+            .with(F::ENV_ADD)
+            .with(F::ENV_REFRACTION)
+            .with(F::ENV_CAMERA),
+        F::DIFFUSE_WRAP,
+        F::DIFFUSE_TOON,
+        F::RIM,
+        F::RIM_LIT,
+        F::TOON_RAMP,
+        F::HEMISPHERE,
+        F::LIGHT_COOKIES,
+    ]
+    .into_iter()
+    .map(|features| (features, F::NONE))
+    .chain([
+        (F::SPECULAR_TOON, F::NO_SPECULAR),
+        (F::DIFFUSE_TOON.with(F::SPECULAR_TOON), F::NO_SPECULAR),
+    ])
+    .collect();
     let every_map = 0b11_0011_1111;
     for maps in [0, every_map] {
         for shadows in [0, 1 << 6, 3 << 6] {
-            for extra in &extras {
+            for &(added, taken) in &extras {
                 let mut key = key(maps | shadows);
-                extra(&mut key);
+                key.features = key.features.with(added).without(taken);
                 keys.push(key);
             }
         }

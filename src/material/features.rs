@@ -1,0 +1,233 @@
+//! The switches of a material's shader variant, each declared once: its bit in
+//! [`MaterialFeatures`], when a material has it, the shader defs it sets and what it needs of
+//! the mesh. [`PhongMaterialKey`](super::PhongMaterialKey) holds the bits, and
+//! `shader_defs` turns them into defs; a material feature that switches shader code adds one
+//! row to [`material_features!`]'s table below and nothing else on the Rust side.
+
+use super::{DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialUniform, SpecularMode};
+use crate::limits;
+use bevy::{
+    asset::Handle,
+    math::{Affine2, Vec3},
+    mesh::UvChannel,
+    prelude::{AlphaMode, Image},
+};
+
+/// What a feature needs of the mesh to be drawn: a mesh without it draws the material
+/// without the feature, with a warning naming the field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MeshNeeds {
+    /// Nothing.
+    Nothing,
+    /// UVs (`Mesh::ATTRIBUTE_UV_0`).
+    Uv0,
+    /// A second UV set (`Mesh::ATTRIBUTE_UV_1`).
+    Uv1,
+    /// UVs and tangents (`Mesh::ATTRIBUTE_UV_0`, `Mesh::ATTRIBUTE_TANGENT`).
+    Uv0AndTangents,
+    /// Some other feature of the material sampling a map at the first UV set (what a UV
+    /// transform moves).
+    SampledUv0Map,
+}
+
+/// One row of the table: the field that switches the feature (for warnings), its shader
+/// defs, what it needs of the mesh, and whether a material has it.
+pub(crate) struct MaterialFeature {
+    pub bit: MaterialFeatures,
+    pub field: &'static str,
+    pub defines: &'static [&'static str],
+    pub needs: MeshNeeds,
+    /// Whether `material` has the feature, its numbers as the shader reads them (`uniform`).
+    pub on: fn(&PhongMaterial, &PhongMaterialUniform) -> bool,
+}
+
+/// Declares each feature once: a constant of [`MaterialFeatures`] (its bit, in order) and a
+/// row of [`MATERIAL_FEATURES`].
+macro_rules! material_features {
+    ($(
+        $(#[doc = $doc:literal])*
+        $name:ident: $field:literal, [$($define:literal),*], $needs:ident,
+            |$material:ident, $uniform:ident| $on:expr;
+    )*) => {
+        impl MaterialFeatures {
+            material_features!(@bits 0u64; $($(#[doc = $doc])* $name,)*);
+        }
+
+        /// Every feature, in the order of its bit.
+        pub(crate) const MATERIAL_FEATURES: &[MaterialFeature] = &[$(
+            MaterialFeature {
+                bit: MaterialFeatures::$name,
+                field: $field,
+                defines: &[$($define),*],
+                needs: MeshNeeds::$needs,
+                on: |$material, $uniform| {
+                    let _ = (&$material, &$uniform);
+                    $on
+                },
+            },
+        )*];
+    };
+    (@bits $bit:expr; $(#[doc = $doc:literal])* $name:ident, $($rest:tt)*) => {
+        $(#[doc = $doc])*
+        pub const $name: Self = Self(1 << $bit);
+        material_features!(@bits $bit + 1; $($rest)*);
+    };
+    (@bits $bit:expr;) => {};
+}
+
+/// The shader-variant switches a material has (see [`PhongMaterialKey`](super::PhongMaterialKey)):
+/// a set of bits, one per feature, each declared with its shader defs in one table.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct MaterialFeatures(u64);
+
+impl MaterialFeatures {
+    /// No feature.
+    pub const NONE: Self = Self(0);
+
+    /// Whether every feature of `other` is in `self`.
+    pub const fn contains(self, other: Self) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    /// `self` with the features of `other` added.
+    #[must_use]
+    pub const fn with(self, other: Self) -> Self {
+        Self(self.0 | other.0)
+    }
+
+    /// `self` without the features of `other`.
+    #[must_use]
+    pub const fn without(self, other: Self) -> Self {
+        Self(self.0 & !other.0)
+    }
+
+    /// The features `material` has.
+    pub fn of(material: &PhongMaterial) -> Self {
+        // The numbers in their ranges, as the shader reads them.
+        let uniform = PhongMaterialUniform::from(material);
+        MATERIAL_FEATURES
+            .iter()
+            .filter(|feature| (feature.on)(material, &uniform))
+            .fold(Self::NONE, |features, feature| features.with(feature.bit))
+    }
+}
+
+/// Whether `material` has a specular term, its numbers in range (`uniform`).
+fn has_specular(material: &PhongMaterial, uniform: &PhongMaterialUniform) -> bool {
+    uniform.specular != Vec3::ZERO && material.specular_mode != SpecularMode::Off
+}
+
+/// Whether `material` has an environment (its own cube, or the camera's).
+fn has_environment(material: &PhongMaterial) -> bool {
+    material.environment_map.is_some() || material.camera_environment
+}
+
+/// Whether a baked map `texture` is present and read from `channel`.
+fn baked_map(texture: &Option<Handle<Image>>, channel: &UvChannel, second: bool) -> bool {
+    texture.is_some() && matches!(channel, UvChannel::Uv1) == second
+}
+
+material_features! {
+    /// No specular term: a black `specular_color`, a zero `specular_strength` or
+    /// `SpecularMode::Off` (`PHONG_NO_SPECULAR`).
+    NO_SPECULAR: "specular_color", ["PHONG_NO_SPECULAR"], Nothing,
+        |m, u| !has_specular(m, u);
+    /// A toon highlight (`PHONG_SPECULAR_TOON`).
+    SPECULAR_TOON: "specular_mode", ["PHONG_SPECULAR_TOON"], Nothing,
+        |m, u| has_specular(m, u) && matches!(m.specular_mode, SpecularMode::Toon { .. });
+    /// A rim light everywhere (`PHONG_RIM`).
+    RIM: "rim_color", ["PHONG_RIM"], Nothing,
+        |m, u| u.rim.truncate() != Vec3::ZERO && !m.rim_lit_side;
+    /// A rim light on the lit side only (`PHONG_RIM_LIT`).
+    RIM_LIT: "rim_color", ["PHONG_RIM_LIT"], Nothing,
+        |m, u| u.rim.truncate() != Vec3::ZERO && m.rim_lit_side;
+    /// Wrapped diffuse light (`PHONG_DIFFUSE_WRAP`, lit past the terminator).
+    DIFFUSE_WRAP: "diffuse_mode", ["PHONG_DIFFUSE_WRAP", "PHONG_LIT_PAST_TERMINATOR"], Nothing,
+        |m, u| matches!(m.diffuse_mode, DiffuseMode::Wrap(_));
+    /// Toon bands (`PHONG_DIFFUSE_TOON`).
+    DIFFUSE_TOON: "diffuse_mode", ["PHONG_DIFFUSE_TOON"], Nothing,
+        |m, u| matches!(m.diffuse_mode, DiffuseMode::Toon { .. }) && m.toon_ramp_texture.is_none();
+    /// A toon ramp texture (`PHONG_DIFFUSE_TOON` with `PHONG_TOON_RAMP`, lit past the
+    /// terminator).
+    TOON_RAMP: "toon_ramp_texture",
+        ["PHONG_DIFFUSE_TOON", "PHONG_TOON_RAMP", "PHONG_LIT_PAST_TERMINATOR"], Nothing,
+        |m, u| matches!(m.diffuse_mode, DiffuseMode::Toon { .. }) && m.toon_ramp_texture.is_some();
+    /// Drawn without light (`PHONG_UNLIT`).
+    UNLIT: "unlit", ["PHONG_UNLIT"], Nothing, |m, u| m.unlit;
+    /// Lit with its faces' normals (`PHONG_FLAT_SHADING`).
+    FLAT_SHADING: "flat_shading", ["PHONG_FLAT_SHADING"], Nothing, |m, u| m.flat_shading;
+    /// An environment map, multiplied in unless a combine feature follows
+    /// (`PHONG_ENVIRONMENT_MAP`).
+    ENVIRONMENT_MAP: "environment_map", ["PHONG_ENVIRONMENT_MAP"], Nothing,
+        |m, u| has_environment(m);
+    /// The environment mixed in (`PHONG_ENV_MIX`).
+    ENV_MIX: "environment_combine", ["PHONG_ENV_MIX"], Nothing,
+        |m, u| has_environment(m) && m.environment_combine == EnvironmentCombine::Mix;
+    /// The environment added (`PHONG_ENV_ADD`).
+    ENV_ADD: "environment_combine", ["PHONG_ENV_ADD"], Nothing,
+        |m, u| has_environment(m) && m.environment_combine == EnvironmentCombine::Add;
+    /// The environment looked up along the refracted view ray (`PHONG_ENV_REFRACTION`).
+    ENV_REFRACTION: "refraction_ratio", ["PHONG_ENV_REFRACTION"], Nothing,
+        |m, u| has_environment(m) && m.refraction_ratio.is_some();
+    /// The environment is the camera's `EnvironmentMapLight` (`PHONG_ENV_CAMERA`).
+    ENV_CAMERA: "camera_environment", ["PHONG_ENV_CAMERA"], Nothing,
+        |m, u| m.environment_map.is_none() && m.camera_environment;
+    /// The camera's fog left out (`PHONG_NO_FOG`).
+    NO_FOG: "fog_enabled", ["PHONG_NO_FOG"], Nothing, |m, u| !m.fog_enabled;
+    /// Fragments below the alpha cutoff discarded (`PHONG_ALPHA_MASK`).
+    ALPHA_MASK: "alpha_mode", ["PHONG_ALPHA_MASK"], Nothing,
+        |m, u| matches!(m.alpha_mode, AlphaMode::Mask(_));
+    /// A base color map (`PHONG_BASE_COLOR_TEXTURE`).
+    BASE_COLOR_TEXTURE: "base_color_texture", ["PHONG_BASE_COLOR_TEXTURE"], Uv0,
+        |m, u| m.base_color_texture.is_some();
+    /// A specular map, with a specular term (`PHONG_SPECULAR_TEXTURE`).
+    SPECULAR_TEXTURE: "specular_texture", ["PHONG_SPECULAR_TEXTURE"], Uv0,
+        |m, u| has_specular(m, u) && m.specular_texture.is_some();
+    /// An emissive map (`PHONG_EMISSIVE_TEXTURE`).
+    EMISSIVE_TEXTURE: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE"], Uv0,
+        |m, u| m.emissive_texture.is_some();
+    /// An alpha map (`PHONG_ALPHA_MAP`).
+    ALPHA_MAP: "alpha_map_texture", ["PHONG_ALPHA_MAP"], Uv0,
+        |m, u| m.alpha_map_texture.is_some();
+    /// A light map on the first UV set (`PHONG_LIGHT_MAP`).
+    LIGHT_MAP: "light_map_texture", ["PHONG_LIGHT_MAP"], Uv0,
+        |m, u| baked_map(&m.light_map_texture, &m.light_map_channel, false);
+    /// A light map on the second UV set (`PHONG_LIGHT_MAP`, `PHONG_LIGHT_MAP_UV_B`).
+    LIGHT_MAP_UV_B: "light_map_texture", ["PHONG_LIGHT_MAP", "PHONG_LIGHT_MAP_UV_B"], Uv1,
+        |m, u| baked_map(&m.light_map_texture, &m.light_map_channel, true);
+    /// An AO map on the first UV set (`PHONG_AO_MAP`).
+    AO_MAP: "ao_map_texture", ["PHONG_AO_MAP"], Uv0,
+        |m, u| baked_map(&m.ao_map_texture, &m.ao_map_channel, false);
+    /// An AO map on the second UV set (`PHONG_AO_MAP`, `PHONG_AO_MAP_UV_B`).
+    AO_MAP_UV_B: "ao_map_texture", ["PHONG_AO_MAP", "PHONG_AO_MAP_UV_B"], Uv1,
+        |m, u| baked_map(&m.ao_map_texture, &m.ao_map_channel, true);
+    /// A normal map (`PHONG_NORMAL_MAP`).
+    NORMAL_MAP: "normal_map_texture", ["PHONG_NORMAL_MAP"], Uv0AndTangents,
+        |m, u| m.normal_map_texture.is_some();
+    /// A bump map (`PHONG_BUMP_MAP`).
+    BUMP_MAP: "bump_map_texture", ["PHONG_BUMP_MAP"], Uv0AndTangents,
+        |m, u| m.bump_map_texture.is_some();
+    /// The maps sampled at moved UVs: a UV transform other than the identity, on a material
+    /// that samples a map at the first UV set (`PHONG_UV_TRANSFORM`).
+    UV_TRANSFORM: "uv_transform", ["PHONG_UV_TRANSFORM"], SampledUv0Map,
+        |m, u| limits::uv_transform(m.uv_transform) != Affine2::IDENTITY;
+    /// Back faces drawn (no culling): a pipeline setting, no shader def.
+    DOUBLE_SIDED: "double_sided", [], Nothing, |m, u| m.double_sided;
+    /// Vertices displaced (the crate's vertex shaders, with their vertex def
+    /// `PHONG_DISPLACEMENT_MAP`).
+    DISPLACEMENT: "displacement_map", [], Nothing, |m, u| m.displacement_map.is_some();
+    /// Some light of the material's app casts shadows: only then is the shadow code
+    /// compiled in (`PHONG_SHADOWS`). This and the next three are the app's scene, which the
+    /// plugin copies into each of its materials.
+    SHADOWS: "scene_variants", ["PHONG_SHADOWS"], Nothing, |m, u| m.scene_variants.shadows;
+    /// Some shadow-casting light of the app has a size (`PhongShadows::softness`): the
+    /// soft-shadow filter (PCSS) is compiled in (`PHONG_SOFT_SHADOWS`).
+    SOFT_SHADOWS: "scene_variants", ["PHONG_SOFT_SHADOWS"], Nothing,
+        |m, u| m.scene_variants.shadows && m.scene_variants.soft_shadows;
+    /// The app has a `PhongHemisphereLight` (`PHONG_HEMISPHERE`).
+    HEMISPHERE: "scene_variants", ["PHONG_HEMISPHERE"], Nothing,
+        |m, u| m.scene_variants.hemisphere;
+    /// Some light of the app has a `PhongLightCookie` (`PHONG_LIGHT_COOKIES`).
+    LIGHT_COOKIES: "scene_variants", ["PHONG_LIGHT_COOKIES"], Nothing,
+        |m, u| m.scene_variants.cookies;
+}
