@@ -204,8 +204,20 @@
 //! ```
 //!
 //! The searchlight's beams each request a `Beam`: one orthographic map along the beam.
+//! [`PhongLightKind::casts_shadows`] says which lights to ask (the searchlight: those whose
+//! `shadows` are on); the plugin keeps the list as lights change, so lights that cast none
+//! cost nothing per frame.
 //!
-//! ## 7. Clusters
+//! ## 7. Validation
+//!
+//! [`PhongLightKind::validate`] replaces the fields of a light that are out of their range,
+//! each reported through the [`Checker`] as a warning and an
+//! [`InvalidInput`](crate::InvalidInput) naming the entity and the field, before the light
+//! is gathered; the checker has the crate's rules for colors, decay, ranges and shadow
+//! settings, and [`Checker::number`] for a kind's own numbers. The built-in kinds are
+//! validated this way.
+//!
+//! ## 8. Clusters
 //!
 //! A kind whose lights end somewhere is put in the crate's per-view light clusters, so that
 //! a fragment loops only over the lights that may reach it and a light far from every
@@ -242,6 +254,13 @@
 //! The searchlight gives each beam an optional `range`; its sphere holds the prism of its
 //! cross-section that long.
 //!
+//! ## The built-in kinds
+//!
+//! [`PhongDirectionalLight`](crate::PhongDirectionalLight),
+//! [`PhongPointLight`](crate::PhongPointLight) and [`PhongSpotLight`](crate::PhongSpotLight)
+//! implement [`PhongLightKind`] too, and take the same path for their validation and their
+//! shadows; they share the scene's light buffer rather than a buffer of their own.
+//!
 //! ## What it costs the built-in lights
 //!
 //! Nothing per pixel beyond the clusters' one word per kind in each cluster record (the
@@ -256,26 +275,32 @@ pub use crate::render::linear_rgb;
 pub use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 
 pub use crate::culling::influence_radius;
+pub use crate::validation::Checker;
 pub use bevy::shape::BoundingSphere;
 
+mod built_in_kinds;
 mod gather;
+mod shadow_sources;
+mod systems;
+
+pub(crate) use systems::add_light_kind;
 
 use crate::{
     culling::PhongLightCulling,
-    lights::{LightQuery, lit_lights},
     render::{
         DataTexture, ExtensionClusterSlots, SharedEpsilonLights, assign_lights_to_clusters,
         gather_lights,
     },
     schedule::PhongSystems,
-    shadows::ShadowRequests,
     storage_buffer::{LightBuffer, MIN_CAPACITY, init_shader_buffers},
 };
 use bevy::{
     app::{App, Plugin, PostUpdate},
     asset::{AssetApp, Assets, Handle},
     ecs::{
-        component::Component, resource::Resource, schedule::IntoScheduleConfigs, system::ResMut,
+        component::{Component, Mutable},
+        resource::Resource,
+        schedule::IntoScheduleConfigs,
     },
     image::Image,
     render::storage::ShaderBuffer,
@@ -285,9 +310,12 @@ use bytemuck::{Pod, Zeroable};
 use core::marker::PhantomData;
 use gather::{count_sharing_lights, gather_light_kind};
 
-/// A light component that an extension adds, gathered into its own GPU buffer by
-/// [`PhongLightKindPlugin`].
-pub trait PhongLightKind: Component {
+/// A kind of light: what the crate needs to know of it, from its GPU record to its shadows.
+/// The built-in kinds ([`PhongDirectionalLight`](crate::PhongDirectionalLight),
+/// [`PhongPointLight`](crate::PhongPointLight), [`PhongSpotLight`](crate::PhongSpotLight))
+/// implement it, and so does a kind an extension adds, whose lights
+/// [`PhongLightKindPlugin`] gathers into a GPU buffer of their own.
+pub trait PhongLightKind: Component<Mutability = Mutable> {
     /// The record the shader reads for one light: `#[repr(C)]`, a multiple of 16 bytes.
     type Gpu: Pod + Send + Sync;
 
@@ -324,6 +352,21 @@ pub trait PhongLightKind: Component {
     fn bounding_sphere(record: &Self::Gpu, reach: f32) -> Option<BoundingSphere> {
         let _ = (record, reach);
         None
+    }
+
+    /// Replaces every invalid field with a valid value, reporting each through `checker`
+    /// (a warning and an [`InvalidInput`](crate::InvalidInput) naming the entity and the
+    /// field). Run on each light whose component changed, before it is gathered. The
+    /// default checks nothing.
+    fn validate(&mut self, checker: &mut Checker) {
+        let _ = checker;
+    }
+
+    /// Whether this light may cast a shadow: only such lights are asked for
+    /// [`Self::shadow`] each frame (the crate keeps a list of them, updated when a light
+    /// changes), so lights that cast none cost the shadow pass nothing. Default `true`.
+    fn casts_shadows(&self) -> bool {
+        true
     }
 
     /// The shadow this light casts, placed by its entity's transform; `None` (the default),
@@ -449,6 +492,7 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
                 .get_resource_or_init::<SharedEpsilonLights>()
                 .add_kind()
         });
+        add_light_kind::<L>(app);
         app.insert_resource(PhongLightKindBuffer::<L> {
             buffer: LightBuffer::new(buffer),
             texture: DataTexture::new(texture),
@@ -462,29 +506,14 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
         })
         .add_systems(
             PostUpdate,
-            (
-                request_kind_shadows::<L>.in_set(PhongSystems::RequestShadows),
-                (
-                    count_sharing_lights::<L>.before(gather_lights),
-                    gather_light_kind::<L>
-                        .after(gather_lights)
-                        .before(assign_lights_to_clusters),
-                )
-                    .in_set(PhongSystems::GatherLights),
-            ),
+            ((
+                count_sharing_lights::<L>.before(gather_lights),
+                gather_light_kind::<L>
+                    .after(gather_lights)
+                    .before(assign_lights_to_clusters),
+            )
+                .in_set(PhongSystems::GatherLights),),
         );
-    }
-}
-
-/// Adds the shadow request of every visible `L` that casts one.
-fn request_kind_shadows<L: PhongLightKind>(
-    lights: LightQuery<L>,
-    mut requests: ResMut<ShadowRequests>,
-) {
-    for (entity, light, transform) in lit_lights(&lights) {
-        if let Some(request) = light.shadow(transform) {
-            requests.push(entity, request);
-        }
     }
 }
 
@@ -542,9 +571,36 @@ mod tests {
         fn reach(record: &GpuLamp, _epsilon: f32) -> f32 {
             record.padding
         }
+        fn validate(&mut self, checker: &mut Checker) {
+            checker.number("range", &mut self.range, 0.0..=f32::INFINITY, 0.0);
+        }
         fn bounding_sphere(record: &GpuLamp, reach: f32) -> Option<BoundingSphere> {
             Some(BoundingSphere::new(Vec3::from(record.position), reach))
         }
+    }
+
+    #[test]
+    fn a_kind_validates_its_lights_as_the_built_in_kinds_do() {
+        let mut app = test_app(|app| {
+            app.add_plugins(PhongLightKindPlugin::<Beacon>::default());
+        });
+        let beacon = app.world_mut().spawn(Beacon { range: f32::NAN }).id();
+        app.update();
+        assert_eq!(app.world().get::<Beacon>(beacon).unwrap().range, 0.0);
+        let messages = app
+            .world()
+            .resource::<bevy::ecs::message::Messages<crate::InvalidInput>>();
+        let invalid: Vec<_> = messages.iter_current_update_messages().collect();
+        assert_eq!(invalid.len(), 1);
+        assert_eq!(
+            (
+                invalid[0].component,
+                invalid[0].field,
+                invalid[0].value.as_str()
+            ),
+            ("Beacon", "range", "NaN")
+        );
+        assert_eq!(invalid[0].owner, crate::Owner::Entity(beacon));
     }
 
     #[test]

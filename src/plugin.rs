@@ -3,6 +3,7 @@
 
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
+    extension::add_light_kind,
     lights::{
         Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
         PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
@@ -18,8 +19,7 @@ use crate::{
     shadows::PhongLit,
     storage_buffer::{LightBufferResized, init_shader_buffers},
     validation::{
-        InvalidInput, validate_ambient_light, validate_hemisphere_light, validate_lights,
-        validate_materials,
+        InvalidInput, validate_ambient_light, validate_hemisphere_light, validate_materials,
     },
 };
 use bevy::{
@@ -74,9 +74,6 @@ impl Plugin for PhongPlugin {
             .add_systems(
                 PostUpdate,
                 (
-                    validate_lights::<PhongDirectionalLight>,
-                    validate_lights::<PhongPointLight>,
-                    validate_lights::<PhongSpotLight>,
                     validate_ambient_light,
                     validate_hemisphere_light,
                     validate_materials,
@@ -95,6 +92,10 @@ impl Plugin for PhongPlugin {
                     .in_set(PhongSystems::GatherLights),
             );
         crate::shadows::add_shadow_gather(app);
+        // The built-in kinds of light, through the path every kind takes.
+        add_light_kind::<PhongDirectionalLight>(app);
+        add_light_kind::<PhongPointLight>(app);
+        add_light_kind::<PhongSpotLight>(app);
 
         // The shaders are registered wherever Bevy's renderer is added, also without a render
         // device (`WgpuSettings::backends: None`), as Bevy's own plugins do: tools can then

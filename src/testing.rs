@@ -5,6 +5,7 @@
 
 pub use crate::displacement::DisplacementUniform;
 pub use crate::lights::cookie_layer_texels;
+pub use crate::lights::is_finite_transform;
 pub use crate::material::PhongMaterialUniform;
 pub use crate::reference::stylized::near_a_step;
 pub use crate::render::{
@@ -18,7 +19,6 @@ pub use crate::shadows::{
 pub use crate::surface_inputs::{
     SurfaceInput, SurfaceInputUniform, SurfaceInputsKey, SurfaceInputsMaterial, SurfaceInputsPlugin,
 };
-pub use crate::validation::is_finite_transform;
 pub use crate::view_key::view_key;
 
 /// The ranges and bounds every input is clamped to ([`crate::limits`]).

@@ -39,8 +39,7 @@
 
 use crate::{
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
-        PhongPointLight, PhongShadows, PhongSpotLight,
+        Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongShadows, PhongSpotLight,
     },
     limits::{self, Limits},
     material::{NumberVisitor, PhongMaterial, visit_color, visit_numbers},
@@ -51,22 +50,14 @@ use bevy::{
     color::{Color, LinearRgba},
     ecs::{
         change_detection::{DetectChanges, DetectChangesMut},
-        component::Component,
         entity::Entity,
         message::{Message, MessageReader, MessageWriter},
-        query::{Changed, Or},
-        system::{Query, ResMut},
-        world::Ref,
+        system::ResMut,
     },
     log::warn,
     math::{Affine2, Vec3},
-    transform::components::GlobalTransform,
 };
 use core::fmt;
-
-/// The rule of the table's last row, defined with the lights (whose every reader skips a
-/// light while its transform is not finite); validation only warns.
-pub use crate::lights::is_finite_transform;
 
 /// What was invalid and what replaced it; also logged as a warning.
 #[derive(Message, Clone, Debug, PartialEq)]
@@ -109,15 +100,18 @@ impl fmt::Display for InvalidInput {
     }
 }
 
-/// Collects the replacements made in one component or asset.
-pub(crate) struct Checker {
+/// Collects the replacements made in one light component or material asset: each invalid
+/// field is replaced by a valid value and reported, as a warning and an [`InvalidInput`]
+/// message naming the owner and the field. A light kind's
+/// [`PhongLightKind::validate`](crate::extension::PhongLightKind::validate) is given one.
+pub struct Checker {
     owner: Owner,
     component: &'static str,
     found: Vec<InvalidInput>,
 }
 
 impl Checker {
-    fn new(owner: Owner, component: &'static str) -> Self {
+    pub(crate) fn new(owner: Owner, component: &'static str) -> Self {
         Self {
             owner,
             component,
@@ -125,7 +119,9 @@ impl Checker {
         }
     }
 
-    fn replace(&mut self, field: &'static str, value: String, replacement: String) {
+    /// Reports that `field`, which was `value` (as written, for the warning), is now
+    /// `replacement`: for a rule of the kind's own; the functions below apply the crate's.
+    pub fn replace(&mut self, field: &'static str, value: String, replacement: String) {
         self.found.push(InvalidInput {
             owner: self.owner.clone(),
             component: self.component,
@@ -135,20 +131,33 @@ impl Checker {
         });
     }
 
-    /// A linear color in [`limits::INTENSITY`]'s range, its alpha in [`limits::ALPHA`]'s: the
-    /// rule of a material's colors ([`NumberVisitor::color`]), for a light's [`Color`].
-    fn color(&mut self, field: &'static str, color: &mut Color) {
+    /// A light's color: each linear channel `0` to `1e6`, a NaN channel `0`, its alpha
+    /// `0` to `1` (the rule of a material's colors).
+    pub fn color(&mut self, field: &'static str, color: &mut Color) {
         visit_color(self, field, color);
     }
 
-    fn optional_color(&mut self, field: &'static str, color: &mut Option<Color>) {
+    /// A color as [`Self::color`] says, where there is one.
+    pub fn optional_color(&mut self, field: &'static str, color: &mut Option<Color>) {
         if let Some(color) = color {
             self.color(field, color);
         }
     }
 
+    /// A number within `allowed`: one outside it is clamped into it, NaN becomes `if_nan`.
+    pub fn number(
+        &mut self,
+        field: &'static str,
+        value: &mut f32,
+        allowed: core::ops::RangeInclusive<f32>,
+        if_nan: f32,
+    ) {
+        let limits = Limits::new(*allowed.start(), *allowed.end(), if_nan);
+        self.scalar(field, value, limits);
+    }
+
     /// A scalar in the range of `limits`.
-    fn scalar(&mut self, field: &'static str, value: &mut f32, limits: Limits) {
+    pub(crate) fn scalar(&mut self, field: &'static str, value: &mut f32, limits: Limits) {
         let fixed = limits.apply(*value);
         // NaN never equals itself: it is replaced.
         if fixed == *value {
@@ -163,8 +172,9 @@ impl Checker {
         *value = fixed;
     }
 
-    /// Shadow settings in their ranges; a resolution within `[16, 4096]`.
-    fn shadows(&mut self, shadows: &mut PhongShadows) {
+    /// Shadow settings in their ranges (those [`PhongShadows`] documents); a resolution
+    /// within `[16, 4096]`.
+    pub fn shadows(&mut self, shadows: &mut PhongShadows) {
         self.scalar(
             "shadows.depth_bias",
             &mut shadows.depth_bias,
@@ -213,7 +223,7 @@ impl Checker {
     }
 
     /// Cascade settings in their ranges: 1 to 4 cascades, the first ending before the last.
-    fn cascades(&mut self, cascades: &mut PhongCascades) {
+    pub(crate) fn cascades(&mut self, cascades: &mut PhongCascades) {
         let count = cascades.count.clamp(1, PhongCascades::MAX_COUNT);
         if count != cascades.count {
             self.replace(
@@ -248,14 +258,15 @@ impl Checker {
         );
     }
 
-    fn decay(&mut self, decay: &mut Decay) {
+    /// Each coefficient of a [`Decay`] `0` to `1e6`, NaN `0`.
+    pub fn decay(&mut self, decay: &mut Decay) {
         self.scalar("decay.constant", &mut decay.constant, limits::DECAY);
         self.scalar("decay.linear", &mut decay.linear, limits::DECAY);
         self.scalar("decay.quadratic", &mut decay.quadratic, limits::DECAY);
     }
 
-    /// A positive range, or `None`.
-    fn range(&mut self, range: &mut Option<f32>) {
+    /// A positive range, or `None` (infinity is taken as `None` without a warning).
+    pub fn range(&mut self, range: &mut Option<f32>) {
         if let Some(value) = *range
             && !(value.is_finite() && value > 0.0)
         {
@@ -267,7 +278,7 @@ impl Checker {
         }
     }
 
-    fn spot_angles(&mut self, light: &mut PhongSpotLight) {
+    pub(crate) fn spot_angles(&mut self, light: &mut PhongSpotLight) {
         self.scalar("inner_angle", &mut light.inner_angle, limits::SPOT_ANGLE);
         self.scalar("outer_angle", &mut light.outer_angle, limits::SPOT_ANGLE);
         if light.inner_angle > light.outer_angle {
@@ -286,7 +297,7 @@ impl Checker {
     }
 
     /// Logs and sends what was replaced.
-    fn report(self, messages: &mut MessageWriter<InvalidInput>) {
+    pub(crate) fn report(self, messages: &mut MessageWriter<InvalidInput>) {
         for invalid in self.found {
             warn!("{invalid}");
             messages.write(invalid);
@@ -340,72 +351,6 @@ fn color_text(color: LinearRgba) -> String {
         alpha,
     } = color;
     format!("Linear({red:?}, {green:?}, {blue:?}, alpha {alpha:?})")
-}
-
-/// A light kind whose fields [`validate_lights`] checks.
-pub(crate) trait Validate: Component<Mutability = bevy::ecs::component::Mutable> {
-    /// The component's name in warnings.
-    const NAME: &'static str;
-    /// Replaces every invalid field, recording each in `checker`.
-    fn validate(&mut self, checker: &mut Checker);
-}
-
-impl Validate for PhongDirectionalLight {
-    const NAME: &'static str = "PhongDirectionalLight";
-    fn validate(&mut self, checker: &mut Checker) {
-        checker.color("color", &mut self.color);
-        checker.optional_color("specular", &mut self.specular);
-        checker.shadows(&mut self.shadows);
-        checker.cascades(&mut self.cascades);
-    }
-}
-
-impl Validate for PhongPointLight {
-    const NAME: &'static str = "PhongPointLight";
-    fn validate(&mut self, checker: &mut Checker) {
-        checker.color("color", &mut self.color);
-        checker.optional_color("specular", &mut self.specular);
-        checker.decay(&mut self.decay);
-        checker.range(&mut self.range);
-        checker.shadows(&mut self.shadows);
-    }
-}
-
-impl Validate for PhongSpotLight {
-    const NAME: &'static str = "PhongSpotLight";
-    fn validate(&mut self, checker: &mut Checker) {
-        checker.color("color", &mut self.color);
-        checker.optional_color("specular", &mut self.specular);
-        checker.decay(&mut self.decay);
-        checker.range(&mut self.range);
-        checker.spot_angles(self);
-        checker.scalar("exponent", &mut self.exponent, limits::EXPONENT);
-        checker.shadows(&mut self.shadows);
-    }
-}
-
-/// Lights whose component or transform changed.
-type ChangedLight<L> = Or<(Changed<L>, Changed<GlobalTransform>)>;
-
-/// Replaces the invalid fields of every light of kind `L` that changed, without marking it
-/// changed again, and warns once per replacement; warns once when a light's transform
-/// becomes non-finite (the gather system skips it while it is).
-pub(crate) fn validate_lights<L: Validate>(
-    mut lights: Query<(Entity, &mut L, Ref<GlobalTransform>), ChangedLight<L>>,
-    mut messages: MessageWriter<InvalidInput>,
-) {
-    for (entity, mut light, transform) in &mut lights {
-        let mut checker = Checker::new(Owner::Entity(entity), L::NAME);
-        if transform.is_changed() && !is_finite_transform(&transform) {
-            checker.replace(
-                "GlobalTransform",
-                format!("{:?}", transform.translation()),
-                "nothing: the light is skipped until its transform is finite".into(),
-            );
-        }
-        light.bypass_change_detection().validate(&mut checker);
-        checker.report(&mut messages);
-    }
 }
 
 /// Replaces an invalid ambient color when the resource changed.
@@ -473,6 +418,7 @@ mod range_tests;
 mod tests {
     use super::*;
     use crate::{
+        PhongDirectionalLight, PhongPointLight,
         render::PhongLightBuffer,
         test_app::{test_app, uploads_in_next_frame},
     };

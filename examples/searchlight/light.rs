@@ -14,7 +14,7 @@ use bevy::{
 use bevy_phong::{
     Decay, PhongMaterial, PhongShadows,
     extension::{
-        BoundingSphere, PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin,
+        BoundingSphere, Checker, PhongLightKind, PhongLightKindBuffer, PhongLightKindPlugin,
         PhongShadowProjection, PhongShadowRequest, influence_radius, light_direction, linear_rgb,
     },
     prelude::PhongMaterialAppExt,
@@ -190,6 +190,28 @@ impl PhongLightKind for Searchlight {
         let center = Vec3::from(record.position) + Vec3::from(record.direction) * half_length;
         let radius = half_length.hypot(record.radius + 2.0 * record.edge);
         Some(BoundingSphere::new(center, radius))
+    }
+
+    /// Non-negative sizes, a positive range and shadow distance, and the crate's rules for
+    /// colors, decay and shadow settings.
+    fn validate(&mut self, checker: &mut Checker) {
+        checker.color("color", &mut self.color);
+        checker.optional_color("specular", &mut self.specular);
+        checker.number("radius", &mut self.radius, 0.0..=f32::MAX, 0.0);
+        checker.number("edge", &mut self.edge, 0.0..=f32::MAX, 0.0);
+        checker.decay(&mut self.decay);
+        checker.range(&mut self.range);
+        checker.shadows(&mut self.shadows);
+        checker.number(
+            "shadow_distance",
+            &mut self.shadow_distance,
+            1e-3..=f32::MAX,
+            50.0,
+        );
+    }
+
+    fn casts_shadows(&self) -> bool {
+        self.shadows.enabled
     }
 
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {

@@ -164,14 +164,12 @@ pub(crate) fn push_visible<L: Component, R>(
     (records.len() - start) as u32
 }
 
-/// A built-in light's record with its shadow and cookie slots ([`GpuLight::shadow`]).
-fn with_shadow<L>(
-    to_gpu: impl Fn(&L, &GlobalTransform) -> GpuLight,
-) -> impl Fn(&L, &GlobalTransform, u32) -> GpuLight {
-    move |light, transform, shadow| GpuLight {
-        shadow,
-        ..to_gpu(light, transform)
-    }
+/// A built-in light's record, placed by its transform, with its shadow and cookie slots
+/// ([`GpuLight::shadow`]).
+fn with_shadow<L: BuiltInLight>(light: &L, transform: &GlobalTransform, shadow: u32) -> GpuLight {
+    let mut record = light.constants();
+    L::place(&mut record, transform);
+    GpuLight { shadow, ..record }
 }
 
 /// What [`push_cached`] found of one kind of light.
@@ -298,12 +296,7 @@ pub fn gather_lights(
     records.clear();
     let slot_of =
         |entity: Entity| slots.get(entity) | cookies.slot_of(entity) << GpuLight::COOKIE_SHIFT;
-    let directional_count = push_visible(
-        &directional,
-        slot_of,
-        records,
-        with_shadow(PhongDirectionalLight::to_gpu),
-    );
+    let directional_count = push_visible(&directional, slot_of, records, with_shadow);
     // Unlimited reach first (every fragment loops over them), then the clustered lights (the
     // clusters' loop applies no shadows, so shadow-casting lights stay out of it).
     let clustered =

@@ -162,18 +162,3 @@ impl BuiltInLight for PhongSpotLight {
         record.direction = light_direction(transform).to_array();
     }
 }
-
-/// `to_gpu`, the whole record of a built-in light, for each kind.
-macro_rules! whole_record {
-    ($($light:ty),*) => {$(
-        impl $light {
-            /// This light's GPU record (shadow slot `0`).
-            pub fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
-                let mut record = self.constants();
-                Self::place(&mut record, transform);
-                record
-            }
-        }
-    )*};
-}
-whole_record!(PhongDirectionalLight, PhongPointLight, PhongSpotLight);

@@ -72,6 +72,7 @@ pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub(crate) use gather::LightChanges;
 pub use gather::{PhongLightBuffer, SharedEpsilonLights, gather_lights};
 pub use gpu_types::{GpuClustersHeader, GpuLight, GpuLightsHeader};
+pub(crate) use light_records::BuiltInLight;
 pub use light_records::linear_rgb;
 pub use material_bindings::PhongSceneBindings;
 pub(crate) use material_upkeep::{

@@ -51,7 +51,6 @@ mod gpu_types;
 mod posed;
 mod render;
 mod request;
-mod sources;
 mod views;
 
 pub use cameras::PhongLit;
@@ -66,18 +65,13 @@ pub(crate) use render::{
 };
 pub(crate) use request::ShadowRequests;
 pub use request::{PhongShadowProjection, PhongShadowRequest};
-pub(crate) use sources::{ShadowCasters, request_shadows, track_shadow_casters};
 
 /// Most shadow maps a frame holds (layers of the shadow map array, which WebGL2 caps at
 /// 256): a directional light takes one per cascade, a point light six, a spot light one
 /// (six past a 60° cone).
 pub const MAX_SHADOW_VIEWS: usize = 256;
 
-use crate::{
-    lights::{PhongDirectionalLight, PhongPointLight, PhongSpotLight},
-    scene_variants::SceneVariants,
-    schedule::PhongSystems,
-};
+use crate::{scene_variants::SceneVariants, schedule::PhongSystems};
 use bevy::{
     app::{App, PostUpdate},
     camera::visibility::{
@@ -101,33 +95,12 @@ use bevy::{
 /// The main world's part: the requests of the built-in lights and the gather.
 pub(crate) fn add_shadow_gather(app: &mut App) {
     app.init_resource::<ShadowRequests>()
-        .init_resource::<ShadowCasters<PhongDirectionalLight>>()
-        .init_resource::<ShadowCasters<PhongPointLight>>()
-        .init_resource::<ShadowCasters<PhongSpotLight>>()
         .init_resource::<ShadowSlots>()
         .init_resource::<ShadowFrame>()
         .init_resource::<PhongShadowViews>()
         .add_systems(
             PostUpdate,
             (
-                (
-                    (
-                        track_shadow_casters::<PhongDirectionalLight>,
-                        request_shadows::<PhongDirectionalLight>,
-                    )
-                        .chain(),
-                    (
-                        track_shadow_casters::<PhongPointLight>,
-                        request_shadows::<PhongPointLight>,
-                    )
-                        .chain(),
-                    (
-                        track_shadow_casters::<PhongSpotLight>,
-                        request_shadows::<PhongSpotLight>,
-                    )
-                        .chain(),
-                )
-                    .in_set(PhongSystems::RequestShadows),
                 gather_shadows.in_set(PhongSystems::GatherShadows),
                 keep_posed_casters_prepared
                     .run_if(|variants: Res<SceneVariants>| variants.shadows)

@@ -4,7 +4,8 @@
 
 use super::*;
 use crate::{
-    material::PhongMaterialUniform, reference, render::PhongLightBuffer, test_app::test_app,
+    PhongDirectionalLight, PhongPointLight, material::PhongMaterialUniform, reference,
+    render::PhongLightBuffer, test_app::test_app,
 };
 use bevy::{
     color::{Alpha, ColorToComponents},

@@ -7,6 +7,7 @@ use super::kernel::GpuCase;
 use bevy::prelude::*;
 use bevy_phong::{
     Decay, PhongDirectionalLight, PhongMaterial, PhongPointLight, PhongSpotLight, SpecularModel,
+    extension::PhongLightKind,
     reference::{self, SurfacePoint},
     testing::PhongMaterialUniform,
 };

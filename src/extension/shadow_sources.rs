@@ -1,82 +1,17 @@
-//! The shadow requests of the built-in lights.
+//! The shadow requests of every kind of light: the lights that cast shadows, tracked as they
+//! change, each asked for its request every frame.
 
-use super::request::{PhongShadowProjection, PhongShadowRequest, ShadowRequests};
-use crate::lights::{
-    LightQuery, PhongDirectionalLight, PhongPointLight, PhongShadows, PhongSpotLight,
-    light_direction, lit_light,
-};
-use bevy::{
-    ecs::{
-        component::Component,
-        entity::Entity,
-        lifecycle::RemovedComponents,
-        query::Changed,
-        resource::Resource,
-        system::{Query, Res, ResMut},
-    },
-    transform::components::GlobalTransform,
+use super::PhongLightKind;
+use crate::lights::{LightQuery, lit_light};
+use crate::shadows::ShadowRequests;
+use bevy::ecs::{
+    entity::Entity,
+    lifecycle::RemovedComponents,
+    query::Changed,
+    resource::Resource,
+    system::{Query, Res, ResMut},
 };
 use core::marker::PhantomData;
-
-/// A light component that may cast shadows.
-pub(crate) trait ShadowSource: Component {
-    /// The light's shadow settings.
-    fn shadows(&self) -> &PhongShadows;
-
-    /// The shadow of this light placed by `transform`.
-    fn shadow_request(&self, transform: &GlobalTransform) -> PhongShadowRequest;
-}
-
-impl ShadowSource for PhongDirectionalLight {
-    fn shadows(&self) -> &PhongShadows {
-        &self.shadows
-    }
-
-    fn shadow_request(&self, transform: &GlobalTransform) -> PhongShadowRequest {
-        PhongShadowRequest {
-            projection: PhongShadowProjection::Directional {
-                direction: light_direction(transform),
-                cascades: self.cascades,
-            },
-            settings: self.shadows,
-            reach: f32::INFINITY,
-        }
-    }
-}
-
-impl ShadowSource for PhongPointLight {
-    fn shadows(&self) -> &PhongShadows {
-        &self.shadows
-    }
-
-    fn shadow_request(&self, transform: &GlobalTransform) -> PhongShadowRequest {
-        PhongShadowRequest {
-            projection: PhongShadowProjection::Omni {
-                position: transform.translation(),
-            },
-            settings: self.shadows,
-            reach: self.range.unwrap_or(f32::INFINITY),
-        }
-    }
-}
-
-impl ShadowSource for PhongSpotLight {
-    fn shadows(&self) -> &PhongShadows {
-        &self.shadows
-    }
-
-    fn shadow_request(&self, transform: &GlobalTransform) -> PhongShadowRequest {
-        PhongShadowRequest {
-            projection: PhongShadowProjection::Cone {
-                position: transform.translation(),
-                direction: light_direction(transform),
-                half_angle: self.outer_angle,
-            },
-            settings: self.shadows,
-            reach: self.range.unwrap_or(f32::INFINITY),
-        }
-    }
-}
 
 /// The lights of kind `L` whose shadows are on, in the order of their entities: kept up to
 /// date from the lights' changes ([`track_shadow_casters`]), so that a frame's requests
@@ -111,7 +46,7 @@ impl<L> ShadowCasters<L> {
 
 /// Brings [`ShadowCasters`] up to date with the lights of kind `L` added, changed or
 /// removed since its last run.
-pub(crate) fn track_shadow_casters<L: ShadowSource>(
+pub(crate) fn track_shadow_casters<L: PhongLightKind>(
     changed: Query<(Entity, &L), Changed<L>>,
     mut removed: RemovedComponents<L>,
     mut casters: ResMut<ShadowCasters<L>>,
@@ -121,19 +56,21 @@ pub(crate) fn track_shadow_casters<L: ShadowSource>(
         casters.set(entity, false);
     }
     for (entity, light) in &changed {
-        casters.set(entity, light.shadows().enabled);
+        casters.set(entity, light.casts_shadows());
     }
 }
 
 /// Adds the request of every visible light of kind `L` whose shadows are on.
-pub(crate) fn request_shadows<L: ShadowSource>(
+pub(crate) fn request_shadows<L: PhongLightKind>(
     casters: Res<ShadowCasters<L>>,
     lights: LightQuery<L>,
     mut requests: ResMut<ShadowRequests>,
 ) {
     for &entity in &casters.entities {
-        if let Some((light, transform)) = lit_light(&lights, entity) {
-            requests.push(entity, light.shadow_request(transform));
+        if let Some((light, transform)) = lit_light(&lights, entity)
+            && let Some(request) = light.shadow(transform)
+        {
+            requests.push(entity, request);
         }
     }
 }
@@ -142,6 +79,7 @@ pub(crate) fn request_shadows<L: ShadowSource>(
 mod tests {
     use super::*;
     use crate::test_app::test_app;
+    use crate::{PhongPointLight, PhongShadows};
     use bevy::prelude::Transform;
 
     fn casters(app: &bevy::app::App) -> Vec<Entity> {
