@@ -11,26 +11,39 @@ use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 use crate::validation::Checker;
 use bevy::transform::components::GlobalTransform;
 
+/// What every built-in kind does alike: its record is `BuiltInLight`'s constants placed by
+/// the transform, it casts shadows where its `shadows` are on, and its record holds the
+/// shadow slot in `GpuLight::shadow`.
+macro_rules! built_in_record {
+    () => {
+        type Gpu = GpuLight;
+
+        fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
+            let mut record = self.constants();
+            Self::place(&mut record, transform);
+            record
+        }
+
+        fn casts_shadows(&self) -> bool {
+            self.shadows.enabled
+        }
+
+        fn set_shadow(record: &mut GpuLight, shadow: u32) {
+            record.shadow = shadow;
+        }
+    };
+}
+
 /// The directional light as a kind: its record, its validation and its shadow (cascades per
 /// camera along its rays).
 impl PhongLightKind for PhongDirectionalLight {
-    type Gpu = GpuLight;
-
-    fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
-        let mut record = self.constants();
-        Self::place(&mut record, transform);
-        record
-    }
+    built_in_record!();
 
     fn validate(&mut self, checker: &mut Checker) {
         checker.color("color", &mut self.color);
         checker.optional_color("specular", &mut self.specular);
         checker.shadows(&mut self.shadows);
         checker.cascades(&mut self.cascades);
-    }
-
-    fn casts_shadows(&self) -> bool {
-        self.shadows.enabled
     }
 
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
@@ -43,21 +56,11 @@ impl PhongLightKind for PhongDirectionalLight {
             reach: f32::INFINITY,
         })
     }
-
-    fn set_shadow(record: &mut GpuLight, shadow: u32) {
-        record.shadow = shadow;
-    }
 }
 
 /// The point light as a kind: its record, its validation and its shadow (a cube map).
 impl PhongLightKind for PhongPointLight {
-    type Gpu = GpuLight;
-
-    fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
-        let mut record = self.constants();
-        Self::place(&mut record, transform);
-        record
-    }
+    built_in_record!();
 
     fn validate(&mut self, checker: &mut Checker) {
         checker.color("color", &mut self.color);
@@ -65,10 +68,6 @@ impl PhongLightKind for PhongPointLight {
         checker.decay(&mut self.decay);
         checker.range(&mut self.range);
         checker.shadows(&mut self.shadows);
-    }
-
-    fn casts_shadows(&self) -> bool {
-        self.shadows.enabled
     }
 
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
@@ -80,22 +79,12 @@ impl PhongLightKind for PhongPointLight {
             reach: self.range.unwrap_or(f32::INFINITY),
         })
     }
-
-    fn set_shadow(record: &mut GpuLight, shadow: u32) {
-        record.shadow = shadow;
-    }
 }
 
 /// The spot light as a kind: its record, its validation and its shadow (one perspective map
 /// over its cone).
 impl PhongLightKind for PhongSpotLight {
-    type Gpu = GpuLight;
-
-    fn to_gpu(&self, transform: &GlobalTransform) -> GpuLight {
-        let mut record = self.constants();
-        Self::place(&mut record, transform);
-        record
-    }
+    built_in_record!();
 
     fn validate(&mut self, checker: &mut Checker) {
         checker.color("color", &mut self.color);
@@ -105,10 +94,6 @@ impl PhongLightKind for PhongSpotLight {
         checker.spot_angles(self);
         checker.scalar("exponent", &mut self.exponent, limits::EXPONENT);
         checker.shadows(&mut self.shadows);
-    }
-
-    fn casts_shadows(&self) -> bool {
-        self.shadows.enabled
     }
 
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
@@ -121,9 +106,5 @@ impl PhongLightKind for PhongSpotLight {
             settings: self.shadows,
             reach: self.range.unwrap_or(f32::INFINITY),
         })
-    }
-
-    fn set_shadow(record: &mut GpuLight, shadow: u32) {
-        record.shadow = shadow;
     }
 }
