@@ -177,8 +177,13 @@
 //! ## 5. The reference
 //!
 //! [`reference::phong_light`](crate::reference::phong_light) is the same term in `f64`:
-//! the searchlight example's reference model is built on it, and its render test compares
-//! the extended material with it pixel by pixel, as the crate's own tests do.
+//! the searchlight example's reference model is built on it. A kind gives each light's term
+//! to the model through [`PhongLightKind::reference_light`] (a
+//! [`ReferenceLight`]); [`reference_lights`] collects every
+//! kind's lights for [`reference::Lights::others`](crate::reference::Lights::others), whose
+//! terms [`reference::shade`](crate::reference::shade) adds. The crate's test harness does
+//! so, and the searchlight's render tests compare the extended material with the model
+//! pixel by pixel, as the crate's own tests do.
 //!
 //! ## 6. Shadows
 //!
@@ -280,11 +285,14 @@ pub use bevy::shape::BoundingSphere;
 
 mod built_in_kinds;
 mod gather;
+mod reference_lights;
 mod shadow_sources;
 mod systems;
 
+pub use reference_lights::reference_lights;
 pub(crate) use systems::add_light_kind;
 
+use crate::reference::ReferenceLight;
 use crate::{
     culling::PhongLightCulling,
     render::{
@@ -309,6 +317,7 @@ use bevy::{
 use bytemuck::{Pod, Zeroable};
 use core::marker::PhantomData;
 use gather::{count_sharing_lights, gather_light_kind};
+use std::sync::Arc;
 
 /// A kind of light: what the crate needs to know of it, from its GPU record to its shadows.
 /// The built-in kinds ([`PhongDirectionalLight`](crate::PhongDirectionalLight),
@@ -374,6 +383,15 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
     /// [`PhongShadowProjection`] for
     /// the shapes of light that get maps.
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
+        let _ = transform;
+        None
+    }
+
+    /// This light in the crate's reference model ([`crate::reference`]), placed by its
+    /// entity's transform: its term in `f64`, as its shader adds it, for tests that compare
+    /// a frame with the model ([`reference_lights`] collects every kind's). `None` (the
+    /// default): the model leaves the light out.
+    fn reference_light(&self, transform: &GlobalTransform) -> Option<Arc<dyn ReferenceLight>> {
         let _ = transform;
         None
     }
@@ -487,6 +505,9 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
         let cluster_slot = world
             .get_resource_or_init::<ExtensionClusterSlots>()
             .add_slot();
+        world
+            .get_resource_or_init::<reference_lights::ReferenceLightKinds>()
+            .add::<L>();
         let epsilon_share = L::SHARES_EPSILON.then(|| {
             world
                 .get_resource_or_init::<SharedEpsilonLights>()

@@ -33,7 +33,9 @@ use bevy::{
     color::{Color, ColorToComponents},
     transform::components::GlobalTransform,
 };
+use core::fmt;
 use glam::DVec3;
+use std::sync::Arc;
 
 mod camera_effects;
 mod cookies;
@@ -156,6 +158,32 @@ pub enum Light {
     },
 }
 
+/// A light of a kind added from outside the crate, in the reference model: its term at a
+/// surface point, what its shader adds to SPEC.md's sum (unshadowed).
+/// [`PhongLightKind::reference_light`](crate::extension::PhongLightKind::reference_light)
+/// gives one for each light of such a kind.
+pub trait ReferenceLight: Send + Sync + 'static {
+    /// The light's term at `surface`, made of `material`, linear RGB.
+    fn term(&self, surface: &SurfacePoint, material: &Material) -> DVec3;
+}
+
+/// The lights of kinds added from outside the crate, beside the built-in ones.
+#[derive(Clone, Default)]
+pub struct OtherLights(pub Vec<Arc<dyn ReferenceLight>>);
+
+impl fmt::Debug for OtherLights {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "OtherLights({} lights)", self.0.len())
+    }
+}
+
+/// The same lights: the same objects, in the same order.
+impl PartialEq for OtherLights {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.len() == other.0.len() && self.0.iter().zip(&other.0).all(|(a, b)| Arc::ptr_eq(a, b))
+    }
+}
+
 /// Everything that lights a point: the ambient and hemisphere lights and the other lights.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Lights {
@@ -165,6 +193,8 @@ pub struct Lights {
     pub hemisphere: Option<Hemisphere>,
     /// Directional, point and spot lights.
     pub lights: Vec<Light>,
+    /// Lights of the kinds an extension adds (each term added as it is, unshadowed).
+    pub others: OtherLights,
 }
 
 impl Lights {
@@ -216,6 +246,7 @@ impl Lights {
             ambient: self.ambient,
             hemisphere: self.hemisphere,
             lights,
+            others: self.others.clone(),
         }
     }
 
@@ -279,10 +310,24 @@ pub fn shade_baked(
         .lights
         .iter()
         .map(|light| light_contribution(surface, material, light))
+        .chain(other_terms(surface, material, lights))
         .fold(
             material.emissive + ambient + material.rim.glow(surface),
             |sum, term| sum + term,
         )
+}
+
+/// The terms of the lights of kinds from outside the crate.
+fn other_terms<'a>(
+    surface: &'a SurfacePoint,
+    material: &'a Material,
+    lights: &'a Lights,
+) -> impl Iterator<Item = DVec3> + 'a {
+    lights
+        .others
+        .0
+        .iter()
+        .map(|light| light.term(surface, material))
 }
 
 /// How much of one light reaches a surface point (SPEC.md, "Shadows").
@@ -315,7 +360,7 @@ impl Shadowing {
 }
 
 /// [`shade`] with each light's share scaled by its [`Shadowing`] (`shadowing[i]` for
-/// `lights.lights[i]`; lights past the end of `shadowing` are lit).
+/// `lights.lights[i]`; lights past the end of `shadowing`, and `lights.others`, are lit).
 pub fn shade_shadowed(
     surface: &SurfacePoint,
     material: &Material,
@@ -331,6 +376,7 @@ pub fn shade_shadowed(
             let (diffuse, specular) = shadowing.get(index).unwrap_or(&Shadowing::LIT).factors();
             light_contribution(surface, material, &light.scaled(diffuse, specular))
         })
+        .chain(other_terms(surface, material, lights))
         .fold(
             material.emissive + ambient + material.rim.glow(surface),
             |sum, term| sum + term,
@@ -702,6 +748,7 @@ mod tests {
                 color: DVec3::ONE,
                 specular: DVec3::ONE,
             }],
+            others: Default::default(),
         };
         let diffuse_only = Material {
             specular_strength: 0.0,
@@ -866,6 +913,7 @@ mod tests {
                 color: DVec3::ONE,
                 specular: DVec3::ONE,
             }],
+            others: Default::default(),
         };
         let n_dot_l = 1.0 / 2f64.sqrt();
         let by_hand = DVec3::new(0.1, 0.0, 0.0)
@@ -892,6 +940,7 @@ mod tests {
             hemisphere: None,
             ambient: DVec3::ONE,
             lights: vec![light_at_origin],
+            others: Default::default(),
         };
         for normal in [DVec3::ZERO, DVec3::NAN, DVec3::Y] {
             let surface = SurfacePoint {
@@ -1037,7 +1086,7 @@ mod properties {
             material in material(), light in light(), ambient in color(),
         ) {
             let surface = SurfacePoint { position, normal, camera };
-            let lights = Lights { ambient, hemisphere: None, lights: vec![light] };
+            let lights = Lights { ambient, hemisphere: None, lights: vec![light], others: Default::default() };
             let color = shade(&surface, &material, &lights);
             prop_assert!(color.min_element() >= 0.0, "{color}");
         }

@@ -11,6 +11,7 @@ use bevy::{
     render::render_resource::AsBindGroup,
     shader::ShaderRef,
 };
+use bevy_phong::reference::ReferenceLight;
 use bevy_phong::{
     Decay, PhongMaterial, PhongShadows,
     extension::{
@@ -20,6 +21,10 @@ use bevy_phong::{
     prelude::PhongMaterialAppExt,
 };
 use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
+
+#[path = "reference.rs"]
+pub mod reference;
 use serde::{Deserialize, Serialize};
 
 /// The material of meshes that searchlights light: every `PhongMaterial` field, plus the
@@ -229,6 +234,12 @@ impl PhongLightKind for Searchlight {
             settings: self.shadows,
             reach: self.shadow_distance,
         })
+    }
+
+    fn reference_light(&self, transform: &GlobalTransform) -> Option<Arc<dyn ReferenceLight>> {
+        Some(Arc::new(reference::ReferenceSearchlight::new(
+            self, transform,
+        )))
     }
 
     fn set_shadow(record: &mut GpuSearchlight, shadow: u32) {

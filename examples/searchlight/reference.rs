@@ -1,11 +1,11 @@
 //! The searchlight term of the lighting equation in `f64`, built on
 //! `bevy_phong::reference`: the specification the searchlight shader is tested against.
 
-use crate::light::{BeamShape, Searchlight, beam_up};
+use super::{BeamShape, Searchlight, beam_up};
 use bevy::prelude::*;
 use bevy_phong::{
     extension::light_direction,
-    reference::{self, SurfacePoint},
+    reference::{self, ReferenceLight, SurfacePoint},
 };
 use glam::DVec3;
 
@@ -113,4 +113,12 @@ pub fn searchlight_term(
         light.specular,
     );
     coverage * attenuation * light_term
+}
+
+/// The searchlight in the crate's reference model, as its plugin's
+/// `PhongLightKind::reference_light` gives it: the harness adds its term to each pixel's.
+impl ReferenceLight for ReferenceSearchlight {
+    fn term(&self, surface: &SurfacePoint, material: &reference::Material) -> DVec3 {
+        searchlight_term(surface, material, self)
+    }
 }

@@ -21,6 +21,7 @@ fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
         hemisphere: None,
         ambient: DVec3::splat(0.25),
         lights: Vec::new(),
+        others: Default::default(),
     };
     let surface = SurfacePoint {
         position: DVec3::ZERO,

@@ -172,6 +172,7 @@ fn cookies_tint_each_light_kind_as_the_reference_model_says() {
                         false => *light,
                     })
                     .collect(),
+                others: Default::default(),
             };
             expected_color(material, surface, pixel, inputs, images, &lights)
         },

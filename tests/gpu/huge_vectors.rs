@@ -104,6 +104,7 @@ fn reference_direction_lights(ambient: DVec3) -> reference::Lights {
                 30.0,
             ),
         ],
+        others: Default::default(),
     }
 }
 
@@ -139,6 +140,7 @@ fn directly_lit(
         ambient: lights.ambient,
         hemisphere: None,
         lights: Vec::new(),
+        others: Default::default(),
     };
     harness.compare_with(rendered, inputs, |material, surface| {
         let material = reference::Material::from(material);
@@ -246,6 +248,7 @@ fn huge_and_tiny_light_directions_light_the_scene_as_their_unit_vectors() {
                 exponent: 2.0,
             },
         ],
+        others: Default::default(),
     };
     harness
         .compare_with(&rendered, &inputs, |material, surface| {
@@ -305,6 +308,7 @@ fn colors_past_the_bound_are_clamped_to_it_and_render_finite() {
             decay: [1.0, 0.0, 0.02],
             range: None,
         }],
+        others: Default::default(),
     };
     let defaults = reference::Material::from(&PhongMaterial::default());
     let sphere = reference::Material {

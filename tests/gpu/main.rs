@@ -69,8 +69,6 @@ mod random;
 mod scene_files;
 mod searchlight;
 mod searchlight_clusters;
-#[path = "../../examples/searchlight/reference.rs"]
-mod searchlight_reference;
 mod self_check;
 mod shading_normals;
 mod shadows;

@@ -5,11 +5,12 @@
 use crate::shading_normals::tangent_sphere;
 use crate::{
     frames::TOLERANCE,
-    light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
-    searchlight_reference::{ReferenceSearchlight, searchlight_term},
+    light::{
+        BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial,
+        reference::ReferenceSearchlight,
+    },
     texture_maps::{
-        SrgbDecoding, color_map, lit_color, lit_normal, loaded_images, mapped_material, normal_map,
-        spawn_map_lights, texels_at,
+        SrgbDecoding, color_map, lit_color, loaded_images, normal_map, spawn_map_lights, texels_at,
     },
 };
 use bevy::prelude::*;
@@ -91,6 +92,7 @@ pub(crate) fn check_searchlit(
     case: &str,
 ) -> FloatImage {
     let rendered = harness.render_next_frame();
+    // The searchlights are in the model's lights (`PhongLightKind::reference_light`).
     let lights = harness.reference_lights();
     let searchlights = reference_searchlights(harness);
     let comparison = harness.compare_with(&rendered, inputs, |material, surface| {
@@ -102,11 +104,7 @@ pub(crate) fn check_searchlit(
             return None;
         }
         let material = reference::Material::from(&material.base);
-        let beams = searchlights
-            .iter()
-            .map(|light| searchlight_term(surface, &material, light))
-            .sum::<glam::DVec3>();
-        Some(reference::shade(surface, &material, &lights) + beams)
+        Some(reference::shade(surface, &material, &lights))
     });
     comparison.assert_within(case, TOLERANCE);
     let skipped_share = comparison.skipped_pixels as f64 / comparison.lit_pixels as f64;
@@ -196,7 +194,11 @@ fn assert_no_beam_light(
     case: &str,
 ) {
     let rendered = harness.render_next_frame();
-    let lights = harness.reference_lights();
+    // Phong lighting alone: the model without the searchlights.
+    let lights = reference::Lights {
+        others: Default::default(),
+        ..harness.reference_lights()
+    };
     harness
         .compare_with(
             &rendered,
@@ -282,22 +284,14 @@ fn searchlit_surfaces_show_their_maps_and_vertex_colors() {
     harness.settle();
     let rendered = harness.render_next_frame();
     let inputs = harness.capture_inputs_with_maps_of::<SearchlitMaterial>();
+    // The searchlight is in the model's lights, lit on the mapped surface.
     let lights = harness.reference_lights();
-    let searchlights = reference_searchlights(&mut harness);
     let images = loaded_images(&mut harness);
     let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
         let base = &material.base;
         // The maps here are linear (`Rgba8Unorm`): nothing to decode.
         let texels = texels_at(base, &inputs, pixel, &images, SrgbDecoding::Exact)?;
-        let phong = lit_color(base, surface, pixel, &inputs, &texels, &images, &lights)?;
-        let mapped = mapped_material(base, pixel, &inputs, &texels, &images);
-        let normal = lit_normal(base, surface, pixel, &inputs, &images)?;
-        let mapped_surface = reference::SurfacePoint { normal, ..*surface };
-        let beams = searchlights
-            .iter()
-            .map(|light| searchlight_term(&mapped_surface, &mapped, light))
-            .sum::<glam::DVec3>();
-        Some(phong + beams)
+        lit_color(base, surface, pixel, &inputs, &texels, &images, &lights)
     });
     comparison.assert_within("searchlit maps", TOLERANCE);
     comparison.assert_mostly_judged("searchlit maps");

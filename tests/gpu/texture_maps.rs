@@ -19,8 +19,8 @@ use bevy::{
 };
 use bevy_phong::{prelude::*, reference};
 pub(crate) use bevy_phong_headless::pixel_model::{
-    SrgbDecoding, expected_color, lit_color, lit_normal, loaded_images, mapped_material,
-    masked_out, output_alpha, texel_at, texels_at, toon_ramp, vertex_color,
+    SrgbDecoding, expected_color, lit_color, lit_normal, loaded_images, masked_out, output_alpha,
+    texel_at, texels_at, toon_ramp, vertex_color,
 };
 use bevy_phong_headless::{Harness, SurfaceInputs};
 use glam::DVec3;

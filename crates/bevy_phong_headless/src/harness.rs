@@ -479,6 +479,8 @@ impl Harness {
     /// [`ReferenceScene`]).
     pub fn reference_scene(&mut self) -> ReferenceScene {
         let world = self.app.world_mut();
+        // The lights of kinds added with `PhongLightKindPlugin`, each as its kind gives it.
+        let others = reference::OtherLights(bevy_phong::extension::reference_lights(world));
         let ambient = world.resource::<PhongAmbientLight>().into();
         let hemisphere = world
             .get_resource::<bevy_phong::PhongHemisphereLight>()
@@ -520,6 +522,7 @@ impl Harness {
                 ambient,
                 hemisphere,
                 lights,
+                others,
             },
             cookies,
         }
