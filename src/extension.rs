@@ -52,12 +52,15 @@
 //! a storage buffer of its own with the machinery the built-in lights use: it rewrites the
 //! buffer only in frames where a lamp was added, changed, moved, shown, hidden or removed;
 //! the buffer grows and shrinks with the count; bind groups follow it when it is
-//! reallocated. The buffer holds a 16-byte header, whose first `u32` is the number of
-//! records, then the records:
+//! reallocated. The buffer holds a 16-byte header ([`GpuLightCount`]), whose first `u32`
+//! is the number of records, then the records (those lit everywhere first, then those the
+//! clusters list: step 8):
 //!
 //! ```wgsl
 //! struct Lamps {
 //!     count: u32,
+//!     clustered_first: u32,
+//!     cluster_slot: u32,
 //!     lights: array<Lamp>,
 //! }
 //! ```
