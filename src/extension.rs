@@ -314,6 +314,7 @@ use bevy::{
         schedule::IntoScheduleConfigs,
     },
     image::Image,
+    log::warn,
     render::storage::ShaderBuffer,
     transform::components::GlobalTransform,
 };
@@ -496,6 +497,14 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
                 "PhongLightKind::Gpu must be a non-empty multiple of 16 bytes, as WGSL lays it out"
             )
         };
+        if built_in_kinds::is_built_in::<L>() {
+            warn!(
+                "bevy_phong: PhongLightKindPlugin::<{}> is not needed: PhongPlugin gathers the \
+                 built-in kinds of light itself; the plugin adds nothing",
+                core::any::type_name::<L>()
+            );
+            return;
+        }
         init_shader_buffers(app);
         if !app.world().contains_resource::<Assets<Image>>() {
             app.init_asset::<Image>();
@@ -601,6 +610,24 @@ mod tests {
         fn bounding_sphere(record: &GpuLamp, reach: f32) -> Option<BoundingSphere> {
             Some(BoundingSphere::new(Vec3::from(record.position), reach))
         }
+    }
+
+    #[test]
+    fn a_plugin_for_a_built_in_kind_adds_nothing() {
+        let mut app = test_app(|app| {
+            app.add_plugins(PhongLightKindPlugin::<PhongPointLight>::default());
+        });
+        assert!(
+            !app.world()
+                .contains_resource::<PhongLightKindBuffer<PhongPointLight>>()
+        );
+        app.world_mut().spawn((
+            PhongPointLight::default(),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+        ));
+        app.update();
+        let header = app.world().resource::<PhongLightBuffer>().header();
+        assert_eq!(header.point_count, 1, "gathered once, by the plugin");
     }
 
     #[test]

@@ -10,6 +10,17 @@ use crate::render::{BuiltInLight, GpuLight};
 use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 use crate::validation::Checker;
 use bevy::transform::components::GlobalTransform;
+use core::any::TypeId;
+
+/// Whether `L` is one of the built-in kinds, which `PhongPlugin` gathers itself.
+pub(crate) fn is_built_in<L: PhongLightKind>() -> bool {
+    [
+        TypeId::of::<PhongDirectionalLight>(),
+        TypeId::of::<PhongPointLight>(),
+        TypeId::of::<PhongSpotLight>(),
+    ]
+    .contains(&TypeId::of::<L>())
+}
 
 /// What every built-in kind does alike: its record is `BuiltInLight`'s constants placed by
 /// the transform, it casts shadows where its `shadows` are on, and its record holds the
