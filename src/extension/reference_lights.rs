@@ -2,7 +2,7 @@
 //! lights' [`PhongLightKind::reference_light`], and [`reference_lights`] collects them all.
 
 use super::PhongLightKind;
-use crate::lights::is_finite_transform;
+use crate::lights::gives_light;
 use crate::reference::ReferenceLight;
 use bevy::{
     camera::visibility::InheritedVisibility,
@@ -27,14 +27,14 @@ impl ReferenceLightKinds {
     }
 }
 
-/// The reference lights of the lights of kind `L` that give light (visible, at a finite
-/// place), as the gather takes them.
+/// The reference lights of the lights of kind `L` that give light ([`gives_light`]), as the
+/// gather takes them.
 fn collect<L: PhongLightKind>(world: &mut World, lights: &mut Vec<Arc<dyn ReferenceLight>>) {
     let mut query = world.query::<(&L, &GlobalTransform, &InheritedVisibility)>();
     lights.extend(
         query
             .iter(world)
-            .filter(|(_, transform, visibility)| visibility.get() && is_finite_transform(transform))
+            .filter(|(_, transform, visibility)| gives_light(visibility, transform))
             .filter_map(|(light, transform, _)| light.reference_light(transform)),
     );
 }

@@ -37,7 +37,7 @@ pub(crate) type TrackedLightQuery<'w, 's, L> = Query<
 
 /// Whether a light gives light: visible, with a finite transform (a light whose transform
 /// is not finite is skipped while it is; see [`crate::validation`]).
-fn gives_light(visibility: &InheritedVisibility, transform: &GlobalTransform) -> bool {
+pub(crate) fn gives_light(visibility: &InheritedVisibility, transform: &GlobalTransform) -> bool {
     visibility.get() && is_finite_transform(transform)
 }
 

@@ -21,7 +21,9 @@ pub use cookie::{PhongLightCookie, cookie_layer_texels};
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
 pub use hemisphere::PhongHemisphereLight;
-pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights};
+pub(crate) use lit::{
+    LightQuery, TrackedLightQuery, gives_light, lit_light, lit_lights, lit_tracked_lights,
+};
 pub use lit::{is_finite_transform, light_direction};
 pub use point::PhongPointLight;
 pub use shadows::{PhongCascades, PhongShadows};
