@@ -262,12 +262,37 @@
 //! The searchlight gives each beam an optional `range`; its sphere holds the prism of its
 //! cross-section that long.
 //!
+//! ## 9. Cookies
+//!
+//! A kind that takes a [`PhongLightCookie`](crate::PhongLightCookie) on its lights' entities
+//! says how the image lies over its rays in [`PhongLightKind::cookie_projection`] (a
+//! [`PhongCookieProjection`]: a spot cone, a cube around the light, or a plane). The plugin
+//! puts the image in its cookie atlas and the cookie's record after the built-in lights,
+//! and hands the record's index plus one to [`PhongLightKind::set_cookie`] (`0`: none this
+//! frame): store it in a `u32` of the record. While some light has a cookie, the flag
+//! `PHONG_LIGHT_COOKIES` is set, and the shader tints the light's colors:
+//!
+//! ```wgsl
+//! @if(PHONG_LIGHT_COOKIES)
+//! import bevy_phong::shaders::cookies::light_cookie;
+//! var tint = vec3<f32>(1.0);
+//! @if(PHONG_LIGHT_COOKIES)
+//! if lamp.cookie != 0u {
+//!     tint = light_cookie(lamp.cookie - 1u, input.surface.position);
+//! }
+//! ```
+//!
+//! As for the built-in lights, cookies are left out where storage buffers are missing
+//! (WebGL2).
+//!
 //! ## The built-in kinds
 //!
 //! [`PhongDirectionalLight`](crate::PhongDirectionalLight),
 //! [`PhongPointLight`](crate::PhongPointLight) and [`PhongSpotLight`](crate::PhongSpotLight)
-//! implement [`PhongLightKind`] too, and take the same path for their validation and their
-//! shadows; they share the scene's light buffer rather than a buffer of their own.
+//! implement [`PhongLightKind`] too, and the crate gathers them through it: their records
+//! (cached while a component stays equal, through [`PhongLightKind::place`]), reach and
+//! clusters, validation, shadows, cookies and reference lights. They share the scene's light
+//! buffer rather than a buffer of their own.
 //!
 //! ## What it costs the built-in lights
 //!
@@ -278,15 +303,14 @@
 //! change queries and returns when nothing changed. A kind that shares ε makes each light's
 //! share smaller (`n` counts its lights too).
 
-pub use crate::lights::light_direction;
-pub use crate::render::linear_rgb;
+pub use crate::light_kind::{PhongLightKind, linear_rgb};
+pub use crate::lights::{PhongCookieProjection, light_direction};
 pub use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 
 pub use crate::culling::influence_radius;
 pub use crate::validation::Checker;
 pub use bevy::shape::BoundingSphere;
 
-mod built_in_kinds;
 mod gather;
 mod reference_lights;
 mod shadow_sources;
@@ -295,7 +319,6 @@ mod systems;
 pub use reference_lights::reference_lights;
 pub(crate) use systems::add_light_kind;
 
-use crate::reference::ReferenceLight;
 use crate::{
     culling::PhongLightCulling,
     render::{
@@ -308,106 +331,14 @@ use crate::{
 use bevy::{
     app::{App, Plugin, PostUpdate},
     asset::{AssetApp, Assets, Handle},
-    ecs::{
-        component::{Component, Mutable},
-        resource::Resource,
-        schedule::IntoScheduleConfigs,
-    },
+    ecs::{resource::Resource, schedule::IntoScheduleConfigs},
     image::Image,
     log::warn,
     render::storage::ShaderBuffer,
-    transform::components::GlobalTransform,
 };
 use bytemuck::{Pod, Zeroable};
 use core::marker::PhantomData;
 use gather::{count_sharing_lights, gather_light_kind};
-use std::sync::Arc;
-
-/// A kind of light: what the crate needs to know of it, from its GPU record to its shadows.
-/// The built-in kinds ([`PhongDirectionalLight`](crate::PhongDirectionalLight),
-/// [`PhongPointLight`](crate::PhongPointLight), [`PhongSpotLight`](crate::PhongSpotLight))
-/// implement it, and so does a kind an extension adds, whose lights
-/// [`PhongLightKindPlugin`] gathers into a GPU buffer of their own.
-pub trait PhongLightKind: Component<Mutability = Mutable> {
-    /// The record the shader reads for one light: `#[repr(C)]`, a multiple of 16 bytes.
-    type Gpu: Pod + Send + Sync;
-
-    /// Whether these lights take a share of [`PhongLightCulling::epsilon`] with the point
-    /// and spot lights: then `n`, which ε is divided by, counts them too, and
-    /// [`Self::reach`] is given the same per-light ε. Set it when `reach` uses ε, so that
-    /// ε bounds what all the skipped lights leave out together. Default `false`.
-    const SHARES_EPSILON: bool = false;
-
-    /// The record of this light, placed by its entity's transform.
-    fn to_gpu(&self, transform: &GlobalTransform) -> Self::Gpu;
-
-    /// How far the light of `record` reaches, world units: past it the light may be skipped.
-    /// `epsilon` is the light's share of [`PhongLightCulling::epsilon`] (linear RGB; `0` for
-    /// the exact model, and for a kind without [`Self::SHARES_EPSILON`]): a light that fades
-    /// may stop where it falls below it, as the built-in lights do ([`influence_radius`]). `f32::INFINITY` (the default) reaches
-    /// everywhere; `0` leaves the light out of the buffer.
-    fn reach(record: &Self::Gpu, epsilon: f32) -> f32 {
-        let _ = (record, epsilon);
-        f32::INFINITY
-    }
-
-    /// Stores the light's [`Self::reach`] in its record, for the shader to cut the light
-    /// off there (where the kind's reach is not a fixed field). The default stores nothing.
-    fn set_reach(record: &mut Self::Gpu, reach: f32) {
-        let _ = (record, reach);
-    }
-
-    /// A sphere holding every point that the light of `record` lights within `reach` (a
-    /// finite [`Self::reach`]), for the per-view light clusters: a kind that gives one is
-    /// listed only in the clusters its sphere meets, so a fragment loops only over the
-    /// lights that may reach it (see the module documentation, "Clusters"). `None` (the
-    /// default): every fragment loops over the light.
-    fn bounding_sphere(record: &Self::Gpu, reach: f32) -> Option<BoundingSphere> {
-        let _ = (record, reach);
-        None
-    }
-
-    /// Replaces every invalid field with a valid value, reporting each through `checker`
-    /// (a warning and an [`InvalidInput`](crate::InvalidInput) naming the entity and the
-    /// field). Run on each light whose component changed, before it is gathered. The
-    /// default checks nothing.
-    fn validate(&mut self, checker: &mut Checker) {
-        let _ = checker;
-    }
-
-    /// Whether this light may cast a shadow: only such lights are asked for
-    /// [`Self::shadow`] each frame (the crate keeps a list of them, updated when a light
-    /// changes), so lights that cast none cost the shadow pass nothing. Default `true`.
-    fn casts_shadows(&self) -> bool {
-        true
-    }
-
-    /// The shadow this light casts, placed by its entity's transform; `None` (the default),
-    /// or a request whose settings are off, casts none. See
-    /// [`PhongShadowProjection`] for
-    /// the shapes of light that get maps.
-    fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
-        let _ = transform;
-        None
-    }
-
-    /// This light in the crate's reference model ([`crate::reference`]), placed by its
-    /// entity's transform: its term in `f64`, as its shader adds it, for tests that compare
-    /// a frame with the model ([`reference_lights`] collects every kind's). `None` (the
-    /// default): the model leaves the light out.
-    fn reference_light(&self, transform: &GlobalTransform) -> Option<Arc<dyn ReferenceLight>> {
-        let _ = transform;
-        None
-    }
-
-    /// Stores the light's shadow slot in its record: the index of its first shadow view plus
-    /// one, or `0` when it casts no shadow this frame. The shader passes it to
-    /// `bevy_phong::shaders::shadows::light_visibility`. Kinds without shadows keep the default,
-    /// which stores nothing.
-    fn set_shadow(record: &mut Self::Gpu, shadow: u32) {
-        let _ = (record, shadow);
-    }
-}
 
 /// The 16-byte header of an extension's light buffer: the number of records that follow,
 /// those every fragment loops over first, then those found through the clusters.
@@ -445,8 +376,8 @@ pub struct PhongLightKindBuffer<L: PhongLightKind> {
     cluster_slot: u32,
     /// The kind's place in [`SharedEpsilonLights`] when it shares ε.
     epsilon_share: Option<usize>,
-    /// The per-light ε and culling of the last gather.
-    gathered_with: Option<(u32, PhongLightCulling)>,
+    /// The per-light ε, culling and first cookie index of the last gather.
+    gathered_with: Option<(u32, PhongLightCulling, u32)>,
 }
 
 impl<L: PhongLightKind> PhongLightKindBuffer<L> {
@@ -497,7 +428,7 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
                 "PhongLightKind::Gpu must be a non-empty multiple of 16 bytes, as WGSL lays it out"
             )
         };
-        if built_in_kinds::is_built_in::<L>() {
+        if crate::light_kind::is_built_in::<L>() {
             warn!(
                 "bevy_phong: PhongLightKindPlugin::<{}> is not needed: PhongPlugin gathers the \
                  built-in kinds of light itself; the plugin adds nothing",
@@ -558,7 +489,9 @@ mod tests {
         render::{PhongLightBuffer, PhongLightClusters, VIEW_WORDS},
         test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame},
     };
+    use bevy::ecs::component::Component;
     use bevy::prelude::{Camera3d, Transform, Vec3, Visibility};
+    use bevy::transform::components::GlobalTransform;
 
     #[derive(Component, Clone)]
     #[require(Transform, Visibility)]
@@ -610,6 +543,89 @@ mod tests {
         fn bounding_sphere(record: &GpuLamp, reach: f32) -> Option<BoundingSphere> {
             Some(BoundingSphere::new(Vec3::from(record.position), reach))
         }
+    }
+
+    /// A light of a kind that takes a cookie, as a cube around it; its record keeps the
+    /// cookie's index.
+    #[derive(Component, Clone)]
+    #[require(Transform, Visibility)]
+    struct Lantern;
+
+    #[repr(C)]
+    #[derive(Clone, Copy, Pod, Zeroable)]
+    struct GpuLantern {
+        position: [f32; 3],
+        cookie: u32,
+    }
+
+    impl PhongLightKind for Lantern {
+        type Gpu = GpuLantern;
+        fn to_gpu(&self, transform: &GlobalTransform) -> GpuLantern {
+            GpuLantern {
+                position: transform.translation().to_array(),
+                cookie: 0,
+            }
+        }
+        fn cookie_projection(&self) -> Option<PhongCookieProjection> {
+            Some(PhongCookieProjection::Point)
+        }
+        fn set_cookie(record: &mut GpuLantern, cookie: u32) {
+            record.cookie = cookie;
+        }
+    }
+
+    #[test]
+    fn a_kind_that_takes_a_cookie_gets_its_record_after_the_built_in_lights() {
+        use crate::{PhongLightCookie, render::GpuCookie};
+        use bevy::{asset::AssetApp, image::Image};
+        let mut app = test_app(|app| {
+            app.init_asset::<Image>()
+                .add_plugins(PhongLightKindPlugin::<Lantern>::default());
+        });
+        let image = app
+            .world_mut()
+            .resource_mut::<Assets<Image>>()
+            .add(Image::default());
+        let cookie = PhongLightCookie {
+            image,
+            ..Default::default()
+        };
+        let world = app.world_mut();
+        world.spawn((
+            PhongPointLight::default(),
+            cookie.clone(),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+        ));
+        let lantern = world
+            .spawn((Lantern, cookie, Transform::from_xyz(4.0, 5.0, 6.0)))
+            .id();
+        app.update();
+
+        let lanterns = app.world().resource::<PhongLightKindBuffer<Lantern>>();
+        let index = lanterns.records()[0].cookie;
+        let built_in = app.world().resource::<PhongLightBuffer>();
+        // The point light, its cookie, the lantern's cookie.
+        assert_eq!(built_in.records().len(), 3);
+        assert_eq!(index, 3, "the third record, plus one");
+        let record: GpuCookie = bytemuck::cast(built_in.records()[index as usize - 1]);
+        assert_eq!(
+            record.projection,
+            GpuCookie::POINT,
+            "a cube, laid out as Bevy's default"
+        );
+        let translation = record.light_from_world.map(|row| row[3]);
+        assert_eq!(
+            translation,
+            [-4.0, -5.0, -6.0],
+            "the lantern's inverse transform"
+        );
+
+        app.world_mut()
+            .entity_mut(lantern)
+            .remove::<PhongLightCookie>();
+        app.update();
+        let lanterns = app.world().resource::<PhongLightKindBuffer<Lantern>>();
+        assert_eq!(lanterns.records()[0].cookie, 0, "no cookie: index 0");
     }
 
     #[test]

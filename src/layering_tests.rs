@@ -38,6 +38,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("the data model", &["lights", "material", "culling"]),
     ("rules over the model", &["validation", "reference"]),
     ("shadow maps", &["shadows"]),
+    ("light kinds", &["light_kind"]),
     ("gather and bindings", &["render"]),
     (
         "features",
@@ -622,7 +623,7 @@ fn an_import_of_an_equal_or_higher_layer_is_reported_with_both_layers() {
     assert_eq!(
         violation("src/lights/lit.rs", 3, "lights", "render").as_deref(),
         Some(
-            "src/lights/lit.rs:3: `lights` (layer 2, the data model) uses `render` (layer 5, \
+            "src/lights/lit.rs:3: `lights` (layer 2, the data model) uses `render` (layer 6, \
              gather and bindings), which is not below it; see \"## Layers\" in src/lib.rs"
         )
     );

@@ -108,13 +108,16 @@
 //!    `culling`;
 //! 3. rules over the model: `validation`, `reference`;
 //! 4. `shadows`, which lays out and draws the shadow maps;
-//! 5. `render`, which gathers the lights and binds them, with the shadow maps, to materials;
-//! 6. features on top of those: `scene`, `interop`, `extension`, `surface_inputs`;
-//! 7. `plugin`, which adds all of it to an app;
-//! 8. `gltf`, whose [`PhongGltfPlugin`] adds the mirror of Bevy's lights and expects
+//! 5. `light_kind`, what the crate needs of each kind of light (the trait every kind,
+//!    built-in or an extension's, implements: record, reach, validation, shadows, reference
+//!    light);
+//! 6. `render`, which gathers the lights and binds them, with the shadow maps, to materials;
+//! 7. features on top of those: `scene`, `interop`, `extension`, `surface_inputs`;
+//! 8. `plugin`, which adds all of it to an app;
+//! 9. `gltf`, whose [`PhongGltfPlugin`] adds the mirror of Bevy's lights and expects
 //!    [`PhongPlugin`];
-//! 9. `testing` (only with the `testing` feature), which re-exports the internals that the
-//!    crate's own tests, benchmarks and harness read.
+//! 10. `testing` (only with the `testing` feature), which re-exports the internals that the
+//!     crate's own tests, benchmarks and harness read.
 //!
 //! Tests are exempt (the `#[cfg(test)]` items and files, such as `test_app`): they may use
 //! any layer. A unit test (`layering_tests`) reads the sources and fails on an import that
@@ -128,7 +131,7 @@
 //!
 //! | module | main world | render world |
 //! |---|---|---|
-//! | `lights`, `culling`, `validation`, `scene`, `interop`, `gltf`, `schedule` | all of it | |
+//! | `lights`, `light_kind`, `culling`, `validation`, `scene`, `interop`, `gltf`, `schedule` | all of it | |
 //! | `render` | the gathers: light records, clusters, cookies, the data texture (`gather`, `cluster_views`, `clusters`, `cookies`, `light_records`, `record_cache`, `scene_texture`) | the material bind groups (`material_bindings`) and their order after the uploads (`material_upkeep`, which also marks materials in the main world) |
 //! | `shadows` | which lights cast, the views and casters (`gather`, `sources`, `request`, `cameras`, `views`) | the shadow passes (`render`, `posed`, `deformed`, `displaced`) |
 //! | `material`, `scene_variants` | the asset and the scene's variants | the key and the pipeline (`specialize`) |
@@ -143,6 +146,7 @@ pub mod extension;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 pub mod interop;
+mod light_kind;
 mod lights;
 mod limits;
 mod material;

@@ -167,6 +167,15 @@ pub trait ReferenceLight: Send + Sync + 'static {
     fn term(&self, surface: &SurfacePoint, material: &Material) -> DVec3;
 }
 
+/// A built-in light's term is [`light_contribution`]'s: the crate's kinds give theirs
+/// through [`PhongLightKind::reference_light`](crate::extension::PhongLightKind::reference_light)
+/// as extension kinds do.
+impl ReferenceLight for Light {
+    fn term(&self, surface: &SurfacePoint, material: &Material) -> DVec3 {
+        light_contribution(surface, material, self)
+    }
+}
+
 /// The lights of kinds added from outside the crate, beside the built-in ones.
 #[derive(Clone, Default)]
 pub struct OtherLights(pub Vec<Arc<dyn ReferenceLight>>);

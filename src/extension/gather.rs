@@ -7,7 +7,7 @@ use super::{GpuLightCount, PhongLightKind, PhongLightKindBuffer};
 use crate::culling::PhongLightCulling;
 use crate::lights::{LightQuery, lit_lights};
 use crate::render::{
-    DATA_TEXTURE_MAX_TEXELS, DataTextureWrite, ExtensionClusterSlots, LightChanges,
+    DATA_TEXTURE_MAX_TEXELS, DataTextureWrite, ExtensionClusterSlots, LightChanges, PhongCookies,
     PhongLightBuffer, SharedEpsilonLights, is_finite_sphere, sphere_bits, words_of,
 };
 use crate::shadows::ShadowSlots;
@@ -45,15 +45,16 @@ pub(super) fn count_sharing_lights<L: PhongLightKind>(
     }
 }
 
-/// Writes every visible `L` into its buffer when any of them, their shadow slots, the
-/// culling or the per-light ε changed (and on the first run): each light's record with its
-/// shadow slot and its [`PhongLightKind::reach`] for the per-light ε (left out where that
+/// Writes every visible `L` into its buffer when any of them, their shadow or cookie slots,
+/// the culling or the per-light ε changed (and on the first run): each light's record with
+/// its shadow slot, its cookie's index (see [`PhongLightBuffer::cookie_index`]) and its [`PhongLightKind::reach`] for the per-light ε (left out where that
 /// is 0); the lights without a bounding sphere first, then those with one, whose spheres go
 /// to [`ExtensionClusterSlots`].
 #[allow(clippy::too_many_arguments)]
 pub(super) fn gather_light_kind<L: PhongLightKind>(
     lights: LightQuery<L>,
     slots: Res<ShadowSlots>,
+    cookies: Res<PhongCookies>,
     culling: Res<PhongLightCulling>,
     built_in: Res<PhongLightBuffer>,
     mut changes: LightChanges<L>,
@@ -69,8 +70,11 @@ pub(super) fn gather_light_kind<L: PhongLightKind>(
     } else {
         0.0
     };
-    let gathered_with = Some((epsilon.to_bits(), *culling));
-    let changed = changes.any() || slots.is_changed() || state.gathered_with != gathered_with;
+    let gathered_with = Some((epsilon.to_bits(), *culling, built_in.cookie_index(1)));
+    let changed = changes.any()
+        || slots.is_changed()
+        || cookies.is_changed()
+        || state.gathered_with != gathered_with;
     if !changed && state.buffer.capacity() > 0 {
         return;
     }
@@ -83,6 +87,7 @@ pub(super) fn gather_light_kind<L: PhongLightKind>(
     for (entity, light, transform) in lit_lights(&lights) {
         let mut record = light.to_gpu(transform);
         L::set_shadow(&mut record, slots.get(entity));
+        L::set_cookie(&mut record, built_in.cookie_index(cookies.slot_of(entity)));
         let reach = L::reach(&record, epsilon);
         if reach == 0.0 {
             continue;

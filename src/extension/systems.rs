@@ -4,36 +4,46 @@
 use super::PhongLightKind;
 use super::shadow_sources::{ShadowCasters, request_shadows, track_shadow_casters};
 use crate::lights::is_finite_transform;
+use crate::render::{CookieRequests, gather_cookies, request_cookies};
 use crate::schedule::PhongSystems;
 use crate::validation::{Checker, InvalidInput, Owner};
 use bevy::{
     app::{App, PostUpdate},
+    asset::Assets,
     ecs::{
         change_detection::{DetectChanges, DetectChangesMut},
         entity::Entity,
         message::MessageWriter,
         query::{Changed, Or},
-        schedule::IntoScheduleConfigs,
+        schedule::{IntoScheduleConfigs, common_conditions::resource_exists},
         system::Query,
         world::Ref,
     },
+    image::Image,
     transform::components::GlobalTransform,
 };
 
 /// Adds the systems of light kind `L`: each changed light validated
-/// ([`PhongLightKind::validate`]) in [`PhongSystems::Validate`], and the shadows of the
+/// ([`PhongLightKind::validate`]) in [`PhongSystems::Validate`], the shadows of the
 /// lights that cast them ([`PhongLightKind::casts_shadows`], [`PhongLightKind::shadow`])
-/// requested in [`PhongSystems::RequestShadows`].
+/// requested in [`PhongSystems::RequestShadows`], and the cookies of those that take one
+/// ([`PhongLightKind::cookie_projection`]) asked for before the cookie gather.
 pub(crate) fn add_light_kind<L: PhongLightKind>(app: &mut App) {
-    app.init_resource::<ShadowCasters<L>>().add_systems(
-        PostUpdate,
-        (
-            validate_lights::<L>.in_set(PhongSystems::Validate),
-            (track_shadow_casters::<L>, request_shadows::<L>)
-                .chain()
-                .in_set(PhongSystems::RequestShadows),
-        ),
-    );
+    app.init_resource::<ShadowCasters<L>>()
+        .init_resource::<CookieRequests>()
+        .add_systems(
+            PostUpdate,
+            (
+                validate_lights::<L>.in_set(PhongSystems::Validate),
+                (track_shadow_casters::<L>, request_shadows::<L>)
+                    .chain()
+                    .in_set(PhongSystems::RequestShadows),
+                request_cookies::<L>
+                    .run_if(resource_exists::<Assets<Image>>)
+                    .before(gather_cookies)
+                    .in_set(PhongSystems::GatherLights),
+            ),
+        );
 }
 
 /// Lights whose component or transform changed.

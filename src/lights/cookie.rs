@@ -55,6 +55,25 @@ pub struct PhongLightCookie {
     pub red_only: bool,
 }
 
+/// How a light's [`PhongLightCookie`] lays its image over the light's rays: what a kind of
+/// light answers in
+/// [`PhongLightKind::cookie_projection`](crate::extension::PhongLightKind::cookie_projection).
+/// The spot light's is `Spot`, the point light's `Point`, the directional light's
+/// `Directional` (see [`PhongLightCookie`] for each one's mapping).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PhongCookieProjection {
+    /// Over a cone of half-angle `outer_angle` (radians) along the light's `-Z` axis.
+    Spot {
+        /// The cone's half-angle, radians; clamped to `[0, π]` and then to the widest cone a
+        /// cookie spans.
+        outer_angle: f32,
+    },
+    /// A cube map around the light, packed by the cookie's `cubemap_layout`.
+    Point,
+    /// A plane: the light's local XY plane, repeated where the cookie is `tiled`.
+    Directional,
+}
+
 /// The format of the cookie images copied into the atlas unchanged: 8-bit sRGB, which keeps
 /// the precision of sRGB in the dark.
 const FORMAT: TextureFormat = TextureFormat::Rgba8UnormSrgb;

@@ -17,7 +17,7 @@ mod shadows;
 mod spot;
 
 pub use ambient::PhongAmbientLight;
-pub use cookie::{PhongLightCookie, cookie_layer_texels};
+pub use cookie::{PhongCookieProjection, PhongLightCookie, cookie_layer_texels};
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
 pub use hemisphere::PhongHemisphereLight;

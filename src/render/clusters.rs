@@ -21,7 +21,8 @@
 //! the entries `data[s_k..s_{k+1}]`, each the index of a light in its slot's buffer. With
 //! the two built-in slots a record is `[s_0, s_1, s_2, 0]`: one 16-byte texel.
 
-use super::gpu_types::{GpuClustersHeader, GpuLight};
+use super::gpu_types::GpuClustersHeader;
+use crate::light_kind::GpuLight;
 use bevy::math::{DMat4, DVec3, DVec4, Mat4, UVec2, Vec3};
 use std::ops::RangeInclusive;
 

@@ -1,12 +1,12 @@
-//! The cookies of the built-in lights: each frame, the atlas of their images
-//! ([`super::cookie_atlas`]) and the record of each light that has one, which
-//! [`gather_lights`](super::gather_lights) stores after the lights.
+//! The lights' cookies: each frame, every kind that takes one
+//! ([`PhongLightKind::cookie_projection`]) asks for its lights' ([`request_cookies`]); the
+//! gather makes the atlas of their images ([`super::cookie_atlas`]) and the record of each
+//! one, which [`gather_lights`](super::gather_lights) stores after the built-in lights.
 
 use super::cookie_atlas::{PHONG_COOKIE_ATLAS, atlas_image};
 use super::gpu_types::GpuCookie;
-use crate::lights::{
-    PhongDirectionalLight, PhongLightCookie, PhongPointLight, PhongSpotLight, cookie_layer_texels,
-};
+use crate::light_kind::PhongLightKind;
+use crate::lights::{PhongCookieProjection, PhongLightCookie, cookie_layer_texels};
 use crate::limits::{MAX_COOKIE_IMAGES, SPOT_ANGLE, WIDEST_SPOT_COOKIE};
 use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::LightBufferResized;
@@ -17,7 +17,6 @@ use bevy::{
         change_detection::DetectChangesMut,
         entity::{Entity, EntityHashMap},
         message::{MessageReader, MessageWriter},
-        query::AnyOf,
         resource::Resource,
         system::{Query, ResMut},
     },
@@ -56,21 +55,35 @@ impl PhongCookies {
     }
 }
 
-/// The lights with a cookie.
-type CookiedLights<'w, 's> = Query<
-    'w,
-    's,
-    (
+/// The cookies asked for this frame, by every kind of light: each one's entity, cookie,
+/// transform and projection. [`gather_cookies`] empties it.
+#[derive(Resource, Debug, Default)]
+pub struct CookieRequests {
+    requests: Vec<(
         Entity,
-        &'static PhongLightCookie,
-        &'static GlobalTransform,
-        AnyOf<(
-            &'static PhongSpotLight,
-            &'static PhongPointLight,
-            &'static PhongDirectionalLight,
-        )>,
-    ),
->;
+        PhongLightCookie,
+        GlobalTransform,
+        PhongCookieProjection,
+    )>,
+}
+
+/// Asks for the cookie of every light of kind `L` that has one and takes it
+/// ([`PhongLightKind::cookie_projection`]); runs before [`gather_cookies`].
+pub(crate) fn request_cookies<L: PhongLightKind>(
+    lights: Query<(Entity, &L, &PhongLightCookie, &GlobalTransform)>,
+    mut requests: ResMut<CookieRequests>,
+) {
+    for (entity, light, cookie, transform) in &lights {
+        if let Some(projection) = light.cookie_projection() {
+            requests.bypass_change_detection().requests.push((
+                entity,
+                cookie.clone(),
+                *transform,
+                projection,
+            ));
+        }
+    }
+}
 
 /// Makes the atlas (first a white layer), rebuilds it when the set of cookie images changes
 /// or one of them is modified, and
@@ -78,7 +91,7 @@ type CookiedLights<'w, 's> = Query<
 /// only then, so that [`gather_lights`](super::gather_lights) writes the light buffer only
 /// when something changed. Sets the scene's cookie variant (`PHONG_LIGHT_COOKIES`).
 pub fn gather_cookies(
-    lights: CookiedLights,
+    mut requests: ResMut<CookieRequests>,
     mut image_events: MessageReader<AssetEvent<Image>>,
     mut images: ResMut<Assets<Image>>,
     mut cookies: ResMut<PhongCookies>,
@@ -92,12 +105,14 @@ pub fn gather_cookies(
             _ => None,
         })
         .collect();
+    let lights = core::mem::take(&mut requests.bypass_change_detection().requests);
     let state = cookies.bypass_change_detection();
     // An image that could not be read may be readable once it changed.
     state.unreadable.retain(|id| !modified.contains(id));
     // The images the atlas should hold: each loaded, readable cookie image once.
     let mut layers: Vec<AssetId<Image>> = Vec::new();
     for (entity, cookie, _, _) in &lights {
+        let entity = *entity;
         let id = cookie.image.id();
         if layers.contains(&id) || state.unreadable.contains(&id) || !images.contains(id) {
             continue;
@@ -148,14 +163,14 @@ pub fn gather_cookies(
 
     let mut records = Vec::new();
     let mut slots = EntityHashMap::default();
-    for (entity, cookie, transform, kind) in &lights {
+    for (entity, cookie, transform, projection) in &lights {
         let Some(layer) = state.layers.iter().position(|id| *id == cookie.image.id()) else {
             continue;
         };
-        let Some(record) = cookie_record(cookie, transform, kind, layer as u32) else {
+        let Some(record) = cookie_record(cookie, transform, *projection, layer as u32) else {
             continue;
         };
-        slots.insert(entity, records.len() as u32);
+        slots.insert(*entity, records.len() as u32);
         records.push(record);
     }
     if records != state.records || slots != state.slots {
@@ -176,16 +191,12 @@ pub fn gather_cookies(
     }
 }
 
-/// The record of `cookie` on a light at `transform` of kind `kind`, in atlas layer `layer`;
-/// `None` for a transform that cannot be inverted.
+/// The record of `cookie` on a light at `transform` whose kind lays it by `projection`, in
+/// atlas layer `layer`; `None` for a transform that cannot be inverted.
 fn cookie_record(
     cookie: &PhongLightCookie,
     transform: &GlobalTransform,
-    (spot, point, _): (
-        Option<&PhongSpotLight>,
-        Option<&PhongPointLight>,
-        Option<&PhongDirectionalLight>,
-    ),
+    projection: PhongCookieProjection,
     layer: u32,
 ) -> Option<GpuCookie> {
     let light_from_world = transform.affine().inverse();
@@ -194,13 +205,15 @@ fn cookie_record(
     }
     let (m, t) = (light_from_world.matrix3, light_from_world.translation);
     let row = |i: usize| [m.x_axis[i], m.y_axis[i], m.z_axis[i], t[i]];
-    let (projection, tan_outer) = match (spot, point) {
-        (Some(spot), _) => {
-            let angle = SPOT_ANGLE.apply(spot.outer_angle).min(WIDEST_SPOT_COOKIE);
+    let (projection, tan_outer) = match projection {
+        PhongCookieProjection::Spot { outer_angle } => {
+            let angle = SPOT_ANGLE.apply(outer_angle).min(WIDEST_SPOT_COOKIE);
             (GpuCookie::SPOT, f64::from(angle).tan() as f32)
         }
-        (None, Some(_)) => (GpuCookie::POINT + layout_index(cookie.cubemap_layout), 0.0),
-        (None, None) => (GpuCookie::DIRECTIONAL, 0.0),
+        PhongCookieProjection::Point => {
+            (GpuCookie::POINT + layout_index(cookie.cubemap_layout), 0.0)
+        }
+        PhongCookieProjection::Directional => (GpuCookie::DIRECTIONAL, 0.0),
     };
     let flags = if cookie.red_only {
         GpuCookie::RED_ONLY
@@ -230,6 +243,7 @@ fn layout_index(layout: CubemapLayout) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::PhongSpotLight;
     use crate::render::GpuLight;
     use crate::test_app::{test_app, uploads_in_next_frame};
     use bevy::{

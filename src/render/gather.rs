@@ -3,13 +3,14 @@
 
 use super::{
     PHONG_LIGHT_BUFFER,
-    clusters::has_finite_reach,
+    clusters::{has_finite_reach, is_finite_sphere},
     cookies::PhongCookies,
-    gpu_types::{GpuLight, GpuLightsHeader},
-    light_records::{BuiltInLight, indirect_light},
+    gpu_types::GpuLightsHeader,
+    light_records::indirect_light,
     record_cache::RecordCache,
 };
 use crate::culling::PhongLightCulling;
+use crate::light_kind::{GpuLight, PhongLightKind};
 use crate::lights::{
     LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongPointLight,
     PhongSpotLight, TrackedLightQuery, lit_lights, lit_tracked_lights,
@@ -49,6 +50,8 @@ pub struct PhongLightBuffer {
     spot_cache: RecordCache<PhongSpotLight>,
     /// Whether the last gather had a hemisphere light.
     hemisphere: bool,
+    /// The index of the first cookie record: the number of built-in lights written.
+    cookie_first: u32,
 }
 
 impl Default for PhongLightBuffer {
@@ -62,6 +65,7 @@ impl Default for PhongLightBuffer {
             point_cache: RecordCache::default(),
             spot_cache: RecordCache::default(),
             hemisphere: false,
+            cookie_first: 0,
         }
     }
 }
@@ -101,6 +105,17 @@ impl PhongLightBuffer {
     /// for the `n` lit point and spot lights and lights of extension kinds that share ε.
     pub(crate) fn per_light_epsilon(&self) -> f32 {
         self.per_light_epsilon
+    }
+
+    /// What a light whose cookie has slot `slot` plus one ([`PhongCookies::slot_of`]) stores
+    /// with [`PhongLightKind::set_cookie`]: the index of the cookie's record in the last
+    /// gather plus one, or `0` for none.
+    pub(crate) fn cookie_index(&self, slot: u32) -> u32 {
+        if slot == 0 {
+            0
+        } else {
+            self.cookie_first + slot
+        }
     }
 
     /// What was last written: the ambient light and the count of each kind.
@@ -148,28 +163,37 @@ impl<L: Component> LightChanges<'_, '_, L> {
 }
 
 /// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
-/// `records`; `to_gpu` gets each light's slot, `slot_of(entity)` (its shadow slot, see
-/// [`ShadowSlots`], and for a built-in light its cookie's). Returns how many.
-pub(crate) fn push_visible<L: Component, R>(
+/// `records`, with its shadow and cookie slots ([`Slots::set`]). Returns how many.
+fn push_visible<L: PhongLightKind>(
     lights: &LightQuery<L>,
-    slot_of: impl Fn(Entity) -> u32,
-    records: &mut Vec<R>,
-    to_gpu: impl Fn(&L, &GlobalTransform, u32) -> R,
+    slots: Slots,
+    records: &mut Vec<L::Gpu>,
 ) -> u32 {
     let start = records.len();
-    records.extend(
-        lit_lights(lights)
-            .map(|(entity, light, transform)| to_gpu(light, transform, slot_of(entity))),
-    );
+    records.extend(lit_lights(lights).map(|(entity, light, transform)| {
+        let mut record = light.to_gpu(transform);
+        slots.set::<L>(&mut record, entity);
+        record
+    }));
     (records.len() - start) as u32
 }
 
-/// A built-in light's record, placed by its transform, with its shadow and cookie slots
-/// ([`GpuLight::shadow`]).
-fn with_shadow<L: BuiltInLight>(light: &L, transform: &GlobalTransform, shadow: u32) -> GpuLight {
-    let mut record = light.constants();
-    L::place(&mut record, transform);
-    GpuLight { shadow, ..record }
+/// This frame's shadow slots and cookie slots.
+#[derive(Clone, Copy)]
+struct Slots<'a> {
+    shadows: &'a ShadowSlots,
+    cookies: &'a PhongCookies,
+}
+
+impl Slots<'_> {
+    /// Stores the shadow slot of `entity`'s light in its record
+    /// ([`PhongLightKind::set_shadow`], see [`ShadowSlots`]) and its cookie's
+    /// ([`PhongLightKind::set_cookie`]): for the built-in lights the cookie's slot plus one,
+    /// which [`gather_lights`] turns into its record's index once the lights are counted.
+    fn set<L: PhongLightKind>(self, record: &mut L::Gpu, entity: Entity) {
+        L::set_shadow(record, self.shadows.get(entity));
+        L::set_cookie(record, self.cookies.slot_of(entity));
+    }
 }
 
 /// What [`push_cached`] found of one kind of light.
@@ -184,32 +208,55 @@ struct Pushed {
 }
 
 /// Appends the record of every light in `lights` that gives light
-/// ([`lit_tracked_lights`]) and reaches somewhere for the per-light `epsilon` to `records`,
-/// its constants and limited range from `cache` ([`RecordCache::record`]), and counts
-/// those that are `clustered`.
-fn push_cached<L: BuiltInLight>(
+/// ([`lit_tracked_lights`]) and reaches somewhere for the per-light `epsilon`
+/// ([`PhongLightKind::reach`]) to `records`, from `cache` ([`RecordCache::record`]), with
+/// its slots and its reach ([`PhongLightKind::set_reach`]); counts those that go into the
+/// clusters: with [`PhongLightCulling::clusters`], those whose kind gives a finite bounding
+/// sphere ([`PhongLightKind::bounding_sphere`]), which [`clustered`] then finds.
+fn push_cached<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
     lights: &TrackedLightQuery<L>,
-    slot_of: &impl Fn(Entity) -> u32,
+    slots: Slots,
     cache: &mut RecordCache<L>,
     records: &mut Vec<GpuLight>,
     epsilon: f32,
-    clustered: &impl Fn(&GpuLight) -> bool,
+    clusters: bool,
 ) -> Pushed {
     let mut pushed = Pushed::default();
     for (index, (entity, light, transform)) in lit_tracked_lights(lights).enumerate() {
         pushed.lit += 1;
-        let mut record = cache.record(index, entity, &light, light.is_changed(), epsilon);
-        // A light that reaches nowhere for ε (range 0) is left out.
-        if record.range > 0.0 {
-            L::place(&mut record, transform);
-            record.shadow = slot_of(entity);
+        let (mut record, reach) = cache.record(
+            index,
+            entity,
+            &light,
+            light.is_changed(),
+            transform,
+            epsilon,
+        );
+        // A light that reaches nowhere for ε is left out.
+        if reach > 0.0 {
+            slots.set::<L>(&mut record, entity);
+            L::set_reach(&mut record, reach);
+            let sphere = (clusters && reach.is_finite())
+                .then(|| L::bounding_sphere(&record, reach))
+                .flatten();
             pushed.kept += 1;
-            pushed.clustered += usize::from(clustered(&record));
+            pushed.clustered += usize::from(
+                sphere
+                    .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius())),
+            );
             records.push(record);
         }
     }
     cache.truncate(pushed.lit);
     pushed
+}
+
+/// Whether a built-in light's record, as [`push_cached`] wrote it, goes into the clusters:
+/// those of finite reach that cast no shadow and no cookie (as
+/// [`PhongLightKind::bounding_sphere`] of the point and spot lights says), where the culling
+/// has [`PhongLightCulling::clusters`].
+fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
+    culling.clusters && has_finite_reach(light) && light.shadow == 0
 }
 
 /// Puts the point lights (`points.kept` records from `records[first]`) and the spot lights
@@ -294,13 +341,14 @@ pub fn gather_lights(
     let state = &mut *state;
     let records = &mut state.records;
     records.clear();
-    let slot_of =
-        |entity: Entity| slots.get(entity) | cookies.slot_of(entity) << GpuLight::COOKIE_SHIFT;
-    let directional_count = push_visible(&directional, slot_of, records, with_shadow);
+    let light_slots = Slots {
+        shadows: &slots,
+        cookies: &cookies,
+    };
+    let directional_count = push_visible(&directional, light_slots, records);
     // Unlimited reach first (every fragment loops over them), then the clustered lights (the
     // clusters' loop applies no shadows, so shadow-casting lights stay out of it).
-    let clustered =
-        |light: &GpuLight| culling.clusters && has_finite_reach(light) && light.shadow == 0;
+    let clustered = |light: &GpuLight| clustered(&culling, light);
     // The point lights, then the spot lights, written once in place. ε bounds the sum of
     // what every skipped light leaves out: each of the `count` lit point and spot lights
     // (and lights of extension kinds that share ε) gets ε / count. The count is known once they are read, so they are written with the
@@ -312,19 +360,19 @@ pub fn gather_lights(
         let pushed = [
             push_cached(
                 &point,
-                &slot_of,
+                light_slots,
                 &mut state.point_cache,
                 records,
                 epsilon,
-                &clustered,
+                culling.clusters,
             ),
             push_cached(
                 &spot,
-                &slot_of,
+                light_slots,
                 &mut state.spot_cache,
                 records,
                 epsilon,
-                &clustered,
+                culling.clusters,
             ),
         ];
         let count = pushed[0].lit + pushed[1].lit + sharing.total();
@@ -358,24 +406,24 @@ pub fn gather_lights(
     };
     // The cookies after the lights, as records of a light's size (`GpuCookie`); each light's
     // cookie slot becomes the index of its record (plus one), where 16 bits hold it.
-    let light_count = state.records.len() as u32;
+    state.cookie_first = state.records.len() as u32;
     if !cookies.records().is_empty() {
         for record in &mut state.records {
             let slot = record.shadow >> GpuLight::COOKIE_SHIFT;
-            if slot == 0 {
-                continue;
-            }
-            let index = light_count + slot - 1;
-            let shadow = record.shadow & GpuLight::SHADOW_BITS;
-            record.shadow = if index < GpuLight::SHADOW_BITS {
-                shadow | (index + 1) << GpuLight::COOKIE_SHIFT
-            } else {
+            let index = state.cookie_first + slot;
+            if slot != 0 && index > GpuLight::SHADOW_BITS {
                 bevy::log::warn_once!(
                     "PhongLightCookie: more than 65,534 lights and cookies; the cookies past \
                      that are left out"
                 );
-                shadow
+            }
+            let index = if slot != 0 && index <= GpuLight::SHADOW_BITS {
+                index
+            } else {
+                0
             };
+            // Every built-in kind stores it alike (`GpuLight::shadow`'s high half).
+            PhongPointLight::set_cookie(record, index);
         }
     }
     state.records.extend(
@@ -399,7 +447,6 @@ pub fn gather_lights(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::light_records::limit_reach;
     use crate::test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame};
     use bevy::prelude::{App, Entity, Transform, Vec3, Visibility, World};
 
@@ -524,20 +571,26 @@ mod tests {
         push_fresh::<PhongPointLight>(world, &mut records);
         push_fresh::<PhongSpotLight>(world, &mut records);
         let per_light_epsilon = epsilon / records.len().max(1) as f32;
-        records.retain_mut(|record| limit_reach(record, per_light_epsilon));
+        records.retain_mut(|record| {
+            // Point and spot lights alike: the point light's reach is the spot light's.
+            let reach = PhongPointLight::reach(record, per_light_epsilon);
+            PhongPointLight::set_reach(record, reach);
+            reach > 0.0
+        });
         let mut bits: Vec<[u32; 20]> = records.iter().map(|r| bytemuck::cast(*r)).collect();
         bits.sort();
         bits
     }
 
     /// Appends the whole record of every visible light of kind `L`, made afresh.
-    fn push_fresh<L: BuiltInLight>(world: &mut World, records: &mut Vec<GpuLight>) {
+    fn push_fresh<L: PhongLightKind<Gpu = GpuLight>>(
+        world: &mut World,
+        records: &mut Vec<GpuLight>,
+    ) {
         let mut lights = world.query::<(&L, &GlobalTransform, &InheritedVisibility)>();
         for (light, transform, visibility) in lights.iter(world) {
             if visibility.get() {
-                let mut record = light.constants();
-                L::place(&mut record, transform);
-                records.push(record);
+                records.push(light.to_gpu(transform));
             }
         }
     }

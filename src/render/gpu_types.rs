@@ -4,46 +4,8 @@
 //! a test compares their sizes and field offsets with the layout naga reflects from
 //! `shaders/types.wesl`.
 
+use crate::light_kind::GpuLight;
 use bytemuck::{Pod, Zeroable};
-
-/// One light as the shader reads it (`PhongLight` in WGSL): 80 bytes.
-///
-/// Every kind uses the same record; the fields a kind does not use are zero. Colors are
-/// linear RGB, positions world-space; the spot cone is stored as `1 - cos`, which keeps its
-/// precision for narrow cones where the cosine rounds to 1.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct GpuLight {
-    /// World-space position (point, spot).
-    pub position: [f32; 3],
-    /// Distance past which the light is cut off; `f32::MAX` when unlimited (point, spot).
-    pub range: f32,
-    /// Unit vector along which the light travels (directional, spot).
-    pub direction: [f32; 3],
-    /// `1 - cos(outer_angle)` (spot), computed in `f64`; `-1` for an empty cone.
-    pub outer_versine: f32,
-    /// Diffuse intensity, linear RGB.
-    pub color: [f32; 3],
-    /// `1 / (cos(inner) - cos(outer))`, computed in `f64`, or `0` for a hard edge (spot).
-    pub cone_scale: f32,
-    /// Specular intensity, linear RGB.
-    pub specular: [f32; 3],
-    /// Exponent of the `cos(θ)^exponent` rim darkening (spot).
-    pub spot_exponent: f32,
-    /// `[constant, linear, quadratic]` distance fall-off (point, spot).
-    pub decay: [f32; 3],
-    /// Two 16-bit indices: in the low half, the index of the light's first shadow view plus
-    /// one, or `0` for a light that casts no shadow this frame; in the high half, the index
-    /// of its cookie's record ([`GpuCookie`], after the lights) plus one, or `0` for none.
-    pub shadow: u32,
-}
-
-impl GpuLight {
-    /// The first bit of the cookie's record index in [`shadow`](Self::shadow).
-    pub const COOKIE_SHIFT: u32 = 16;
-    /// The bits of the shadow view's index in [`shadow`](Self::shadow).
-    pub const SHADOW_BITS: u32 = 0xffff;
-}
 
 /// A light's cookie as the shader reads it (`bevy_phong::shaders::cookies`): 80 bytes, the size of a
 /// [`GpuLight`], stored after the lights in the light buffer (its index there in the high

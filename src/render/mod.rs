@@ -60,20 +60,20 @@ mod material_upkeep;
 // The render world's part: binding the uploaded buffers to each material.
 mod material_bindings;
 
+pub use crate::light_kind::GpuLight;
 pub(crate) use cluster_views::ExtensionClusterSlots;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
 #[cfg(test)]
 pub(crate) use clusters::VIEW_WORDS;
 pub(crate) use clusters::{is_finite_sphere, sphere_bits};
 pub(crate) use cookie_atlas::PHONG_COOKIE_ATLAS;
+pub(crate) use cookies::{CookieRequests, request_cookies};
 pub use cookies::{PhongCookies, gather_cookies};
 pub use data_texture::DATA_TEXTURE_MAX_TEXELS;
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub(crate) use gather::LightChanges;
 pub use gather::{PhongLightBuffer, SharedEpsilonLights, gather_lights};
-pub use gpu_types::{GpuClustersHeader, GpuLight, GpuLightsHeader};
-pub(crate) use light_records::BuiltInLight;
-pub use light_records::linear_rgb;
+pub use gpu_types::{GpuClustersHeader, GpuLightsHeader};
 pub use material_bindings::PhongSceneBindings;
 pub(crate) use material_upkeep::{
     carry_scene_variants, refresh_material_bind_groups, schedule_light_buffers_before,
