@@ -182,7 +182,7 @@
 //! [`reference::phong_light`](crate::reference::phong_light) is the same term in `f64`:
 //! the searchlight example's reference model is built on it. A kind gives each light's term
 //! to the model through [`PhongLightKind::reference_light`] (a
-//! [`ReferenceLight`]); [`reference_lights`] collects every
+//! [`ReferenceLight`](crate::reference::ReferenceLight)); [`reference_lights`] collects every
 //! kind's lights for [`reference::Lights::others`](crate::reference::Lights::others), whose
 //! terms [`reference::shade`](crate::reference::shade) adds. The crate's test harness does
 //! so, and the searchlight's render tests compare the extended material with the model

@@ -31,10 +31,11 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
     /// The record the shader reads for one light: `#[repr(C)]`, a multiple of 16 bytes.
     type Gpu: Pod + Send + Sync;
 
-    /// Whether these lights take a share of [`PhongLightCulling::epsilon`](crate::PhongLightCulling::epsilon) with the point
-    /// and spot lights: then `n`, which ε is divided by, counts them too, and
-    /// [`Self::reach`] is given the same per-light ε. Set it when `reach` uses ε, so that
-    /// ε bounds what all the skipped lights leave out together. Default `false`.
+    /// Whether these lights take a share of
+    /// [`PhongLightCulling::epsilon`](crate::PhongLightCulling::epsilon) with the point and spot
+    /// lights: then `n`, which ε is divided by, counts them too, and [`Self::reach`] is given the
+    /// same per-light ε. Set it when `reach` uses ε, so that ε bounds what all the skipped lights
+    /// leave out together. Default `false`.
     const SHARES_EPSILON: bool = false;
 
     /// The record of this light, placed by its entity's transform.
@@ -51,10 +52,12 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
     }
 
     /// How far the light of `record` reaches, world units: past it the light may be skipped.
-    /// `epsilon` is the light's share of [`PhongLightCulling::epsilon`](crate::PhongLightCulling::epsilon) (linear RGB; `0` for
-    /// the exact model, and for a kind without [`Self::SHARES_EPSILON`]): a light that fades
-    /// may stop where it falls below it, as the built-in lights do ([`influence_radius`](crate::culling::influence_radius)). `f32::INFINITY` (the default) reaches
-    /// everywhere; `0` leaves the light out of the buffer.
+    /// `epsilon` is the light's share of
+    /// [`PhongLightCulling::epsilon`](crate::PhongLightCulling::epsilon) (linear RGB; `0` for the
+    /// exact model, and for a kind without [`Self::SHARES_EPSILON`]): a light that fades may stop
+    /// where it falls below it, as the built-in lights do
+    /// ([`influence_radius`](crate::culling::influence_radius)). `f32::INFINITY` (the default)
+    /// reaches everywhere; `0` leaves the light out of the buffer.
     fn reach(record: &Self::Gpu, epsilon: f32) -> f32 {
         let _ = (record, epsilon);
         f32::INFINITY
@@ -119,10 +122,10 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
         let _ = (record, cookie);
     }
 
-    /// This light in the crate's reference model ([`crate::reference`]), placed by its
-    /// entity's transform: its term in `f64`, as its shader adds it, for tests that compare
-    /// a frame with the model ([`reference_lights`](crate::extension::reference_lights) collects every kind's). `None` (the
-    /// default): the model leaves the light out.
+    /// This light in the crate's reference model ([`crate::reference`]), placed by its entity's
+    /// transform: its term in `f64`, as its shader adds it, for tests that compare a frame with the
+    /// model ([`reference_lights`](crate::extension::reference_lights) collects every kind's).
+    /// `None` (the default): the model leaves the light out.
     fn reference_light(&self, transform: &GlobalTransform) -> Option<Arc<dyn ReferenceLight>> {
         let _ = transform;
         None

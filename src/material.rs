@@ -2,10 +2,12 @@
 
 mod features;
 mod key;
+mod maps;
 mod ranges;
 
 pub use features::MaterialFeatures;
 pub use key::PhongMaterialKey;
+pub(crate) use maps::{MapDevices, material_maps};
 pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};
 
 use crate::displacement::DisplacementUniform;

@@ -4,7 +4,9 @@
 
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
 use crate::displacement::DisplacementUniform;
-use crate::material::{PhongMaterial, PhongMaterialKey, PhongMaterialUniform};
+use crate::material::{
+    MapDevices, PhongMaterial, PhongMaterialKey, PhongMaterialUniform, material_maps,
+};
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
     asset::Handle,
@@ -23,78 +25,58 @@ use bevy::{
     },
 };
 
-/// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding 0 the
-/// uniform, 3 to 10 the four texture maps, 14 to 17 the light and AO maps, 18, 19 the
-/// alpha map, 20, 21 the environment cube map and 22, 23 the bump map, each followed by its
-/// sampler; 24 to 26 the displacement map, its sampler and its uniform, read in the vertex
-/// stage; 27 the toon ramp (read texel by texel: no sampler).
-#[derive(AsBindGroup)]
-struct SurfaceBindings {
-    #[uniform(0)]
-    uniform: PhongMaterialUniform,
-    #[texture(3)]
-    #[sampler(4)]
-    base_color_texture: Option<Handle<Image>>,
-    #[texture(5)]
-    #[sampler(6)]
-    specular_texture: Option<Handle<Image>>,
-    #[texture(7)]
-    #[sampler(8)]
-    emissive_texture: Option<Handle<Image>>,
-    #[texture(9)]
-    #[sampler(10)]
-    normal_map_texture: Option<Handle<Image>>,
-    #[texture(14)]
-    #[sampler(15)]
-    light_map_texture: Option<Handle<Image>>,
-    #[texture(16)]
-    #[sampler(17)]
-    ao_map_texture: Option<Handle<Image>>,
-    #[texture(18)]
-    #[sampler(19)]
-    alpha_map_texture: Option<Handle<Image>>,
-    #[texture(20, dimension = "cube")]
-    #[sampler(21)]
-    environment_map: Option<Handle<Image>>,
-    #[texture(22)]
-    #[sampler(23)]
-    bump_map_texture: Option<Handle<Image>>,
-    #[texture(24, visibility(vertex))]
-    #[sampler(25, visibility(vertex))]
-    displacement_map: Option<Handle<Image>>,
-    #[uniform(26)]
-    displacement: DisplacementUniform,
-    #[texture(27)]
-    toon_ramp_texture: Option<Handle<Image>>,
-}
-
-impl From<&PhongMaterial> for SurfaceBindings {
-    fn from(material: &PhongMaterial) -> Self {
-        Self {
-            uniform: material.into(),
-            base_color_texture: material.base_color_texture.clone(),
-            specular_texture: material.specular_texture.clone(),
-            emissive_texture: material.emissive_texture.clone(),
-            normal_map_texture: material.normal_map_texture.clone(),
-            light_map_texture: material.light_map_texture.clone(),
-            ao_map_texture: material.ao_map_texture.clone(),
-            alpha_map_texture: material.alpha_map_texture.clone(),
-            environment_map: material.environment_map.clone(),
-            bump_map_texture: material.bump_map_texture.clone(),
-            displacement_map: material.displacement_map.clone(),
-            displacement: material.into(),
-            toon_ramp_texture: material.toon_ramp_texture.clone(),
+/// Declares [`SurfaceBindings`] and what is read of it from the rows of `material_maps!`.
+macro_rules! surface_bindings {
+    ($(
+        $field:ident: texture($texture:literal $(, $($texture_option:tt)*)?)
+            $(sampler($sampler:literal $(, $($sampler_option:tt)*)?))?,
+            $devices:ident, $file:ident, $what:literal;
+    )*) => {
+        /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding
+        /// 0 the uniform, 26 the displacement's uniform (read in the vertex stage), and each
+        /// texture map's as `material_maps!` declares them (3 to 10, 14 to 25, 27).
+        #[derive(AsBindGroup)]
+        struct SurfaceBindings {
+            #[uniform(0)]
+            uniform: PhongMaterialUniform,
+            #[uniform(26)]
+            displacement: DisplacementUniform,
+            $(
+                #[texture($texture $(, $($texture_option)*)?)]
+                $(#[sampler($sampler $(, $($sampler_option)*)?)])?
+                $field: Option<Handle<Image>>,
+            )*
         }
-    }
+
+        impl From<&PhongMaterial> for SurfaceBindings {
+            fn from(material: &PhongMaterial) -> Self {
+                Self {
+                    uniform: material.into(),
+                    displacement: material.into(),
+                    $($field: material.$field.clone(),)*
+                }
+            }
+        }
+
+        /// Each map: its field, the devices that bind it, and its bindings.
+        const MAP_BINDINGS: &[(&str, MapDevices, &[u32])] =
+            &[$((stringify!($field), MapDevices::$devices, &[$texture $(, $sampler)?])),*];
+
+        /// The fields of the maps `material` has.
+        fn maps_of(material: &PhongMaterial) -> [(&'static str, bool); MAP_BINDINGS.len()] {
+            [$((stringify!($field), material.$field.is_some())),*]
+        }
+    };
 }
 
-/// The plugin's scene data that every Phong material binds beside its own, read from the
-/// render world (the names are those of `bevy_phong::shaders::bindings`): 1 the light buffer
-/// (`lights`), 2 the light clusters (`light_clusters`), 11 the shadow views (`shadow_views`), 12 the
-/// shadow map array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`), 28 the
-/// light cookie atlas (`cookie_atlas`, a 2D array read texel by texel). A
-/// material of its own that lights with the crate's shader functions adds these bindings
-/// the same way [`PhongMaterial`] does.
+material_maps!(surface_bindings);
+
+/// The plugin's scene data that every Phong material binds beside its own, read from the render
+/// world (the names are those of `bevy_phong::shaders::bindings`): 1 the light buffer (`lights`), 2
+/// the light clusters (`light_clusters`), 11 the shadow views (`shadow_views`), 12 the shadow map
+/// array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`), 28 the light cookie atlas
+/// (`cookie_atlas`, a 2D array read texel by texel). A material of its own that lights with the
+/// crate's shader functions adds these bindings the same way [`PhongMaterial`] does.
 ///
 /// Where a shader stage has fewer than [`Self::STORAGE_BUFFERS_NEEDED`] storage buffers
 /// (WebGL2 has none), binding 1 is instead one `texture_2d<u32>` that holds the lights, the
@@ -264,17 +246,30 @@ impl PhongSceneBindings<'_> {
     }
 }
 
-/// The bindings of the alpha map, the environment map, the bump map (18 to 23) and the toon
-/// ramp (27), which a device with fewer storage buffers than the scene data needs (WebGL2)
-/// leaves out: there a fragment stage has 16 textures, which Bevy's view (its shadow maps,
-/// prepass textures and lookup tables) shares with the material, and every other map of the
-/// material fits beside them.
-const MAPS_OF_FULL_DEVICES: [u32; 7] = [18, 19, 20, 21, 22, 23, 27];
+/// Whether `binding` is one of the maps that a device with fewer storage buffers than the
+/// scene data needs (WebGL2) leaves out ([`MapDevices::Full`]): there a fragment stage has
+/// 16 textures, which Bevy's view (its shadow maps, prepass textures and lookup tables)
+/// shares with the material, and every other map of the material fits beside them.
+fn only_on_full_devices(binding: u32) -> bool {
+    MAP_BINDINGS
+        .iter()
+        .any(|(_, devices, bindings)| *devices == MapDevices::Full && bindings.contains(&binding))
+}
+
+/// Each map's field, its texture's binding and whether every device binds it (for the
+/// shader tests, which compare them with `bevy_phong::shaders::bindings`).
+#[cfg(feature = "testing")]
+pub fn material_map_bindings() -> Vec<(&'static str, u32, bool)> {
+    MAP_BINDINGS
+        .iter()
+        .map(|(field, devices, bindings)| (*field, bindings[0], *devices == MapDevices::All))
+        .collect()
+}
 
 /// Whether `render_device` binds every map of a [`PhongMaterial`]; where it does not
-/// (WebGL2), the alpha map, the environment map, the bump map and the toon ramp are left
-/// out, with a warning, and the material is drawn without them (a toon ramp's material in
-/// its bands).
+/// (WebGL2), the maps `material_maps!` marks [`MapDevices::Full`] (the alpha map, the
+/// environment map, the bump map and the toon ramp) are left out, with a warning, and the
+/// material is drawn without them (a toon ramp's material in its bands).
 pub fn binds_every_map(render_device: &RenderDevice) -> bool {
     !crate::render::needs_scene_texture(render_device)
 }
@@ -326,19 +321,21 @@ impl AsBindGroup for PhongMaterial {
             }
             let mut index = 0;
             output.binding_resources.0.retain(|(binding, _)| {
-                let keep = index < first || !MAPS_OF_FULL_DEVICES.contains(binding);
+                let keep = index < first || !only_on_full_devices(*binding);
                 index += 1;
                 keep
             });
-            if self.alpha_map_texture.is_some()
-                || self.environment_map.is_some()
-                || self.bump_map_texture.is_some()
-                || self.toon_ramp_texture.is_some()
-            {
+            let left_out: Vec<&str> = maps_of(self)
+                .into_iter()
+                .zip(MAP_BINDINGS)
+                .filter(|((_, set), (_, devices, _))| *set && *devices == MapDevices::Full)
+                .map(|((field, _), _)| field)
+                .collect();
+            if !left_out.is_empty() {
                 bevy::log::warn_once!(
-                    "PhongMaterial.alpha_map_texture, environment_map, bump_map_texture and \
-                     toon_ramp_texture are left out on this device (WebGL2's 16 textures a \
-                     shader stage): drawn without them (a toon ramp's material in its bands)"
+                    "PhongMaterial.{} left out on this device (WebGL2's 16 textures a shader \
+                     stage): drawn without them (a toon ramp's material in its bands)",
+                    left_out.join(", PhongMaterial.")
                 );
             }
         }
@@ -352,7 +349,7 @@ impl AsBindGroup for PhongMaterial {
     ) -> Vec<BindGroupLayoutEntry> {
         let mut entries = SurfaceBindings::bind_group_layout_entries(render_device, true);
         if !binds_every_map(render_device) {
-            entries.retain(|entry| !MAPS_OF_FULL_DEVICES.contains(&entry.binding));
+            entries.retain(|entry| !only_on_full_devices(entry.binding));
         }
         entries.extend(PhongSceneBindings::layout_entries(render_device));
         entries

@@ -85,7 +85,9 @@ pub(crate) use scene_texture::{
 /// For [`crate::testing`]: what the crate's own tests and benchmarks read.
 #[cfg(feature = "testing")]
 pub use {
-    data_texture::DATA_TEXTURE_WIDTH, gpu_types::GpuCookie, material_bindings::binds_every_map,
+    data_texture::DATA_TEXTURE_WIDTH,
+    gpu_types::GpuCookie,
+    material_bindings::{binds_every_map, material_map_bindings},
 };
 
 use bevy::{

@@ -2,7 +2,7 @@
 
 use super::{SceneColor, SceneFileError, relative_path, scene_color};
 use crate::material::{
-    DiffuseMode, EnvironmentCombine, PhongMaterial, SpecularMode, SpecularModel,
+    DiffuseMode, EnvironmentCombine, PhongMaterial, SpecularMode, SpecularModel, material_maps,
 };
 use bevy::{
     asset::{AssetLoader, LoadContext, io::Reader},
@@ -14,118 +14,6 @@ use bevy::{
     render::render_resource::Face,
 };
 use serde::{Deserialize, Serialize};
-
-/// A [`PhongMaterial`] as written in a file; every field is optional and defaults to
-/// `PhongMaterial::default()`'s value.
-///
-/// ```ron
-/// (
-///     base_color: Srgb(1.0, 0.0, 1.0),
-///     specular_strength: 2.0,
-///     shininess: 50.0,
-///     base_color_texture: Some("textures/crate.png"),
-///     uv_transform: (scale: (2.0, 2.0), rotation: 0.5, offset: (0.25, 0.0)),
-/// )
-/// ```
-///
-/// Texture paths are relative to the file that names them. Specular, normal, bump,
-/// displacement, AO and alpha maps and toon ramps are loaded as linear data (`is_srgb: false`), base color, emissive and light maps
-/// as sRGB.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PhongMaterialDescription {
-    /// `k_d` and alpha. Default white.
-    pub base_color: SceneColor,
-    /// `k_a`. Default `1`.
-    pub ambient_factor: f32,
-    /// `k_s`. Default white.
-    pub specular_color: SceneColor,
-    /// Multiplier on `k_s`. Default `1`.
-    pub specular_strength: f32,
-    /// `α`. Default `32`.
-    pub shininess: f32,
-    /// `Phong` or `BlinnPhong`. Default `Phong`.
-    pub specular_model: SpecularModel,
-    /// `Lambert`, `Wrap(w)` or `Toon(bands: n, smoothing: s)`. Default `Lambert`.
-    pub diffuse_mode: DiffuseMode,
-    /// Path of the toon ramp (red channel, read nearest, loaded as linear data), used with a
-    /// `Toon` diffuse mode. Default none.
-    pub toon_ramp_texture: Option<String>,
-    /// `Smooth`, `Toon(smoothing: s)` or `Off`. Default `Smooth`.
-    pub specular_mode: SpecularMode,
-    /// The rim light's color. Default black (no rim).
-    pub rim_color: SceneColor,
-    /// Multiplier on the rim color. Default `1`.
-    pub rim_strength: f32,
-    /// Exponent on `1 − N·V`. Default `2`.
-    pub rim_power: f32,
-    /// The rim only where lights reach. Default `false`.
-    pub rim_lit_side: bool,
-    /// Unlit color. Default black.
-    pub emissive: SceneColor,
-    /// `Opaque`, `Mask(cutoff)` or `Blend`. Default `Opaque`.
-    pub alpha_mode: AlphaModeDescription,
-    /// Path of the base color map. Default none.
-    pub base_color_texture: Option<String>,
-    /// Path of the specular map. Default none.
-    pub specular_texture: Option<String>,
-    /// Path of the emissive map. Default none.
-    pub emissive_texture: Option<String>,
-    /// Path of the alpha map (green channel, loaded as linear data). Default none.
-    pub alpha_map_texture: Option<String>,
-    /// Path of the tangent-space normal map. Default none.
-    pub normal_map_texture: Option<String>,
-    /// Negate the normal map's green channel. Default `false`.
-    pub flip_normal_map_y: bool,
-    /// Path of the bump (height) map (red channel, loaded as linear data). Default none.
-    pub bump_map_texture: Option<String>,
-    /// How far a height step of 1 between neighbouring texels tilts the normal. Default `1`.
-    pub bump_scale: f32,
-    /// Path of the displacement map (red channel, loaded as linear data). Default none.
-    pub displacement_map: Option<String>,
-    /// How far a texel of 1 moves a vertex along its normal, local units. Default `1`.
-    pub displacement_scale: f32,
-    /// Added to every vertex's displacement, local units. Default `0`.
-    pub displacement_bias: f32,
-    /// Light each triangle with its face's normal. Default `false`.
-    pub flat_shading: bool,
-    /// Draw back faces too, their normal negated. Default `false`.
-    pub double_sided: bool,
-    /// How the UVs move before the maps are sampled. Default none.
-    pub uv_transform: UvTransformDescription,
-    /// Draw without light: `emissive + base_color`. Default `false`.
-    pub unlit: bool,
-    /// Whether the camera's fog applies. Default `true`.
-    pub fog_enabled: bool,
-    /// The faces not drawn: `Back`, `Front` or `Neither`. Default `Back`.
-    pub cull_mode: CullModeDescription,
-    /// Depth bias, in the depth buffer's steps (positive: toward the camera). Default `0`.
-    pub depth_bias: f32,
-    /// Path of the light map (loaded as sRGB). Default none.
-    pub light_map_texture: Option<String>,
-    /// Multiplier on the light map. Default `1`.
-    pub light_map_intensity: f32,
-    /// The light map's UV set: `Uv0` or `Uv1`. Default `Uv1`.
-    pub light_map_channel: UvChannelDescription,
-    /// Path of the ambient occlusion map (red channel, loaded as linear data). Default none.
-    pub ao_map_texture: Option<String>,
-    /// How much the AO map occludes. Default `1`.
-    pub ao_map_intensity: f32,
-    /// The AO map's UV set: `Uv0` or `Uv1`. Default `Uv0`.
-    pub ao_map_channel: UvChannelDescription,
-    /// Path of the environment cube map (a file that holds a cube, such as KTX2 or DDS;
-    /// loaded with the image loader's defaults). Default none.
-    pub environment_map: Option<String>,
-    /// Reflect the camera's Bevy `EnvironmentMapLight` where there is no
-    /// `environment_map`. Default `false`.
-    pub camera_environment: bool,
-    /// `Multiply`, `Mix` or `Add`. Default `Multiply`.
-    pub environment_combine: EnvironmentCombine,
-    /// The environment's weight. Default `1`.
-    pub reflectivity: f32,
-    /// `Some(ratio)` refracts the view ray instead of reflecting it. Default `None`.
-    pub refraction_ratio: Option<f32>,
-}
 
 /// A mesh's UV set, as a file names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -214,136 +102,262 @@ pub enum AlphaModeDescription {
     Blend,
 }
 
-impl Default for PhongMaterialDescription {
-    fn default() -> Self {
-        let material = PhongMaterial::default();
-        Self {
-            base_color: SceneColor::white(),
-            ambient_factor: material.ambient_factor,
-            specular_color: SceneColor::white(),
-            specular_strength: material.specular_strength,
-            shininess: material.shininess,
-            specular_model: material.specular_model,
-            diffuse_mode: material.diffuse_mode,
-            toon_ramp_texture: None,
-            specular_mode: material.specular_mode,
-            rim_color: SceneColor::black(),
-            rim_strength: material.rim_strength,
-            rim_power: material.rim_power,
-            rim_lit_side: material.rim_lit_side,
-            emissive: SceneColor::black(),
-            alpha_mode: AlphaModeDescription::Opaque,
-            base_color_texture: None,
-            specular_texture: None,
-            emissive_texture: None,
-            alpha_map_texture: None,
-            normal_map_texture: None,
-            flip_normal_map_y: false,
-            bump_map_texture: None,
-            bump_scale: material.bump_scale,
-            displacement_map: None,
-            displacement_scale: material.displacement_scale,
-            displacement_bias: material.displacement_bias,
-            flat_shading: material.flat_shading,
-            double_sided: false,
-            uv_transform: UvTransformDescription::default(),
-            unlit: material.unlit,
-            fog_enabled: material.fog_enabled,
-            cull_mode: CullModeDescription::Back,
-            depth_bias: material.depth_bias,
-            light_map_texture: None,
-            light_map_intensity: material.light_map_intensity,
-            light_map_channel: UvChannelDescription::Uv1,
-            ao_map_texture: None,
-            ao_map_intensity: material.ao_map_intensity,
-            ao_map_channel: UvChannelDescription::Uv0,
-            environment_map: None,
-            camera_environment: material.camera_environment,
-            environment_combine: material.environment_combine,
-            reflectivity: material.reflectivity,
-            refraction_ratio: material.refraction_ratio,
+/// Declares [`PhongMaterialDescription`], its default and its conversion to a
+/// [`PhongMaterial`] from the rows of `material_maps!`: each texture map is a path
+/// (`Option<String>`) named as the material's field, loaded as the row says.
+macro_rules! material_description {
+    ($(
+        $field:ident: texture($($texture:tt)*) $(sampler($($sampler:tt)*))?,
+        $devices:ident, $file:ident, $what:literal;
+    )*) => {
+        /// A [`PhongMaterial`] as written in a file; every field is optional and defaults to
+        /// `PhongMaterial::default()`'s value.
+        ///
+        /// ```ron
+        /// (
+        ///     base_color: Srgb(1.0, 0.0, 1.0),
+        ///     specular_strength: 2.0,
+        ///     shininess: 50.0,
+        ///     base_color_texture: Some("textures/crate.png"),
+        ///     uv_transform: (scale: (2.0, 2.0), rotation: 0.5, offset: (0.25, 0.0)),
+        /// )
+        /// ```
+        ///
+        /// Texture paths are relative to the file that names them; each map's field says how
+        /// its image is loaded (as sRGB color or as linear data, `is_srgb: false`).
+        #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+        #[serde(default, deny_unknown_fields)]
+        pub struct PhongMaterialDescription {
+            /// `k_d` and alpha. Default white.
+            pub base_color: SceneColor,
+            /// `k_a`. Default `1`.
+            pub ambient_factor: f32,
+            /// `k_s`. Default white.
+            pub specular_color: SceneColor,
+            /// Multiplier on `k_s`. Default `1`.
+            pub specular_strength: f32,
+            /// `α`. Default `32`.
+            pub shininess: f32,
+            /// `Phong` or `BlinnPhong`. Default `Phong`.
+            pub specular_model: SpecularModel,
+            /// `Lambert`, `Wrap(w)` or `Toon(bands: n, smoothing: s)`. Default `Lambert`.
+            pub diffuse_mode: DiffuseMode,
+            /// `Smooth`, `Toon(smoothing: s)` or `Off`. Default `Smooth`.
+            pub specular_mode: SpecularMode,
+            /// The rim light's color. Default black (no rim).
+            pub rim_color: SceneColor,
+            /// Multiplier on the rim color. Default `1`.
+            pub rim_strength: f32,
+            /// Exponent on `1 − N·V`. Default `2`.
+            pub rim_power: f32,
+            /// The rim only where lights reach. Default `false`.
+            pub rim_lit_side: bool,
+            /// Unlit color. Default black.
+            pub emissive: SceneColor,
+            /// `Opaque`, `Mask(cutoff)` or `Blend`. Default `Opaque`.
+            pub alpha_mode: AlphaModeDescription,
+            /// Negate the normal map's green channel. Default `false`.
+            pub flip_normal_map_y: bool,
+            /// How far a height step of 1 between neighbouring texels tilts the normal. Default
+            /// `1`.
+            pub bump_scale: f32,
+            /// How far a texel of 1 moves a vertex along its normal, local units. Default `1`.
+            pub displacement_scale: f32,
+            /// Added to every vertex's displacement, local units. Default `0`.
+            pub displacement_bias: f32,
+            /// Light each triangle with its face's normal. Default `false`.
+            pub flat_shading: bool,
+            /// Draw back faces too, their normal negated. Default `false`.
+            pub double_sided: bool,
+            /// How the UVs move before the maps are sampled. Default none.
+            pub uv_transform: UvTransformDescription,
+            /// Draw without light: `emissive + base_color`. Default `false`.
+            pub unlit: bool,
+            /// Whether the camera's fog applies. Default `true`.
+            pub fog_enabled: bool,
+            /// The faces not drawn: `Back`, `Front` or `Neither`. Default `Back`.
+            pub cull_mode: CullModeDescription,
+            /// Depth bias, in the depth buffer's steps (positive: toward the camera). Default `0`.
+            pub depth_bias: f32,
+            /// Multiplier on the light map. Default `1`.
+            pub light_map_intensity: f32,
+            /// The light map's UV set: `Uv0` or `Uv1`. Default `Uv1`.
+            pub light_map_channel: UvChannelDescription,
+            /// How much the AO map occludes. Default `1`.
+            pub ao_map_intensity: f32,
+            /// The AO map's UV set: `Uv0` or `Uv1`. Default `Uv0`.
+            pub ao_map_channel: UvChannelDescription,
+            /// Reflect the camera's Bevy `EnvironmentMapLight` where there is no
+            /// `environment_map`. Default `false`.
+            pub camera_environment: bool,
+            /// `Multiply`, `Mix` or `Add`. Default `Multiply`.
+            pub environment_combine: EnvironmentCombine,
+            /// The environment's weight. Default `1`.
+            pub reflectivity: f32,
+            /// `Some(ratio)` refracts the view ray instead of reflecting it. Default `None`.
+            pub refraction_ratio: Option<f32>,
+            $(
+                #[doc = concat!(
+            "Path of ", $what, " (", loaded_as!($file), "), relative to the file. Default none."
+        )]
+                pub $field: Option<String>,
+            )*
         }
-    }
+
+        impl Default for PhongMaterialDescription {
+            fn default() -> Self {
+                let material = PhongMaterial::default();
+                Self {
+                    base_color: SceneColor::white(),
+                    ambient_factor: material.ambient_factor,
+                    specular_color: SceneColor::white(),
+                    specular_strength: material.specular_strength,
+                    shininess: material.shininess,
+                    specular_model: material.specular_model,
+                    diffuse_mode: material.diffuse_mode,
+                    specular_mode: material.specular_mode,
+                    rim_color: SceneColor::black(),
+                    rim_strength: material.rim_strength,
+                    rim_power: material.rim_power,
+                    rim_lit_side: material.rim_lit_side,
+                    emissive: SceneColor::black(),
+                    alpha_mode: AlphaModeDescription::Opaque,
+                    flip_normal_map_y: false,
+                    bump_scale: material.bump_scale,
+                    displacement_scale: material.displacement_scale,
+                    displacement_bias: material.displacement_bias,
+                    flat_shading: material.flat_shading,
+                    double_sided: false,
+                    uv_transform: UvTransformDescription::default(),
+                    unlit: material.unlit,
+                    fog_enabled: material.fog_enabled,
+                    cull_mode: CullModeDescription::Back,
+                    depth_bias: material.depth_bias,
+                    light_map_intensity: material.light_map_intensity,
+                    light_map_channel: UvChannelDescription::Uv1,
+                    ao_map_intensity: material.ao_map_intensity,
+                    ao_map_channel: UvChannelDescription::Uv0,
+                    camera_environment: material.camera_environment,
+                    environment_combine: material.environment_combine,
+                    reflectivity: material.reflectivity,
+                    refraction_ratio: material.refraction_ratio,
+                    $($field: None,)*
+                }
+            }
+        }
+
+        impl PhongMaterialDescription {
+            /// The material, its textures loaded relative to the file being loaded. `field`
+            /// names where the description sits in that file, for errors.
+            pub(crate) fn to_material(
+                &self,
+                field: &str,
+                load_context: &mut LoadContext,
+            ) -> Result<PhongMaterial, SceneFileError> {
+                // `objects[0].material.base_color` in a scene, `base_color` in a material file.
+                let at = |name: &str| match field {
+                    "" => name.to_owned(),
+                    _ => format!("{field}.{name}"),
+                };
+                let color =
+                    |name: &str, color: &SceneColor| scene_color(load_context, color, at(name));
+                let base_color = color("base_color", &self.base_color)?;
+                let specular_color = color("specular_color", &self.specular_color)?;
+                let emissive = color("emissive", &self.emissive)?.to_linear();
+                let rim_color = color("rim_color", &self.rim_color)?.to_linear();
+                Ok(PhongMaterial {
+                    base_color,
+                    ambient_factor: self.ambient_factor,
+                    specular_color,
+                    specular_strength: self.specular_strength,
+                    shininess: self.shininess,
+                    specular_model: self.specular_model,
+                    diffuse_mode: self.diffuse_mode,
+                    specular_mode: self.specular_mode,
+                    rim_color,
+                    rim_strength: self.rim_strength,
+                    rim_power: self.rim_power,
+                    rim_lit_side: self.rim_lit_side,
+                    emissive,
+                    alpha_mode: match self.alpha_mode {
+                        AlphaModeDescription::Opaque => AlphaMode::Opaque,
+                        AlphaModeDescription::Mask(cutoff) => AlphaMode::Mask(cutoff),
+                        AlphaModeDescription::Blend => AlphaMode::Blend,
+                    },
+                    flip_normal_map_y: self.flip_normal_map_y,
+                    bump_scale: self.bump_scale,
+                    displacement_scale: self.displacement_scale,
+                    displacement_bias: self.displacement_bias,
+                    flat_shading: self.flat_shading,
+                    double_sided: self.double_sided,
+                    uv_transform: self.uv_transform.to_affine2(),
+                    unlit: self.unlit,
+                    fog_enabled: self.fog_enabled,
+                    cull_mode: self.cull_mode.to_face(),
+                    depth_bias: self.depth_bias,
+                    light_map_intensity: self.light_map_intensity,
+                    light_map_channel: self.light_map_channel.to_channel(),
+                    ao_map_intensity: self.ao_map_intensity,
+                    ao_map_channel: self.ao_map_channel.to_channel(),
+                    camera_environment: self.camera_environment,
+                    environment_combine: self.environment_combine,
+                    reflectivity: self.reflectivity,
+                    refraction_ratio: self.refraction_ratio,
+                    // The app's, which the plugin sets.
+                    scene_variants: Default::default(),
+                    $($field: load_map(
+                        load_context,
+                        self.$field.as_deref(),
+                        &at(stringify!($field)),
+                        MapFile::$file,
+                    )?,)*
+                })
+            }
+        }
+    };
 }
 
-impl PhongMaterialDescription {
-    /// The material, its textures loaded relative to the file being loaded. `field` names
-    /// where the description sits in that file, for errors.
-    pub(crate) fn to_material(
-        &self,
-        field: &str,
-        load_context: &mut LoadContext,
-    ) -> Result<PhongMaterial, SceneFileError> {
-        // `objects[0].material.base_color` in a scene, `base_color` in a material file.
-        let at = |name: &str| match field {
-            "" => name.to_owned(),
-            _ => format!("{field}.{name}"),
-        };
-        let color = |name: &str, color: &SceneColor| scene_color(load_context, color, at(name));
-        let base_color = color("base_color", &self.base_color)?;
-        let specular_color = color("specular_color", &self.specular_color)?;
-        let emissive = color("emissive", &self.emissive)?.to_linear();
-        let rim_color = color("rim_color", &self.rim_color)?.to_linear();
-        let mut map = |path: &Option<String>, name: &str, srgb: bool| {
-            load_texture(load_context, path.as_deref(), &at(name), srgb)
-        };
-        Ok(PhongMaterial {
-            base_color,
-            ambient_factor: self.ambient_factor,
-            specular_color,
-            specular_strength: self.specular_strength,
-            shininess: self.shininess,
-            specular_model: self.specular_model,
-            diffuse_mode: self.diffuse_mode,
-            specular_mode: self.specular_mode,
-            rim_color,
-            rim_strength: self.rim_strength,
-            rim_power: self.rim_power,
-            rim_lit_side: self.rim_lit_side,
-            emissive,
-            alpha_mode: match self.alpha_mode {
-                AlphaModeDescription::Opaque => AlphaMode::Opaque,
-                AlphaModeDescription::Mask(cutoff) => AlphaMode::Mask(cutoff),
-                AlphaModeDescription::Blend => AlphaMode::Blend,
-            },
-            base_color_texture: map(&self.base_color_texture, "base_color_texture", true)?,
-            specular_texture: map(&self.specular_texture, "specular_texture", false)?,
-            emissive_texture: map(&self.emissive_texture, "emissive_texture", true)?,
-            alpha_map_texture: map(&self.alpha_map_texture, "alpha_map_texture", false)?,
-            normal_map_texture: map(&self.normal_map_texture, "normal_map_texture", false)?,
-            flip_normal_map_y: self.flip_normal_map_y,
-            bump_map_texture: map(&self.bump_map_texture, "bump_map_texture", false)?,
-            toon_ramp_texture: map(&self.toon_ramp_texture, "toon_ramp_texture", false)?,
-            bump_scale: self.bump_scale,
-            displacement_map: map(&self.displacement_map, "displacement_map", false)?,
-            displacement_scale: self.displacement_scale,
-            displacement_bias: self.displacement_bias,
-            flat_shading: self.flat_shading,
-            double_sided: self.double_sided,
-            uv_transform: self.uv_transform.to_affine2(),
-            unlit: self.unlit,
-            fog_enabled: self.fog_enabled,
-            cull_mode: self.cull_mode.to_face(),
-            depth_bias: self.depth_bias,
-            light_map_texture: map(&self.light_map_texture, "light_map_texture", true)?,
-            light_map_intensity: self.light_map_intensity,
-            light_map_channel: self.light_map_channel.to_channel(),
-            ao_map_texture: map(&self.ao_map_texture, "ao_map_texture", false)?,
-            ao_map_intensity: self.ao_map_intensity,
-            ao_map_channel: self.ao_map_channel.to_channel(),
-            environment_map: self
-                .environment_map
-                .as_deref()
-                .map(|path| relative_path(load_context, path, at("environment_map")))
-                .transpose()?
-                .map(|resolved| load_context.load(resolved)),
-            camera_environment: self.camera_environment,
-            environment_combine: self.environment_combine,
-            reflectivity: self.reflectivity,
-            refraction_ratio: self.refraction_ratio,
-            // The app's, which the plugin sets.
-            scene_variants: Default::default(),
-        })
+/// How a map's image is loaded, in words, for the description's documentation.
+macro_rules! loaded_as {
+    (Srgb) => {
+        "loaded as sRGB"
+    };
+    (Linear) => {
+        "loaded as linear data"
+    };
+    (AsLoaded) => {
+        "loaded with the image loader's defaults"
+    };
+}
+
+material_maps!(material_description);
+
+/// How a material file loads a map's image (`material_maps!`'s `file`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum MapFile {
+    /// As sRGB color.
+    Srgb,
+    /// As linear data (`is_srgb: false`).
+    Linear,
+    /// With the image loader's defaults (a file that says what it holds, such as a cube).
+    AsLoaded,
+}
+
+/// Starts loading the map at `path` (relative to the file being loaded) as `file` says;
+/// `field` names it for errors.
+fn load_map(
+    load_context: &mut LoadContext,
+    path: Option<&str>,
+    field: &str,
+    file: MapFile,
+) -> Result<Option<Handle<Image>>, SceneFileError> {
+    match file {
+        MapFile::Srgb => load_texture(load_context, path, field, true),
+        MapFile::Linear => load_texture(load_context, path, field, false),
+        MapFile::AsLoaded => path
+            .map(|path| relative_path(load_context, path, field))
+            .transpose()
+            .map(|resolved| resolved.map(|resolved| load_context.load(resolved))),
     }
 }
 

@@ -209,6 +209,38 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
 }
 
 #[test]
+fn each_material_map_has_its_declared_binding_where_its_devices_bind_it() {
+    // `material_maps!` declares each map's binding; the WGSL variable of the map's name must
+    // sit there, on every device for a map every device binds, and only with storage buffers
+    // for the others.
+    let needed = PhongSceneBindings::STORAGE_BUFFERS_NEEDED;
+    let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
+    let maps = bevy_phong::testing::material_map_bindings();
+    assert_eq!(maps.len(), 11, "the material's eleven maps");
+    for storage_buffers in [needed, needed - 1] {
+        let mut defs = variants::plain_material().swap_remove(0).defs;
+        defs.extend(device_defs(storage_buffers));
+        // The fragment stage's maps, and the vertex stage's displacement map.
+        let modules = ["bindings", "displacement"]
+            .map(|name| library().module(&format!("bevy_phong::shaders::{name}"), &defs));
+        for &(field, binding, every_device) in &maps {
+            let variable = modules
+                .iter()
+                .flat_map(|module| module.global_variables.iter())
+                .map(|(_, variable)| variable)
+                .find(|variable| variable.name.as_deref() == Some(field));
+            let expected = (storage_buffers == needed || every_device)
+                .then_some(naga::ResourceBinding { group, binding });
+            assert_eq!(
+                variable.and_then(|variable| variable.binding),
+                expected,
+                "{field} with {storage_buffers} storage buffers"
+            );
+        }
+    }
+}
+
+#[test]
 fn every_data_texture_has_the_rust_width() {
     let module = library().module("bevy_phong::shaders::data_texture", &[]);
     assert_eq!(

@@ -1,0 +1,56 @@
+//! The texture maps of a [`PhongMaterial`](super::PhongMaterial), each declared once: its
+//! field, its bindings (the texture's and its sampler's, as Bevy's `AsBindGroup` attributes
+//! take them), the devices that bind it, how a material file loads its image, and what it
+//! is. The material's bind group (`render::material_bindings`) and its file syntax
+//! (`scene::material_file`) are made from this table; the shader's side is
+//! `bevy_phong::shaders::bindings`, which a test compares with the layout.
+
+/// Which devices bind a map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MapDevices {
+    /// Every device, WebGL2 included.
+    All,
+    /// Devices with the storage buffers of the scene data; WebGL2's 16 textures a shader
+    /// stage leave no room for the map (it is left out there, with a warning).
+    Full,
+}
+
+/// Calls the macro `$then` with one row per texture map of [`PhongMaterial`]:
+/// `field: texture(binding, options) sampler(binding, options), devices, file, "what"`,
+/// where the texture's and sampler's parentheses hold what Bevy's `AsBindGroup` derive
+/// takes, a map read texel by texel has no sampler, `devices` is a [`MapDevices`], `file`
+/// says how a material file loads the image (`Srgb`, `Linear` data, or `AsLoaded`: with
+/// the image loader's defaults, for a file that says what it holds), and `what` names the
+/// map in documentation.
+///
+/// [`PhongMaterial`]: super::PhongMaterial
+macro_rules! material_maps {
+    ($then:ident) => {
+        $then! {
+            base_color_texture: texture(3) sampler(4), All, Srgb,
+                "the base color map";
+            specular_texture: texture(5) sampler(6), All, Linear,
+                "the specular map";
+            emissive_texture: texture(7) sampler(8), All, Srgb,
+                "the emissive map";
+            normal_map_texture: texture(9) sampler(10), All, Linear,
+                "the tangent-space normal map";
+            light_map_texture: texture(14) sampler(15), All, Srgb,
+                "the light map";
+            ao_map_texture: texture(16) sampler(17), All, Linear,
+                "the ambient occlusion map (red channel)";
+            alpha_map_texture: texture(18) sampler(19), Full, Linear,
+                "the alpha map (green channel)";
+            environment_map: texture(20, dimension = "cube") sampler(21), Full, AsLoaded,
+                "the environment cube map (a file that holds a cube, such as KTX2 or DDS)";
+            bump_map_texture: texture(22) sampler(23), Full, Linear,
+                "the bump (height) map (red channel)";
+            displacement_map: texture(24, visibility(vertex)) sampler(25, visibility(vertex)),
+                All, Linear,
+                "the displacement map (red channel), read in the vertex stage";
+            toon_ramp_texture: texture(27), Full, Linear,
+                "the toon ramp (red channel, read texel by texel), used with a `Toon` diffuse mode";
+        }
+    };
+}
+pub(crate) use material_maps;
