@@ -14,10 +14,11 @@
 //! cargo run --example bench -- --growth   # only how frame time grows with lights and size
 //! cargo run --example bench -- --materials  # only the material features (see features.rs)
 //! cargo run --example bench -- --stylized   # only the stylized modes (see features.rs)
+//! cargo run --example bench -- --lamps      # only the street lamps (see lamps.rs; --size N)
 //! ```
 //!
 //! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`,
-//! `--materials`, `--stylized`)
+//! `--materials`, `--stylized`, `--lamps`)
 //! combine: with any of them, the run measures those tables and no other.
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -53,6 +54,7 @@ mod ablation;
 mod accuracy;
 mod features;
 mod growth;
+mod lamps;
 mod plot;
 mod scene;
 mod timing;
@@ -134,10 +136,14 @@ impl Options {
                     lights: 256,
                     far: 60_000,
                 }),
+                lamps if lamps.starts_with("lamps") => {
+                    lamps::Lamps::from_name(lamps).map(Scene::Lamps)
+                }
                 other => {
                     eprintln!(
                         "unknown scene {other}: showcase, field16, field256, field4096, \
-                         wide3840 or wide60000"
+                         wide3840, wide60000, or lamps with any of -cookies, -shadows, -far \
+                         (in that order)"
                     );
                     None
                 }
@@ -216,6 +222,8 @@ struct Tables {
     materials: bool,
     /// The stylized modes.
     stylized: bool,
+    /// The street lamps with cookies and shadows, near and far.
+    lamps: bool,
 }
 
 impl Tables {
@@ -227,6 +235,7 @@ impl Tables {
         growth: true,
         materials: true,
         stylized: true,
+        lamps: true,
     };
 
     /// The tables whose flags are in `args`, or all of them when none is.
@@ -240,6 +249,7 @@ impl Tables {
             growth: named("--growth"),
             materials: named("--materials"),
             stylized: named("--stylized"),
+            lamps: named("--lamps"),
         };
         let any = picked.frame_times
             || picked.shadows
@@ -247,7 +257,8 @@ impl Tables {
             || picked.ablation
             || picked.growth
             || picked.materials
-            || picked.stylized;
+            || picked.stylized
+            || picked.lamps;
         if any { picked } else { Self::ALL }
     }
 }
@@ -345,6 +356,20 @@ fn main() {
     }
     if tables.stylized {
         stylized_costs(&options, directory);
+    }
+    if tables.lamps {
+        lamps::table(
+            options
+                .sizes
+                .first()
+                .copied()
+                .unwrap_or(256)
+                .min(options.shadow_size),
+            options.rounds.min(3),
+            options.frames,
+            options.culling,
+            directory,
+        );
     }
 }
 
@@ -671,6 +696,7 @@ fn frame_times(options: &Options, directory: &Path) {
                 Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => 3,
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
                 Scene::WideWorld { lights, far } => lights + far,
+                Scene::Lamps(lamps) => lamps.light_count(),
             };
             for (offset, time) in times.iter().enumerate() {
                 series[first_series + offset]

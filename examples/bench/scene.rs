@@ -10,6 +10,7 @@ use bevy::{
 use bevy_phong::prelude::*;
 
 use crate::features::{self, Features};
+use crate::lamps::{self, Lamps};
 
 /// What the scene's meshes are made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,6 +45,8 @@ pub enum Scene {
     WideWorld { lights: usize, far: usize },
     /// The showcase with a group of material features on (`features.rs`).
     Featured(Features),
+    /// Street lamps over the field (`lamps.rs`).
+    Lamps(Lamps),
 }
 
 impl Scene {
@@ -69,6 +72,7 @@ impl Scene {
                 counted_point_lights(lights)
             ),
             Scene::Featured(features) => format!("showcase, {}", features.name()),
+            Scene::Lamps(lamps) => lamps.name(),
         }
     }
 
@@ -111,7 +115,7 @@ fn counted_point_lights(count: usize) -> String {
 
 /// Edge length of every shadow map, both materials' (Bevy's directional and point light
 /// maps), texels.
-const SHADOW_MAP_SIZE: u32 = 1024;
+pub const SHADOW_MAP_SIZE: u32 = 1024;
 
 /// A material whose fragment shader returns a constant color.
 #[derive(Asset, AsBindGroup, TypePath, Clone)]
@@ -128,7 +132,7 @@ impl Material for ConstantColor {
 
 /// A small deterministic generator for light positions and colors: the R2 sequence (evenly
 /// spread over the unit square) and a golden-ratio sequence.
-fn scatter(i: usize) -> (f32, f32, f32) {
+pub fn scatter(i: usize) -> (f32, f32, f32) {
     let t = i as f32;
     (
         (0.5 + t * 0.754_877_7).fract(),
@@ -233,6 +237,7 @@ fn point_lights(scene: Scene) -> Vec<Light> {
             near
         }
         Scene::FieldWithoutRanges { lights } => field(lights, Decay::quadratic(4.0), None),
+        Scene::Lamps(_) => Vec::new(),
     }
 }
 
@@ -365,5 +370,8 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
     }
     if let Scene::Featured(group) = scene {
         features::apply(world, group, shading);
+    }
+    if let Scene::Lamps(lamps) = scene {
+        lamps::spawn_lamps(world, lamps, shading);
     }
 }

@@ -82,8 +82,8 @@ macro_rules! built_in_record {
 }
 
 /// What every kind that fades with distance (point, spot) does alike: it shares ε, reaches
-/// as far as its range and its influence radius allow, and is clustered where it reaches a
-/// finite sphere and casts no shadow and no cookie (the clusters' loop applies neither).
+/// as far as its range and its influence radius allow, and is clustered where that is a
+/// finite sphere, shadow and cookie or not (the clusters' loop applies both).
 macro_rules! fading_reach {
     () => {
         const SHARES_EPSILON: bool = true;
@@ -97,8 +97,7 @@ macro_rules! fading_reach {
         }
 
         fn bounding_sphere(record: &GpuLight, reach: f32) -> Option<BoundingSphere> {
-            (record.shadow == 0 && reach < f32::MAX)
-                .then(|| BoundingSphere::new(Vec3::from(record.position), reach))
+            (reach < f32::MAX).then(|| BoundingSphere::new(Vec3::from(record.position), reach))
         }
     };
 }

@@ -346,12 +346,6 @@ pub fn is_finite_sphere(center: Vec3, radius: f32) -> bool {
     radius < f32::MAX && (center - radius).is_finite() && (center + radius).is_finite()
 }
 
-/// Whether `light` (a point or spot light) has a finite sphere of reach that clusters can
-/// hold.
-pub fn has_finite_reach(light: &GpuLight) -> bool {
-    is_finite_sphere(Vec3::from(light.position), light.range)
-}
-
 /// `u32` words of each cluster record for `slots` slots: the start of each slot's entries
 /// and the end of the last, padded to whole 16-byte texels.
 pub fn cluster_words(slots: usize) -> usize {

@@ -2,12 +2,8 @@
 //! into the light buffer.
 
 use super::{
-    PHONG_LIGHT_BUFFER,
-    clusters::{has_finite_reach, is_finite_sphere},
-    cookies::PhongCookies,
-    gpu_types::GpuLightsHeader,
-    light_records::indirect_light,
-    record_cache::RecordCache,
+    PHONG_LIGHT_BUFFER, clusters::is_finite_sphere, cookies::PhongCookies,
+    gpu_types::GpuLightsHeader, light_records::indirect_light, record_cache::RecordCache,
 };
 use crate::culling::PhongLightCulling;
 use crate::light_kind::{GpuLight, PhongLightKind};
@@ -236,14 +232,8 @@ fn push_cached<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
         if reach > 0.0 {
             slots.set::<L>(&mut record, entity);
             L::set_reach(&mut record, reach);
-            let sphere = (clusters && reach.is_finite())
-                .then(|| L::bounding_sphere(&record, reach))
-                .flatten();
             pushed.kept += 1;
-            pushed.clustered += usize::from(
-                sphere
-                    .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius())),
-            );
+            pushed.clustered += usize::from(has_sphere::<L>(clusters, &record, reach));
             records.push(record);
         }
     }
@@ -251,12 +241,20 @@ fn push_cached<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
     pushed
 }
 
-/// Whether a built-in light's record, as [`push_cached`] wrote it, goes into the clusters:
-/// those of finite reach that cast no shadow and no cookie (as
-/// [`PhongLightKind::bounding_sphere`] of the point and spot lights says), where the culling
-/// has [`PhongLightCulling::clusters`].
+/// Whether a light of kind `L` that reaches `reach` goes into the clusters: with `clusters`
+/// ([`PhongLightCulling::clusters`]), where its kind gives a finite bounding sphere for that
+/// reach ([`PhongLightKind::bounding_sphere`]), whatever shadow or cookie it has.
+fn has_sphere<L: PhongLightKind>(clusters: bool, record: &L::Gpu, reach: f32) -> bool {
+    (clusters && reach.is_finite())
+        .then(|| L::bounding_sphere(record, reach))
+        .flatten()
+        .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
+}
+
+/// Whether a point or spot light's record, as [`push_cached`] wrote it (its reach in
+/// `range`), goes into the clusters ([`has_sphere`]; the two kinds share their sphere).
 fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
-    culling.clusters && has_finite_reach(light) && light.shadow == 0
+    has_sphere::<PhongPointLight>(culling.clusters, light, light.range)
 }
 
 /// Puts the point lights (`points.kept` records from `records[first]`) and the spot lights
@@ -346,8 +344,8 @@ pub fn gather_lights(
         cookies: &cookies,
     };
     let directional_count = push_visible(&directional, light_slots, records);
-    // Unlimited reach first (every fragment loops over them), then the clustered lights (the
-    // clusters' loop applies no shadows, so shadow-casting lights stay out of it).
+    // Unlimited reach first (every fragment loops over them), then the clustered lights,
+    // shadows and cookies or not (the clusters' loop applies both).
     let clustered = |light: &GpuLight| clustered(&culling, light);
     // The point lights, then the spot lights, written once in place. ε bounds the sum of
     // what every skipped light leaves out: each of the `count` lit point and spot lights
@@ -698,35 +696,100 @@ mod tests {
     }
 
     #[test]
-    fn shadow_casting_lights_are_not_clustered() {
-        let mut app = test_app(|_| {});
+    fn cookied_and_shadow_casting_lights_are_listed_only_in_the_clusters_they_reach() {
+        use crate::render::{PhongLightClusters, VIEW_WORDS};
+        use crate::{PhongLightCookie, PhongShadows};
+        use bevy::{asset::AssetApp, image::Image, prelude::Camera3d};
+        let mut app = test_app(|app| {
+            app.init_asset::<Image>();
+        });
+        let image = app
+            .world_mut()
+            .resource_mut::<bevy::asset::Assets<Image>>()
+            .add(Image::default());
+        let cookie = PhongLightCookie {
+            image,
+            ..Default::default()
+        };
         let world = app.world_mut();
         world.spawn((
-            PhongPointLight {
-                range: Some(5.0),
-                ..Default::default()
-            },
-            Transform::from_xyz(0.0, 1.0, 0.0),
+            Camera3d::default(),
+            Transform::from_xyz(0.0, 2.0, 10.0).looking_at(Vec3::ZERO, Vec3::Y),
         ));
+        let spot = |x: f32| {
+            (
+                PhongSpotLight {
+                    range: Some(2.0),
+                    ..Default::default()
+                },
+                cookie.clone(),
+                Transform::from_xyz(x, 1.0, 0.0).looking_at(Vec3::new(x, 0.0, 0.0), Vec3::Z),
+            )
+        };
+        world.spawn(spot(-3.0));
+        world.spawn(spot(1000.0));
         world.spawn((
             PhongPointLight {
-                range: Some(5.0),
-                shadows: crate::PhongShadows::ON,
+                range: Some(2.0),
+                shadows: PhongShadows::ON,
                 ..Default::default()
             },
-            Transform::from_xyz(2.0, 1.0, 0.0),
+            Transform::from_xyz(3.0, 1.0, 0.0),
         ));
         app.update();
+
         let state = app.world().resource::<PhongLightBuffer>();
-        let header = state.header();
+        let header = *state.header();
         assert_eq!(
-            (header.point_count, header.clustered_point_count),
-            (1, 1),
-            "the shadow-casting light is in the unlimited run; the other is clustered"
+            [
+                header.point_count,
+                header.spot_count,
+                header.clustered_point_count,
+                header.clustered_spot_count
+            ],
+            [0, 0, 1, 2],
+            "no light is looped over by every fragment: all three are clustered"
         );
-        assert_eq!(state.records()[0].position, [2.0, 1.0, 0.0]);
-        assert_eq!(state.records()[0].shadow, 1, "its first view, plus one");
-        assert_eq!(state.records()[1].shadow, 0);
+        let index_at = |x: f32| {
+            state
+                .records()
+                .iter()
+                .position(|record| record.position[0] == x)
+                .unwrap() as u32
+        };
+        let (shadowed, near, far) = (index_at(3.0), index_at(-3.0), index_at(1000.0));
+        let records = state.records();
+        assert_eq!(
+            records[shadowed as usize].shadow, 1,
+            "its first view, plus one"
+        );
+        assert_ne!(records[near as usize].shadow >> GpuLight::COOKIE_SHIFT, 0);
+
+        let clusters = app.world().resource::<PhongLightClusters>();
+        assert_eq!(clusters.view_count(), 1);
+        let (data, words) = (clusters.data(), clusters.cluster_words() as usize);
+        let view = &data[..VIEW_WORDS];
+        let cluster_count = (view[2] * view[3] * view[4]) as usize;
+        let cluster_records = &data[data[1] as usize..][..cluster_count * words];
+        // Each cluster's entries: slot 0 the point lights, slot 1 the spot lights.
+        let clusters_listing = |light: u32| {
+            cluster_records
+                .chunks_exact(words)
+                .filter(|record| data[record[0] as usize..record[2] as usize].contains(&light))
+                .count()
+        };
+        let (near_clusters, shadowed_clusters) =
+            (clusters_listing(near), clusters_listing(shadowed));
+        assert!(
+            0 < near_clusters && near_clusters < cluster_count / 4,
+            "the cookied lamp in view is listed in the few clusters it reaches: {near_clusters} of \
+             {cluster_count}"
+        );
+        assert!(
+            0 < shadowed_clusters && shadowed_clusters < cluster_count / 4,
+            "the shadow-casting light too: {shadowed_clusters} of {cluster_count}"
+        );
+        assert_eq!(clusters_listing(far), 0, "the far cookied lamp in none");
     }
 
     #[test]

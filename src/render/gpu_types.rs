@@ -48,8 +48,7 @@ impl GpuCookie {
 /// point lights and `spot_count` spot lights of unlimited reach (every fragment loops over
 /// these), then `clustered_point_count` point lights and `clustered_spot_count` spot
 /// lights of finite reach, which fragments find through their view's clusters
-/// ([`GpuClustersHeader`]). Shadow-casting point and spot lights are never clustered (the
-/// clusters' loop applies no shadows).
+/// ([`GpuClustersHeader`]), with their shadows and cookies.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightsHeader {

@@ -149,7 +149,8 @@ impl PhongSceneBindings<'_> {
                 entry(
                     Self::COOKIE_ATLAS,
                     BindingType::Texture {
-                        sample_type: TextureSampleType::Float { filterable: true },
+                        // Linear `f32` texels, read one by one (the shader filters them).
+                        sample_type: TextureSampleType::Float { filterable: false },
                         view_dimension: TextureViewDimension::D2Array,
                         multisampled: false,
                     },

@@ -7,6 +7,8 @@
 //! tolerance is the frame tests' ([`TOLERANCE`]). Where a point light's ray is within 10⁻⁵
 //! (relative) of a cube edge, the device's `f32` may pick the other face: those pixels are
 //! not judged. Under WebGL2 the atlas is not bound: the lights are checked untinted.
+//! Cookied lamps of finite reach just outside the frustum are clustered, and tint what they
+//! reach inside it exactly.
 
 use crate::frames::SIZE;
 use crate::texture_maps::{assert_pixels_follow, expected_color};
@@ -17,7 +19,7 @@ use bevy::{
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
 use bevy_phong::{prelude::*, reference, testing::limits::COOKIE_RESOLUTION};
-use bevy_phong_headless::{Harness, pixel_model::near_a_cube_edge};
+use bevy_phong_headless::{CAMERA_POSITION, Harness, pixel_model::near_a_cube_edge};
 use glam::DVec3;
 
 /// A cookie image at the atlas's size, 8-bit sRGB: copied into the atlas unchanged.
@@ -157,6 +159,132 @@ fn cookies_tint_each_light_kind_as_the_reference_model_says() {
         harness,
         objects,
         "light cookies",
+        &|material, surface, pixel, inputs, images, _| {
+            let tinted = inputs.every_map_bound;
+            if tinted && near_a_cube_edge(from_point_light.transform_point3(surface.position)) {
+                return None;
+            }
+            let lights = reference::Lights {
+                ambient: DVec3::splat(0.05),
+                hemisphere: None,
+                lights: cookied
+                    .iter()
+                    .map(|(light, cookie)| match tinted {
+                        true => light.tinted(cookie.tint(surface.position)),
+                        false => *light,
+                    })
+                    .collect(),
+                others: Default::default(),
+            };
+            expected_color(material, surface, pixel, inputs, images, &lights)
+        },
+    );
+}
+
+#[test]
+fn cookied_lights_just_outside_the_frustum_are_clustered_and_tint_their_reach_exactly() {
+    // The harness camera looks at the origin from CAMERA_POSITION with Bevy's default
+    // perspective (vertical field of view 45°, square target): `half_width` is the view's
+    // half-extent at the origin's depth.
+    let forward = (-CAMERA_POSITION).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let half_width = std::f32::consts::FRAC_PI_8.tan() * CAMERA_POSITION.length();
+
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let spot_image = images.add(cookie_image(|x, y| {
+        [wave(x, 30.0), wave(y, 44.0), wave(x + 2 * y, 80.0)]
+    }));
+    let cube_image = images.add(cookie_image(|x, y| {
+        [wave(x + y, 50.0), (y & 0xff) as u8, (x & 0xff) as u8]
+    }));
+    // A spot lamp 1.2 past the view's right edge, aimed in and down, reaching 6 units; a
+    // point lamp 0.8 above its top edge, reaching 4.
+    let spot = PhongSpotLight {
+        color: Color::linear_rgb(1.4, 1.2, 1.0),
+        inner_angle: 30f32.to_radians(),
+        outer_angle: 45f32.to_radians(),
+        decay: Decay::new(1.0, 0.1, 0.05),
+        range: Some(6.0),
+        ..default()
+    };
+    let spot_at = Transform::from_translation(right * (half_width + 1.2) + Vec3::Y)
+        .looking_at(Vec3::new(0.5, -1.0, 0.0), Vec3::Y);
+    let point = PhongPointLight {
+        color: Color::linear_rgb(1.0, 0.9, 0.8),
+        decay: Decay::new(1.0, 0.1, 0.05),
+        range: Some(4.0),
+        ..default()
+    };
+    let point_at = Transform::from_translation(up * (half_width + 0.8));
+    let spot_cookie = PhongLightCookie {
+        image: spot_image,
+        ..default()
+    };
+    let cube_cookie = PhongLightCookie {
+        image: cube_image,
+        ..default()
+    };
+    world.spawn((spot.clone(), spot_at, spot_cookie.clone()));
+    world.spawn((point.clone(), point_at, cube_cookie.clone()));
+
+    let images = world.resource::<Assets<Image>>();
+    let cookie = |cookie: &PhongLightCookie, at: Transform, spot_angle, is_point| {
+        reference::Cookie::new(
+            cookie,
+            images.get(&cookie.image).unwrap(),
+            &GlobalTransform::from(at),
+            spot_angle,
+            is_point,
+        )
+        .expect("a readable cookie")
+    };
+    let cookied = [
+        (
+            reference::Light::spot(&spot, &GlobalTransform::from(spot_at)),
+            cookie(&spot_cookie, spot_at, Some(spot.outer_angle), false),
+        ),
+        (
+            reference::Light::point(&point, &GlobalTransform::from(point_at)),
+            cookie(&cube_cookie, point_at, None, true),
+        ),
+    ];
+    let from_point_light = cookied[1].1.light_from_world;
+    harness.settle();
+    assert_eq!(
+        crate::clusters::clustered_light_count(&mut harness),
+        2,
+        "both cookied lamps are in the clusters, not in every fragment's loop"
+    );
+    let objects = [
+        (
+            Plane3d::default().mesh().size(10.0, 10.0).into(),
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.8, 0.8),
+                shininess: 8.0,
+                ..default()
+            },
+        ),
+        (
+            Sphere::new(0.8).mesh().uv(48, 32),
+            Transform::from_xyz(1.0, -0.2, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.7, 0.75, 0.9),
+                shininess: 40.0,
+                ..default()
+            },
+        ),
+    ];
+    assert_pixels_follow(
+        harness,
+        objects,
+        "cookied lamps outside the frustum",
         &|material, surface, pixel, inputs, images, _| {
             let tinted = inputs.every_map_bound;
             if tinted && near_a_cube_edge(from_point_light.transform_point3(surface.position)) {

@@ -666,6 +666,42 @@ fn each_light_kind_alone_and_all_together_shadow_where_the_exact_rays_are_blocke
 }
 
 #[test]
+fn a_shadow_casting_light_just_outside_the_frustum_is_clustered_and_shadows_exactly() {
+    // The harness camera looks at the origin from CAMERA_POSITION with Bevy's default
+    // perspective (vertical field of view 45°, square target): a point light 0.8 above the
+    // view's top edge at the origin's depth, reaching 7 units into it.
+    let forward = (-CAMERA_POSITION).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let half_width = std::f32::consts::FRAC_PI_8.tan() * CAMERA_POSITION.length();
+    let position = up * (half_width + 0.8);
+    let (mut harness, scene) = harness();
+    let light = spawn_light(
+        &mut harness,
+        (
+            PhongPointLight {
+                color: Color::linear_rgb(0.9, 0.8, 0.7),
+                range: Some(7.0),
+                shadows: on(),
+                ..default()
+            },
+            Transform::from_translation(position),
+        ),
+        Toward::Point(position.as_dvec3()),
+        on(),
+    );
+    harness.settle();
+    assert_eq!(
+        crate::clusters::clustered_light_count(&mut harness),
+        1,
+        "the shadow-casting light is in the clusters, not in every fragment's loop"
+    );
+    let inputs = harness.capture_inputs();
+    judge(&mut harness, &scene, &[light], &EVERYONE, &inputs)
+        .assert_holds("a shadow-casting light outside the frustum");
+}
+
+#[test]
 fn a_directional_light_holds_across_its_cascade_splits() {
     let (mut harness, scene) = harness();
     // Splits at 4.6, 6.3 and 8.6 units from the camera: the floor crosses all three.
