@@ -756,10 +756,16 @@ fn time_against_error(options: &Options, directory: &Path) {
             error * 255.0
         );
         let _ = writeln!(csv, "{},{time:.3},{error:.3e}", variant.name);
-        series.push(plot::Series {
-            label: variant.name,
+        let (scene_name, label) = variant
+            .name
+            .split_once(": ")
+            .unwrap_or(("", variant.name.as_str()));
+        series.push(plot::Choice {
+            label: label.to_string(),
+            scene: format!("{scene_name} ({})", scene.name()),
             // Exact variants still carry f32 rounding; the floor keeps them on a log axis.
-            points: vec![(error.max(1e-9), time)],
+            error: error.max(1e-9),
+            time,
         });
     }
     println!(
@@ -768,7 +774,7 @@ fn time_against_error(options: &Options, directory: &Path) {
         accuracy::ERROR_SIZE
     );
     write(&directory.join("time_vs_error.csv"), &csv);
-    plot::points(
+    plot::pareto(
         &directory.join("time_vs_error.png"),
         &format!("Run time against error: field of {lights} point lights, {size}x{size}"),
         "largest error against the f64 model (1/255 is one 8-bit step)",
