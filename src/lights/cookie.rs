@@ -30,9 +30,9 @@ use bevy::{
 ///
 /// The light's diffuse and specular colors are multiplied by the image's color there
 /// (bilinear between texels, clamped to `[0, 1]`: a cookie only takes light away), or by its
-/// red channel alone with [`red_only`](Self::red_only). The image is resampled to
-/// `COOKIE_RESOLUTION` texels square in 8-bit sRGB and copied into the crate's cookie atlas,
-/// its texels decoded to linear `f32` (1 MiB a layer; see SPEC.md, "Light cookies").
+/// red channel alone with [`red_only`](Self::red_only). The image is copied into the crate's
+/// cookie atlas, each layer `COOKIE_RESOLUTION` texels
+/// square, as 8-bit sRGB (see SPEC.md, "Light cookies").
 ///
 /// A cookied light of finite reach is clustered as any other: a fragment looks its cookie
 /// up only where the light can reach it. Cookies are left out under WebGL2

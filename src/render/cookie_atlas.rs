@@ -1,6 +1,5 @@
 //! The light cookie atlas: every cookie image as a layer of one 2D array texture,
-//! [`COOKIE_RESOLUTION`] texels square, holding each image's 8-bit sRGB values decoded to
-//! linear `f32` here, once (the shader reads and filters them).
+//! [`COOKIE_RESOLUTION`] texels square, holding 8-bit sRGB values (the shader decodes them).
 
 #[cfg(test)]
 use crate::lights::cookie_layer_texels;
@@ -18,23 +17,9 @@ use bevy::{
 pub(crate) const PHONG_COOKIE_ATLAS: Handle<Image> =
     uuid_handle!("9b4e6d2a-7c1f-4e85-b3a0-5d8f2c6e1a47");
 
-/// The atlas's format: linear color, each 8-bit sRGB value decoded by the formula in `f64`
-/// and rounded once ([`srgb_to_linear`]). Decoding here rather than in the shader spares a
-/// fragment twelve `pow`s per cookie (four texels, three channels): a cookied lamp cost
-/// 2.6× a plain one with them (see docs/performance.md); a device's own sRGB decoding
-/// would be approximate.
-const ATLAS_FORMAT: TextureFormat = TextureFormat::Rgba32Float;
-
-/// An 8-bit sRGB value as linear color (IEC 61966-2-1), computed in `f64`.
-fn srgb_to_linear(value: u8) -> f32 {
-    let srgb = f64::from(value) / 255.0;
-    let linear = if srgb <= 0.04045 {
-        srgb / 12.92
-    } else {
-        ((srgb + 0.055) / 1.055).powf(2.4)
-    };
-    linear as f32
-}
+/// The atlas's format: the same bytes, which the shader decodes from sRGB itself, texel by
+/// texel before it filters (exactly, where some devices' sRGB decoding is approximate).
+const ATLAS_FORMAT: TextureFormat = TextureFormat::Rgba8Unorm;
 
 /// The atlas image of `layers` (each [`cookie_layer_texels`]), one white layer when there
 /// are none, viewed as a 2D array.
@@ -46,11 +31,9 @@ pub(crate) fn atlas_image(layers: &[Vec<[u8; 4]>]) -> Image {
     } else {
         layers.iter().collect()
     };
-    let decode: [f32; 256] = core::array::from_fn(|value| srgb_to_linear(value as u8));
     let data: Vec<u8> = layers
         .iter()
-        .flat_map(|layer| layer.iter().flatten())
-        .flat_map(|&value| decode[usize::from(value)].to_le_bytes())
+        .flat_map(|layer| layer.iter().flatten().copied())
         .collect();
     let mut image = Image::new(
         Extent3d {
@@ -115,33 +98,6 @@ mod tests {
     fn the_atlas_has_a_white_layer_when_no_light_has_a_cookie() {
         let atlas = atlas_image(&[]);
         assert_eq!(atlas.texture_descriptor.size.depth_or_array_layers, 1);
-        let data = atlas.data.unwrap();
-        let texels: &[[f32; 4]] = bytemuck::cast_slice(&data);
-        assert!(
-            texels.iter().all(|&texel| texel == [1.0; 4]),
-            "linear white"
-        );
-    }
-
-    #[test]
-    fn the_atlas_holds_each_srgb_value_decoded_to_linear() {
-        // sRGB 188 is linear ((188/255 + 0.055)/1.055)^2.4 = 0.5029; 10 is 10/255/12.92.
-        let side = COOKIE_RESOLUTION as usize;
-        let atlas = atlas_image(&[vec![[188, 10, 0, 255]; side * side]]);
-        let data = atlas.data.unwrap();
-        let texel: [f32; 4] = bytemuck::cast_slice(&data)[0];
-        let expected = [
-            ((188.0 / 255.0 + 0.055) / 1.055f64).powf(2.4),
-            10.0 / 255.0 / 12.92,
-            0.0,
-            1.0,
-        ];
-        for (value, expected) in texel.into_iter().zip(expected) {
-            // One rounding to f32: within half an ulp.
-            assert!(
-                (f64::from(value) - expected).abs() <= expected * 6e-8,
-                "{value} {expected}"
-            );
-        }
+        assert!(atlas.data.unwrap().iter().all(|&byte| byte == 255));
     }
 }

@@ -149,8 +149,7 @@ impl PhongSceneBindings<'_> {
                 entry(
                     Self::COOKIE_ATLAS,
                     BindingType::Texture {
-                        // Linear `f32` texels, read one by one (the shader filters them).
-                        sample_type: TextureSampleType::Float { filterable: false },
+                        sample_type: TextureSampleType::Float { filterable: true },
                         view_dimension: TextureViewDimension::D2Array,
                         multisampled: false,
                     },
