@@ -49,6 +49,117 @@ fn wave(t: u32, period: f32) -> u8 {
     (127.5 + 127.5 * (t as f32 * core::f32::consts::TAU / period).sin()).round() as u8
 }
 
+/// A light of the reference model and the cookie on it.
+type Cookied = (reference::Light, reference::Cookie);
+
+/// The reference model's `light` with `cookie` on it at `at`, its image read from `world`
+/// (`spot_angle`: a spot light's outer angle; `is_point`: a point light's cube).
+fn cookied(
+    world: &World,
+    light: reference::Light,
+    cookie: &PhongLightCookie,
+    at: Transform,
+    spot_angle: Option<f32>,
+    is_point: bool,
+) -> Cookied {
+    let images = world.resource::<Assets<Image>>();
+    let cookie = reference::Cookie::new(
+        cookie,
+        images.get(&cookie.image).unwrap(),
+        &GlobalTransform::from(at),
+        spot_angle,
+        is_point,
+    )
+    .expect("a readable cookie");
+    (light, cookie)
+}
+
+/// Spawns `spot` at `at` with `cookie`; returns it as the reference model takes it.
+fn spot_with_cookie(
+    world: &mut World,
+    spot: PhongSpotLight,
+    at: Transform,
+    cookie: PhongLightCookie,
+) -> Cookied {
+    world.spawn((spot.clone(), at, cookie.clone()));
+    let light = reference::Light::spot(&spot, &GlobalTransform::from(at));
+    cookied(world, light, &cookie, at, Some(spot.outer_angle), false)
+}
+
+/// Spawns `point` at `at` with `cookie`; returns it as the reference model takes it.
+fn point_with_cookie(
+    world: &mut World,
+    point: PhongPointLight,
+    at: Transform,
+    cookie: PhongLightCookie,
+) -> Cookied {
+    world.spawn((point.clone(), at, cookie.clone()));
+    let light = reference::Light::point(&point, &GlobalTransform::from(at));
+    cookied(world, light, &cookie, at, None, true)
+}
+
+/// A floor `floor` units square and a sphere at `sphere_x` for the cookies to fall on.
+fn floor_and_sphere(floor: f32, sphere_x: f32) -> [(Mesh, Transform, PhongMaterial); 2] {
+    [
+        (
+            Plane3d::default().mesh().size(floor, floor).into(),
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.8, 0.8),
+                shininess: 8.0,
+                ..default()
+            },
+        ),
+        (
+            Sphere::new(0.8).mesh().uv(48, 32),
+            Transform::from_xyz(sphere_x, -0.2, 0.0),
+            PhongMaterial {
+                base_color: Color::srgb(0.7, 0.75, 0.9),
+                shininess: 40.0,
+                ..default()
+            },
+        ),
+    ]
+}
+
+/// Asserts that every pixel of `objects` follows the reference model under the ambient
+/// light of 0.05 and the `lights`, each tinted by its cookie where the atlas is bound
+/// (untinted where it is not, under WebGL2); pixels whose ray from the point light of
+/// `point_light` (an index in `lights`) is near a cube edge are not judged.
+fn assert_cookies_follow(
+    harness: Harness,
+    objects: [(Mesh, Transform, PhongMaterial); 2],
+    name: &str,
+    lights: &[Cookied],
+    point_light: usize,
+) {
+    let from_point_light = lights[point_light].1.light_from_world;
+    assert_pixels_follow(
+        harness,
+        objects,
+        name,
+        &|material, surface, pixel, inputs, images, _| {
+            let tinted = inputs.every_map_bound;
+            if tinted && near_a_cube_edge(from_point_light.transform_point3(surface.position)) {
+                return None;
+            }
+            let lights = reference::Lights {
+                ambient: DVec3::splat(0.05),
+                hemisphere: None,
+                lights: lights
+                    .iter()
+                    .map(|(light, cookie)| match tinted {
+                        true => light.tinted(cookie.tint(surface.position)),
+                        false => *light,
+                    })
+                    .collect(),
+                others: Default::default(),
+            };
+            expected_color(material, surface, pixel, inputs, images, &lights)
+        },
+    );
+}
+
 #[test]
 fn cookies_tint_each_light_kind_as_the_reference_model_says() {
     let mut harness = Harness::new(SIZE, SIZE);
@@ -104,81 +215,22 @@ fn cookies_tint_each_light_kind_as_the_reference_model_says() {
         red_only: true,
         ..default()
     };
-    world.spawn((spot.clone(), spot_at, spot_cookie.clone()));
-    world.spawn((point.clone(), point_at, cube_cookie.clone()));
     world.spawn((directional.clone(), directional_at, tile_cookie.clone()));
-
-    let images = world.resource::<Assets<Image>>();
-    let cookie = |cookie: &PhongLightCookie, at: Transform, spot_angle, is_point| {
-        reference::Cookie::new(
-            cookie,
-            images.get(&cookie.image).unwrap(),
-            &GlobalTransform::from(at),
-            spot_angle,
-            is_point,
-        )
-        .expect("a readable cookie")
-    };
-    let cookied = [
-        (
-            reference::Light::spot(&spot, &GlobalTransform::from(spot_at)),
-            cookie(&spot_cookie, spot_at, Some(spot.outer_angle), false),
-        ),
-        (
-            reference::Light::point(&point, &GlobalTransform::from(point_at)),
-            cookie(&cube_cookie, point_at, None, true),
-        ),
-        (
-            reference::Light::directional(&directional, &GlobalTransform::from(directional_at)),
-            cookie(&tile_cookie, directional_at, None, false),
+    let directional = reference::Light::directional(&directional, &directional_at.into());
+    let lights = [
+        spot_with_cookie(world, spot, spot_at, spot_cookie),
+        point_with_cookie(world, point, point_at, cube_cookie),
+        cookied(
+            world,
+            directional,
+            &tile_cookie,
+            directional_at,
+            None,
+            false,
         ),
     ];
-    // Where a point lies in the point light's frame (its cube map's).
-    let from_point_light = cookied[1].1.light_from_world;
-    let objects = [
-        (
-            Plane3d::default().mesh().size(8.0, 8.0).into(),
-            Transform::from_xyz(0.0, -1.0, 0.0),
-            PhongMaterial {
-                base_color: Color::srgb(0.8, 0.8, 0.8),
-                shininess: 8.0,
-                ..default()
-            },
-        ),
-        (
-            Sphere::new(0.8).mesh().uv(48, 32),
-            Transform::from_xyz(1.2, -0.2, 0.0),
-            PhongMaterial {
-                base_color: Color::srgb(0.7, 0.75, 0.9),
-                shininess: 40.0,
-                ..default()
-            },
-        ),
-    ];
-    assert_pixels_follow(
-        harness,
-        objects,
-        "light cookies",
-        &|material, surface, pixel, inputs, images, _| {
-            let tinted = inputs.every_map_bound;
-            if tinted && near_a_cube_edge(from_point_light.transform_point3(surface.position)) {
-                return None;
-            }
-            let lights = reference::Lights {
-                ambient: DVec3::splat(0.05),
-                hemisphere: None,
-                lights: cookied
-                    .iter()
-                    .map(|(light, cookie)| match tinted {
-                        true => light.tinted(cookie.tint(surface.position)),
-                        false => *light,
-                    })
-                    .collect(),
-                others: Default::default(),
-            };
-            expected_color(material, surface, pixel, inputs, images, &lights)
-        },
-    );
+    let objects = floor_and_sphere(8.0, 1.2);
+    assert_cookies_follow(harness, objects, "light cookies", &lights, 1);
 }
 
 #[test]
@@ -230,79 +282,22 @@ fn cookied_lights_just_outside_the_frustum_are_clustered_and_tint_their_reach_ex
         image: cube_image,
         ..default()
     };
-    world.spawn((spot.clone(), spot_at, spot_cookie.clone()));
-    world.spawn((point.clone(), point_at, cube_cookie.clone()));
-
-    let images = world.resource::<Assets<Image>>();
-    let cookie = |cookie: &PhongLightCookie, at: Transform, spot_angle, is_point| {
-        reference::Cookie::new(
-            cookie,
-            images.get(&cookie.image).unwrap(),
-            &GlobalTransform::from(at),
-            spot_angle,
-            is_point,
-        )
-        .expect("a readable cookie")
-    };
-    let cookied = [
-        (
-            reference::Light::spot(&spot, &GlobalTransform::from(spot_at)),
-            cookie(&spot_cookie, spot_at, Some(spot.outer_angle), false),
-        ),
-        (
-            reference::Light::point(&point, &GlobalTransform::from(point_at)),
-            cookie(&cube_cookie, point_at, None, true),
-        ),
+    let lights = [
+        spot_with_cookie(world, spot, spot_at, spot_cookie),
+        point_with_cookie(world, point, point_at, cube_cookie),
     ];
-    let from_point_light = cookied[1].1.light_from_world;
     harness.settle();
     assert_eq!(
         crate::clusters::clustered_light_count(&mut harness),
         2,
         "both cookied lamps are in the clusters, not in every fragment's loop"
     );
-    let objects = [
-        (
-            Plane3d::default().mesh().size(10.0, 10.0).into(),
-            Transform::from_xyz(0.0, -1.0, 0.0),
-            PhongMaterial {
-                base_color: Color::srgb(0.8, 0.8, 0.8),
-                shininess: 8.0,
-                ..default()
-            },
-        ),
-        (
-            Sphere::new(0.8).mesh().uv(48, 32),
-            Transform::from_xyz(1.0, -0.2, 0.0),
-            PhongMaterial {
-                base_color: Color::srgb(0.7, 0.75, 0.9),
-                shininess: 40.0,
-                ..default()
-            },
-        ),
-    ];
-    assert_pixels_follow(
+    let objects = floor_and_sphere(10.0, 1.0);
+    assert_cookies_follow(
         harness,
         objects,
         "cookied lamps outside the frustum",
-        &|material, surface, pixel, inputs, images, _| {
-            let tinted = inputs.every_map_bound;
-            if tinted && near_a_cube_edge(from_point_light.transform_point3(surface.position)) {
-                return None;
-            }
-            let lights = reference::Lights {
-                ambient: DVec3::splat(0.05),
-                hemisphere: None,
-                lights: cookied
-                    .iter()
-                    .map(|(light, cookie)| match tinted {
-                        true => light.tinted(cookie.tint(surface.position)),
-                        false => *light,
-                    })
-                    .collect(),
-                others: Default::default(),
-            };
-            expected_color(material, surface, pixel, inputs, images, &lights)
-        },
+        &lights,
+        1,
     );
 }
