@@ -486,7 +486,7 @@ mod tests {
     use super::*;
     use crate::{
         PhongPointLight,
-        render::{PhongLightBuffer, PhongLightClusters, VIEW_WORDS},
+        render::{PhongLightBuffer, PhongLightClusters},
         test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame},
     };
     use bevy::ecs::component::Component;
@@ -576,20 +576,13 @@ mod tests {
 
     #[test]
     fn a_kind_that_takes_a_cookie_gets_its_record_after_the_built_in_lights() {
-        use crate::{PhongLightCookie, render::GpuCookie};
+        use crate::{PhongLightCookie, render::GpuCookie, test_app::white_cookie};
         use bevy::{asset::AssetApp, image::Image};
         let mut app = test_app(|app| {
             app.init_asset::<Image>()
                 .add_plugins(PhongLightKindPlugin::<Lantern>::default());
         });
-        let image = app
-            .world_mut()
-            .resource_mut::<Assets<Image>>()
-            .add(Image::default());
-        let cookie = PhongLightCookie {
-            image,
-            ..Default::default()
-        };
+        let cookie = white_cookie(&mut app);
         let world = app.world_mut();
         world.spawn((
             PhongPointLight::default(),
@@ -721,17 +714,13 @@ mod tests {
 
         let clusters = app.world().resource::<PhongLightClusters>();
         assert_eq!(clusters.view_count(), 1);
-        let (data, words) = (clusters.data(), clusters.cluster_words() as usize);
-        assert_eq!(words, 8, "slots 0 to 3 and the end of the last: two texels");
-        let records = &data[data[1] as usize..];
-        let view = &data[..VIEW_WORDS];
-        let cluster_count = (view[2] * view[3] * view[4]) as usize;
+        assert_eq!(
+            clusters.cluster_words(),
+            8,
+            "slots 0 to 3 and the end of the last: two texels"
+        );
         let slot = header.cluster_slot as usize;
-        let mut listed = Vec::new();
-        for record in records[..cluster_count * words].chunks_exact(words) {
-            let (first, end) = (record[slot] as usize, record[slot + 1] as usize);
-            listed.extend_from_slice(&data[first..end]);
-        }
+        let listed = clusters.first_view_entries(slot..slot + 1).concat();
         assert!(listed.contains(&near), "the light in view is listed");
         assert!(!listed.contains(&far), "the far one in no cluster");
 

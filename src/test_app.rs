@@ -77,3 +77,16 @@ pub fn built_in_buffer_bytes(app: &App) -> Vec<u8> {
         .map(<[u8]>::to_vec)
         .expect("the light buffer is written on the first frame")
 }
+
+/// A cookie whose image is Bevy's default one (a white texel), added to the images of `app`
+/// (made by [`test_app`] with `init_asset::<Image>()`).
+pub fn white_cookie(app: &mut App) -> crate::PhongLightCookie {
+    let image = app
+        .world_mut()
+        .resource_mut::<Assets<Image>>()
+        .add(Image::default());
+    crate::PhongLightCookie {
+        image,
+        ..Default::default()
+    }
+}

@@ -29,10 +29,9 @@ pub struct GpuLight {
     pub spot_exponent: f32,
     /// `[constant, linear, quadratic]` distance fall-off (point, spot).
     pub decay: [f32; 3],
-    /// Two 16-bit indices: in the low half, the index of the light's first shadow view plus one, or
-    /// `0` for a light that casts no shadow this frame; in the high half, the index of its cookie's
-    /// record ([`GpuCookie`](crate::render::GpuCookie), after the lights) plus one, or `0` for
-    /// none.
+    /// Two 16-bit indices: in the low half, the index of the light's first shadow view plus
+    /// one, or `0` for a light that casts no shadow this frame; in the high half, the index of
+    /// its cookie's record (`GpuCookie`, after the lights) plus one, or `0` for none.
     pub shadow: u32,
 }
 

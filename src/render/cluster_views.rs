@@ -102,6 +102,20 @@ impl PhongLightClusters {
     pub fn data(&self) -> &[u32] {
         self.clusters.data()
     }
+
+    /// For each cluster of the first view, its light-buffer entries of slots `slots` (slot 0
+    /// the point lights, 1 the spot lights, then each extension kind), as the shader finds
+    /// them: from the record's word `slots.start` to its word `slots.end`.
+    #[cfg(test)]
+    pub(crate) fn first_view_entries(&self, slots: core::ops::Range<usize>) -> Vec<&[u32]> {
+        let (data, words) = (self.data(), self.cluster_words() as usize);
+        let view = &data[..super::clusters::VIEW_WORDS];
+        let cluster_count = (view[2] * view[3] * view[4]) as usize;
+        data[data[1] as usize..][..cluster_count * words]
+            .chunks_exact(words)
+            .map(|record| &data[record[slots.start] as usize..record[slots.end] as usize])
+            .collect()
+    }
 }
 
 /// The cameras whose views get clusters: active 3D cameras, with a frustum.

@@ -105,7 +105,8 @@ pub fn gather_cookies(
             _ => None,
         })
         .collect();
-    let lights = core::mem::take(&mut requests.bypass_change_detection().requests);
+    // This frame's requests, handed back emptied at the end (keeping their allocation).
+    let mut lights = core::mem::take(&mut requests.bypass_change_detection().requests);
     let state = cookies.bypass_change_detection();
     // An image that could not be read may be readable once it changed.
     state.unreadable.retain(|id| !modified.contains(id));
@@ -178,6 +179,8 @@ pub fn gather_cookies(
         state.slots = slots;
         changed = true;
     }
+    lights.clear();
+    requests.bypass_change_detection().requests = lights;
     let any = !state.records.is_empty();
     if variants.cookies != any {
         variants.cookies = any;

@@ -46,8 +46,6 @@ pub struct PhongLightBuffer {
     spot_cache: RecordCache<PhongSpotLight>,
     /// Whether the last gather had a hemisphere light.
     hemisphere: bool,
-    /// The index of the first cookie record: the number of built-in lights written.
-    cookie_first: u32,
 }
 
 impl Default for PhongLightBuffer {
@@ -61,7 +59,6 @@ impl Default for PhongLightBuffer {
             point_cache: RecordCache::default(),
             spot_cache: RecordCache::default(),
             hemisphere: false,
-            cookie_first: 0,
         }
     }
 }
@@ -107,11 +104,7 @@ impl PhongLightBuffer {
     /// with [`PhongLightKind::set_cookie`]: the index of the cookie's record in the last
     /// gather plus one, or `0` for none.
     pub(crate) fn cookie_index(&self, slot: u32) -> u32 {
-        if slot == 0 {
-            0
-        } else {
-            self.cookie_first + slot
-        }
+        cookie_index(self.header.light_count() as u32, slot)
     }
 
     /// What was last written: the ambient light and the count of each kind.
@@ -190,6 +183,13 @@ impl Slots<'_> {
         L::set_shadow(record, self.shadows.get(entity));
         L::set_cookie(record, self.cookies.slot_of(entity));
     }
+}
+
+/// The index plus one of the record of the cookie whose slot is `slot` plus one
+/// ([`PhongCookies::slot_of`]), the cookie records starting at index `cookie_first`; `0`
+/// for none.
+fn cookie_index(cookie_first: u32, slot: u32) -> u32 {
+    if slot == 0 { 0 } else { cookie_first + slot }
 }
 
 /// What [`push_cached`] found of one kind of light.
@@ -404,20 +404,17 @@ pub fn gather_lights(
     };
     // The cookies after the lights, as records of a light's size (`GpuCookie`); each light's
     // cookie slot becomes the index of its record (plus one), where 16 bits hold it.
-    state.cookie_first = state.records.len() as u32;
+    let cookie_first = state.records.len() as u32;
     if !cookies.records().is_empty() {
         for record in &mut state.records {
-            let slot = record.shadow >> GpuLight::COOKIE_SHIFT;
-            let index = state.cookie_first + slot;
-            if slot != 0 && index > GpuLight::SHADOW_BITS {
+            let index = cookie_index(cookie_first, record.shadow >> GpuLight::COOKIE_SHIFT);
+            let index = if index <= GpuLight::SHADOW_BITS {
+                index
+            } else {
                 bevy::log::warn_once!(
                     "PhongLightCookie: more than 65,534 lights and cookies; the cookies past \
                      that are left out"
                 );
-            }
-            let index = if slot != 0 && index <= GpuLight::SHADOW_BITS {
-                index
-            } else {
                 0
             };
             // Every built-in kind stores it alike (`GpuLight::shadow`'s high half).
@@ -697,20 +694,13 @@ mod tests {
 
     #[test]
     fn cookied_and_shadow_casting_lights_are_listed_only_in_the_clusters_they_reach() {
-        use crate::render::{PhongLightClusters, VIEW_WORDS};
-        use crate::{PhongLightCookie, PhongShadows};
+        use crate::render::PhongLightClusters;
+        use crate::{PhongShadows, test_app::white_cookie};
         use bevy::{asset::AssetApp, image::Image, prelude::Camera3d};
         let mut app = test_app(|app| {
             app.init_asset::<Image>();
         });
-        let image = app
-            .world_mut()
-            .resource_mut::<bevy::asset::Assets<Image>>()
-            .add(Image::default());
-        let cookie = PhongLightCookie {
-            image,
-            ..Default::default()
-        };
+        let cookie = white_cookie(&mut app);
         let world = app.world_mut();
         world.spawn((
             Camera3d::default(),
@@ -767,15 +757,13 @@ mod tests {
 
         let clusters = app.world().resource::<PhongLightClusters>();
         assert_eq!(clusters.view_count(), 1);
-        let (data, words) = (clusters.data(), clusters.cluster_words() as usize);
-        let view = &data[..VIEW_WORDS];
-        let cluster_count = (view[2] * view[3] * view[4]) as usize;
-        let cluster_records = &data[data[1] as usize..][..cluster_count * words];
-        // Each cluster's entries: slot 0 the point lights, slot 1 the spot lights.
+        // Each cluster's point and spot lights (slots 0 and 1).
+        let entries = clusters.first_view_entries(0..2);
+        let cluster_count = entries.len();
         let clusters_listing = |light: u32| {
-            cluster_records
-                .chunks_exact(words)
-                .filter(|record| data[record[0] as usize..record[2] as usize].contains(&light))
+            entries
+                .iter()
+                .filter(|entries| entries.contains(&light))
                 .count()
         };
         let (near_clusters, shadowed_clusters) =

@@ -63,8 +63,6 @@ mod material_bindings;
 pub use crate::light_kind::GpuLight;
 pub(crate) use cluster_views::ExtensionClusterSlots;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
-#[cfg(test)]
-pub(crate) use clusters::VIEW_WORDS;
 pub(crate) use clusters::{is_finite_sphere, sphere_bits};
 pub(crate) use cookie_atlas::PHONG_COOKIE_ATLAS;
 pub(crate) use cookies::{CookieRequests, request_cookies};
