@@ -14,7 +14,7 @@ use bevy::{
     shader::Shader,
 };
 
-/// The main pass's displaced vertex shader, at a fixed handle: a pipeline is specialized
+/// The main pass's vertex shader of a displaced material or one lit per vertex, at a fixed handle: a pipeline is specialized
 /// without the asset server, in every app of the process (`PhongPlugin` inserts it).
 pub(crate) const PHONG_VERTEX_SHADER: Handle<Shader> =
     uuid_handle!("ce73eaa7-033c-45da-97a1-26b4474aa77d");
@@ -55,7 +55,7 @@ pub(crate) fn can_displace(layout: &MeshVertexBufferLayoutRef) -> bool {
 }
 
 /// Bevy's prepass pipelines are labelled so (`bevy_pbr::prepass`); its main pass ones are not.
-fn is_prepass(descriptor: &RenderPipelineDescriptor) -> bool {
+pub(crate) fn is_prepass(descriptor: &RenderPipelineDescriptor) -> bool {
     descriptor.label.as_deref() == Some("prepass_pipeline")
 }
 

@@ -4,6 +4,7 @@ mod features;
 mod key;
 mod maps;
 mod ranges;
+mod vertex_lighting;
 
 pub use features::MaterialFeatures;
 pub use key::PhongMaterialKey;
@@ -263,6 +264,17 @@ pub struct PhongMaterial {
     /// of the interpolated one, in the main pass and the normal prepass. The normal and bump
     /// maps then tilt the face normal. Default `false`.
     pub flat_shading: bool,
+    /// Lights the surface at its vertices (Gouraud shading; SPEC.md, "Per-vertex lighting"):
+    /// the vertex stage sums every light at each vertex, with its cookie and shadow, at the
+    /// vertex's position and normal, and each fragment weighs the sums interpolated across
+    /// its triangle with the material as its maps give it there. Ambient, hemisphere and
+    /// emissive light, the rim everywhere and the environment map stay per fragment. A
+    /// speed option: a light then costs once per vertex, not once per pixel, at the cost of
+    /// highlights, shadow and cookie edges and light pools smaller than the mesh's triangles
+    /// (docs/performance.md measures the error on the benchmark's scenes). Normal and bump
+    /// maps, flat shading and double-sided back faces tilt only the per-fragment terms; the
+    /// lights see the mesh's vertex normal. Default `false`.
+    pub vertex_lighting: bool,
     /// Draws the back faces too, lit with the normal turned toward the viewer (negated on
     /// back faces, before the normal map), as glTF's `doubleSided` and Bevy's
     /// `StandardMaterial::double_sided`. Default `false`: back faces are culled.
@@ -384,6 +396,7 @@ impl Default for PhongMaterial {
             displacement_scale: 1.0,
             displacement_bias: 0.0,
             flat_shading: false,
+            vertex_lighting: false,
             double_sided: false,
             uv_transform: Affine2::IDENTITY,
             unlit: false,
@@ -597,8 +610,11 @@ impl Material for PhongMaterial {
             crate::displacement::displace(descriptor, layout, "PhongMaterial")?;
         }
         crate::scene_variants::add_scene_data_flag(descriptor);
+        let defs = key.bind_group_data.shader_defs(layout);
+        if key.bind_group_data.has(MaterialFeatures::VERTEX_LIGHTING) {
+            vertex_lighting::light_at_vertices(descriptor, &defs);
+        }
         if let Some(fragment) = descriptor.fragment.as_mut() {
-            let defs = key.bind_group_data.shader_defs(layout);
             fragment
                 .shader_defs
                 .extend(defs.into_iter().map(Into::into));

@@ -115,6 +115,7 @@ impl Plugin for PhongPlugin {
             load_shader_library!(app, "shaders/texture_maps.wesl");
             load_shader_library!(app, "shaders/shadows.wesl");
             load_shader_library!(app, "shaders/camera_effects.wesl");
+            load_shader_library!(app, "shaders/per_vertex.wesl");
             load_shader_library!(app, "shaders/fragment.wesl");
             embedded_asset!(app, "shaders/phong_material.wesl");
             embedded_asset!(app, "shaders/phong_prepass.wesl");

@@ -42,6 +42,7 @@ mod cookies;
 mod environment;
 mod hemisphere;
 mod normals;
+mod per_vertex;
 pub(crate) mod stylized;
 mod surface_inputs;
 mod texture_maps;
@@ -52,6 +53,7 @@ pub use environment::{
 };
 pub use hemisphere::Hemisphere;
 pub use normals::{bumped_normal, face_normal, mapped_normal};
+pub use per_vertex::VertexLight;
 pub use stylized::{Rim, ToonRamp, diffuse_factor, highlight_factor, rim_factor};
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;

@@ -1,11 +1,12 @@
 //! The error of a Phong render against the f64 reference model, measured with the render
 //! tests' harness: every pixel read back as `f32` with the world position and normal it was
 //! lit with, compared with `bevy_phong::reference` on those inputs and *all* the scene's
-//! lights (no culling in the model).
+//! lights (no culling in the model), per pixel (a material lit per vertex is measured against
+//! the exact per-pixel picture).
 
 use crate::scene::{Scene, Shading, spawn_scene};
 use bevy_phong::{
-    PhongLightCulling, SpecularModel,
+    PhongLightCulling,
     reference::{self, Light},
 };
 use bevy_phong_headless::Harness;
@@ -17,18 +18,24 @@ pub const ERROR_SIZE: u32 = 128;
 /// cut off, and whether `f32` puts the pixel inside or outside is a matter of rounding.
 const RANGE_BOUNDARY: f64 = 1e-5;
 
-/// The largest per-channel error, relative to `max(1, |expected|)`, over the lit pixels of
-/// `scene` drawn with `specular_model` (or none) and `culling`, and the number of pixels
-/// left out on a range boundary.
-pub fn max_error(
-    scene: Scene,
-    specular_model: Option<SpecularModel>,
-    culling: PhongLightCulling,
-) -> (f64, usize) {
+/// How far a render is from the per-pixel model: each lit pixel's largest per-channel error,
+/// relative to `max(1, |expected|)`.
+#[derive(Clone, Copy, Debug)]
+pub struct Accuracy {
+    /// The largest over the lit pixels.
+    pub max: f64,
+    /// The error 95 % of the lit pixels stay within.
+    pub p95: f64,
+}
+
+/// The [`Accuracy`] of `scene` drawn with `shading` (`PhongMaterial`, lit per pixel or per
+/// vertex) and `culling`, against the per-pixel model; pixels on a range boundary are left
+/// out.
+pub fn measure(scene: Scene, shading: Shading, culling: PhongLightCulling) -> Accuracy {
     let mut harness = Harness::new(ERROR_SIZE, ERROR_SIZE);
     harness.world_mut().insert_resource(culling);
     harness.look_from(scene.camera_position());
-    spawn_scene(harness.world_mut(), scene, Shading::Phong(specular_model));
+    spawn_scene(harness.world_mut(), scene, shading);
     harness.settle();
     let inputs = harness.capture_inputs();
     let rendered = harness.render_next_frame();
@@ -57,5 +64,8 @@ pub fn max_error(
             comparison.max_error, comparison.skipped_pixels, comparison.lit_pixels
         );
     }
-    (comparison.max_error, comparison.skipped_pixels)
+    Accuracy {
+        max: comparison.max_error,
+        p95: comparison.error_quantile(0.95),
+    }
 }

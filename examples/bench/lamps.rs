@@ -152,7 +152,7 @@ pub fn spawn_lamps(world: &mut World, lamps: Lamps, shading: Shading) {
         let transform =
             Transform::from_translation(lamp.position).looking_at(lamp.position - Vec3::Y, Vec3::Z);
         match shading {
-            Shading::Phong(_) => {
+            Shading::Phong(_) | Shading::PhongPerVertex { .. } => {
                 let mut entity = world.spawn((
                     PhongSpotLight {
                         color,

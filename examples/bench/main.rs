@@ -268,34 +268,59 @@ struct Variant {
     name: String,
     /// `true`: the scene's lights have ranges; `false`: only ε bounds their reach.
     ranged: bool,
-    specular_model: Option<SpecularModel>,
+    /// `PhongMaterial` lit per pixel or per vertex, with its highlight.
+    shading: Shading,
     culling: PhongLightCulling,
 }
 
 fn variants() -> Vec<Variant> {
-    let variant = |name: &str, ranged, specular_model, epsilon: f32, clusters| Variant {
+    let variant = |name: &str, ranged, shading, epsilon: f32, clusters| Variant {
         name: name.into(),
         ranged,
-        specular_model,
+        shading,
         culling: PhongLightCulling { epsilon, clusters },
     };
-    let phong = Some(SpecularModel::Phong);
+    let phong = Shading::Phong(Some(SpecularModel::Phong));
+    let per_vertex = |fine_floor| Shading::PhongPerVertex {
+        specular_model: Some(SpecularModel::Phong),
+        fine_floor,
+    };
     let default_epsilon = PhongLightCulling::DEFAULT_EPSILON;
     let mut variants = vec![
         variant("ranges: Phong, no clusters", true, phong, 0.0, false),
         variant(
             "ranges: Blinn-Phong, no clusters",
             true,
-            Some(SpecularModel::BlinnPhong),
+            Shading::Phong(Some(SpecularModel::BlinnPhong)),
             0.0,
             false,
         ),
-        variant("ranges: no specular, no clusters", true, None, 0.0, false),
+        variant(
+            "ranges: no specular, no clusters",
+            true,
+            Shading::Phong(None),
+            0.0,
+            false,
+        ),
         variant("ranges: Phong, clusters", true, phong, 0.0, true),
         variant(
             "ranges: default (clusters, eps=1/1024)",
             true,
             phong,
+            default_epsilon,
+            true,
+        ),
+        variant(
+            "ranges: per vertex, 2-triangle floor",
+            true,
+            per_vertex(false),
+            default_epsilon,
+            true,
+        ),
+        variant(
+            "ranges: per vertex, fine floor",
+            true,
+            per_vertex(true),
             default_epsilon,
             true,
         ),
@@ -310,6 +335,13 @@ fn variants() -> Vec<Variant> {
         let name = format!("no ranges: clusters, eps={name}");
         variants.push(variant(&name, false, phong, epsilon, true));
     }
+    variants.push(variant(
+        "no ranges: per vertex, fine floor, eps=1/1024",
+        false,
+        per_vertex(true),
+        default_epsilon,
+        true,
+    ));
     variants
 }
 
@@ -690,8 +722,12 @@ fn frame_times(options: &Options, directory: &Path) {
                 eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
                 median
             });
-            let (error, _) =
-                accuracy::max_error(scene, Some(SpecularModel::Phong), default_culling);
+            let error = accuracy::measure(
+                scene,
+                Shading::Phong(Some(SpecularModel::Phong)),
+                default_culling,
+            )
+            .max;
             let lights = match scene {
                 Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => 3,
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
@@ -730,8 +766,10 @@ fn frame_times(options: &Options, directory: &Path) {
 fn time_against_error(options: &Options, directory: &Path) {
     let lights = options.variant_lights;
     let size = options.variant_size;
-    let mut table = String::from("| variant | ms | max error | error × 255 |\n|---|---|---|---|\n");
-    let mut csv = String::from("variant,median_ms,max_error\n");
+    let mut table = String::from(
+        "| variant | ms | max error | error × 255 | 95 % of pixels within |\n|---|---|---|---|---|\n",
+    );
+    let mut csv = String::from("variant,median_ms,max_error,p95_error\n");
     let mut series = Vec::new();
     for variant in variants() {
         let scene = if variant.ranged {
@@ -739,23 +777,26 @@ fn time_against_error(options: &Options, directory: &Path) {
         } else {
             Scene::FieldWithoutRanges { lights }
         };
-        let shading = Shading::Phong(variant.specular_model);
         let time = ms(median_frame_time(
             scene,
             size,
-            shading,
+            variant.shading,
             variant.culling,
             options.frames,
         ));
-        let (error, _) = accuracy::max_error(scene, variant.specular_model, variant.culling);
-        eprintln!("{}: {time:.1} ms, error {error:.2e}", variant.name);
+        let accuracy = accuracy::measure(scene, variant.shading, variant.culling);
+        let (error, p95) = (accuracy.max, accuracy.p95);
+        eprintln!(
+            "{}: {time:.1} ms, error {error:.2e} (95 % within {p95:.2e})",
+            variant.name
+        );
         let _ = writeln!(
             table,
-            "| {} | {time:.1} | {error:.2e} | {:.3} |",
+            "| {} | {time:.1} | {error:.2e} | {:.3} | {p95:.2e} |",
             variant.name,
             error * 255.0
         );
-        let _ = writeln!(csv, "{},{time:.3},{error:.3e}", variant.name);
+        let _ = writeln!(csv, "{},{time:.3},{error:.3e},{p95:.3e}", variant.name);
         let (scene_name, label) = variant
             .name
             .split_once(": ")

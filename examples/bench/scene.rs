@@ -17,6 +17,13 @@ use crate::lamps::{self, Lamps};
 pub enum Shading {
     /// `PhongMaterial` with this crate's lights, the given highlight, or none.
     Phong(Option<SpecularModel>),
+    /// The same lit per vertex (`PhongMaterial::vertex_lighting`); with `fine_floor`, the
+    /// field's floor cut into squares of half a unit (12,800 triangles) in place of its two
+    /// triangles, so that a light's pool spans many vertices.
+    PhongPerVertex {
+        specular_model: Option<SpecularModel>,
+        fine_floor: bool,
+    },
     /// Bevy's `StandardMaterial` with the equivalent Bevy lights.
     Standard,
     /// [`ConstantColor`]: no lighting at all.
@@ -141,8 +148,9 @@ pub fn scatter(i: usize) -> (f32, f32, f32) {
     )
 }
 
-/// The meshes of `scene` and their colors.
-fn objects(scene: Scene) -> Vec<(Mesh, Vec3, Color)> {
+/// The meshes of `scene` and their colors, the field's floor cut into half-unit squares where
+/// `fine_floor`.
+fn objects(scene: Scene, fine_floor: bool) -> Vec<(Mesh, Vec3, Color)> {
     let mut objects: Vec<(Mesh, Vec3, Color)> = Vec::new();
     if let Scene::ShowcaseOnFloor { .. } = scene {
         objects.push((
@@ -177,8 +185,13 @@ fn objects(scene: Scene) -> Vec<(Mesh, Vec3, Color)> {
         ));
         return objects;
     }
+    let floor = Plane3d::default().mesh().size(40.0, 40.0);
     objects.push((
-        Plane3d::default().mesh().size(40.0, 40.0).into(),
+        if fine_floor {
+            floor.subdivisions(79).into()
+        } else {
+            floor.into()
+        },
         Vec3::new(0.0, -0.8, 0.0),
         Color::srgb(0.7, 0.7, 0.7),
     ));
@@ -263,11 +276,18 @@ fn far_lights(count: usize) -> Vec<Light> {
 
 /// Spawns the meshes and lights of `scene` drawn with `shading` (no camera).
 pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
-    for (mesh, position, color) in objects(scene) {
+    let fine_floor = matches!(
+        shading,
+        Shading::PhongPerVertex {
+            fine_floor: true,
+            ..
+        }
+    );
+    for (mesh, position, color) in objects(scene, fine_floor) {
         let mesh = Mesh3d(world.resource_mut::<Assets<Mesh>>().add(mesh));
         let transform = Transform::from_translation(position);
         match shading {
-            Shading::Phong(specular_model) => {
+            Shading::Phong(specular_model) | Shading::PhongPerVertex { specular_model, .. } => {
                 let material = world
                     .resource_mut::<Assets<PhongMaterial>>()
                     .add(PhongMaterial {
@@ -275,6 +295,7 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
                         specular_strength: if specular_model.is_some() { 2.0 } else { 0.0 },
                         shininess: 50.0,
                         specular_model: specular_model.unwrap_or_default(),
+                        vertex_lighting: matches!(shading, Shading::PhongPerVertex { .. }),
                         ..default()
                     });
                 world.spawn((mesh, MeshMaterial3d(material), transform));
@@ -315,7 +336,7 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
         ..default()
     };
     match shading {
-        Shading::Phong(_) => {
+        Shading::Phong(_) | Shading::PhongPerVertex { .. } => {
             if has_directional {
                 world.spawn((
                     PhongDirectionalLight {

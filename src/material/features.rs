@@ -156,6 +156,10 @@ material_features! {
     UNLIT: "unlit", ["PHONG_UNLIT"], Nothing, |m, u| m.unlit;
     /// Lit with its faces' normals (`PHONG_FLAT_SHADING`).
     FLAT_SHADING: "flat_shading", ["PHONG_FLAT_SHADING"], Nothing, |m, u| m.flat_shading;
+    /// Lit per vertex (`PHONG_PER_VERTEX`, in both stages: the crate's vertex shader sums
+    /// the lights, the fragment weighs them); an unlit material has no light to sum.
+    VERTEX_LIGHTING: "vertex_lighting", ["PHONG_PER_VERTEX"], Nothing,
+        |m, u| m.vertex_lighting && !m.unlit;
     /// An environment map, multiplied in unless a combine feature follows
     /// (`PHONG_ENVIRONMENT_MAP`).
     ENVIRONMENT_MAP: "environment_map", ["PHONG_ENVIRONMENT_MAP"], Nothing,

@@ -112,8 +112,8 @@ impl PhongSceneBindings<'_> {
     /// it is read from the data texture.
     pub const STORAGE_BUFFERS_NEEDED: u32 = crate::render::STORAGE_BUFFERS_NEEDED;
 
-    /// The layout entries of the scene bindings (read in the fragment stage) on
-    /// `render_device`.
+    /// The layout entries of the scene bindings (read in the vertex stage of a material lit
+    /// per vertex, and in the fragment stage) on `render_device`.
     pub fn layout_entries(render_device: &RenderDevice) -> Vec<BindGroupLayoutEntry> {
         Self::layout_entries_for(crate::render::needs_scene_texture(render_device))
     }
@@ -123,7 +123,7 @@ impl PhongSceneBindings<'_> {
     pub fn layout_entries_for(scene_texture: bool) -> Vec<BindGroupLayoutEntry> {
         let entry = |binding, ty| BindGroupLayoutEntry {
             binding,
-            visibility: ShaderStages::FRAGMENT,
+            visibility: ShaderStages::VERTEX_FRAGMENT,
             ty,
             count: None,
         };

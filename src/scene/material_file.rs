@@ -167,6 +167,9 @@ macro_rules! material_description {
             pub displacement_bias: f32,
             /// Light each triangle with its face's normal. Default `false`.
             pub flat_shading: bool,
+            /// Light the surface at its vertices, interpolated across each triangle. Default
+            /// `false`.
+            pub vertex_lighting: bool,
             /// Draw back faces too, their normal negated. Default `false`.
             pub double_sided: bool,
             /// How the UVs move before the maps are sampled. Default none.
@@ -227,6 +230,7 @@ macro_rules! material_description {
                     displacement_scale: material.displacement_scale,
                     displacement_bias: material.displacement_bias,
                     flat_shading: material.flat_shading,
+                    vertex_lighting: material.vertex_lighting,
                     double_sided: false,
                     uv_transform: UvTransformDescription::default(),
                     unlit: material.unlit,
@@ -289,6 +293,7 @@ macro_rules! material_description {
                     displacement_scale: self.displacement_scale,
                     displacement_bias: self.displacement_bias,
                     flat_shading: self.flat_shading,
+                    vertex_lighting: self.vertex_lighting,
                     double_sided: self.double_sided,
                     uv_transform: self.uv_transform.to_affine2(),
                     unlit: self.unlit,

@@ -23,7 +23,7 @@ use bevy_phong_headless::{CAMERA_POSITION, Harness, pixel_model::near_a_cube_edg
 use glam::DVec3;
 
 /// A cookie image at the atlas's size, 8-bit sRGB: copied into the atlas unchanged.
-fn cookie_image(texel: impl Fn(u32, u32) -> [u8; 3]) -> Image {
+pub(crate) fn cookie_image(texel: impl Fn(u32, u32) -> [u8; 3]) -> Image {
     let side = COOKIE_RESOLUTION;
     let data = (0..side * side)
         .flat_map(|index| {
@@ -45,7 +45,7 @@ fn cookie_image(texel: impl Fn(u32, u32) -> [u8; 3]) -> Image {
 }
 
 /// A wave from 0 to 255 along `t` with period `period` texels.
-fn wave(t: u32, period: f32) -> u8 {
+pub(crate) fn wave(t: u32, period: f32) -> u8 {
     (127.5 + 127.5 * (t as f32 * core::f32::consts::TAU / period).sin()).round() as u8
 }
 

@@ -19,6 +19,8 @@
 //!   maps and Bevy's `Lightmap`, the same way;
 //! - `shading_normals`: bump maps and flat shading, the same way;
 //! - `displacement`: displacement maps, the positions and the lit colors;
+//! - `per_vertex`: lighting per vertex against the reference model's per-vertex sums,
+//!   interpolated at each pixel;
 //! - `morphs`: two morphed meshes with their own weights, in the main pass, the prepass and
 //!   the shadow maps, against their closed-form pose;
 //! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
@@ -64,6 +66,7 @@ mod light;
 mod morphs;
 #[path = "../fuzz/mutations.rs"]
 mod mutations;
+mod per_vertex;
 #[path = "../fuzz/random.rs"]
 mod random;
 mod scene_files;

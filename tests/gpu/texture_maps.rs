@@ -112,6 +112,18 @@ pub(crate) type ExpectedColor<'a> = dyn Fn(
     ) -> Option<DVec3>
     + 'a;
 
+/// Spawns each of `objects`: a mesh at a place, drawn with a material.
+pub(crate) fn spawn_objects(
+    world: &mut World,
+    objects: impl IntoIterator<Item = (Mesh, Transform, PhongMaterial)>,
+) {
+    for (mesh, transform, material) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
+    }
+}
+
 /// Spawns `objects`, renders a frame, captures its inputs with the maps' and compares every
 /// pixel with `expected`; at most a fifth of the lit pixels may go unjudged.
 pub(crate) fn assert_pixels_follow(
@@ -120,12 +132,7 @@ pub(crate) fn assert_pixels_follow(
     name: &str,
     expected: &ExpectedColor,
 ) {
-    let world = harness.world_mut();
-    for (mesh, transform, material) in objects {
-        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
-        world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
-    }
+    spawn_objects(harness.world_mut(), objects);
     harness.settle();
     let rendered = harness.render_next_frame();
     let inputs = harness.capture_inputs_with_maps();

@@ -102,6 +102,11 @@ fn every_displaced_vertex_variant_validates() {
 }
 
 #[test]
+fn every_vertex_lit_vertex_variant_validates() {
+    assert_every_variant_validates(PHONG_VERTEX, &variants::vertex_lit_vertex());
+}
+
+#[test]
 fn every_searchlight_variant_validates() {
     assert_every_variant_validates(SEARCHLIGHT, &variants::phong_material());
 }

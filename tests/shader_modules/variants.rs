@@ -241,6 +241,8 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         F::TOON_RAMP,
         F::HEMISPHERE,
         F::LIGHT_COOKIES,
+        F::VERTEX_LIGHTING,
+        F::VERTEX_LIGHTING.with(F::RIM_LIT),
     ]
     .into_iter()
     .map(|features| (features, F::NONE))
@@ -268,9 +270,10 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
 /// the camera's environment mixed in or refracted and added (2), the stylized modes (4: wrap,
 /// toon bands, a toon highlight alone and over toon bands), a rim everywhere or on the lit
-/// side (2), a toon ramp (1), a hemisphere light (1), light cookies (1), each with no map and
-/// every map, under 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1 + 1) * 2 * 3;
+/// side (2), a toon ramp (1), a hemisphere light (1), light cookies (1), lighting per vertex
+/// alone and with a rim on the lit side (2), each with no map and every map, under 3 kinds
+/// of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1 + 1 + 2) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
@@ -519,6 +522,40 @@ const POSES: [&[&str]; 4] = [
         "HAS_PREVIOUS_MORPH",
     ],
 ];
+
+/// The variants of the main pass's vertex stage of a material lit per vertex
+/// (`PHONG_PER_VERTEX`; `light_at_vertices` gives it the fragment stage's defs): every
+/// distinct set of the crate's defs with that feature that some key gives on some mesh,
+/// under every camera and device, displaced too where the mesh can be.
+pub fn vertex_lit_vertex() -> Vec<Variant> {
+    let keys: Vec<PhongMaterialKey> = material_keys()
+        .into_iter()
+        .filter(|key| key.has(MaterialFeatures::VERTEX_LIGHTING))
+        .collect();
+    let mut variants = Vec::new();
+    for (mesh, layout) in mesh_layouts() {
+        let phong_defs: BTreeSet<Vec<&'static str>> = keys
+            .iter()
+            .map(|key| {
+                let mut defs = key.shader_defs(&layout);
+                defs.sort_unstable();
+                defs
+            })
+            .collect();
+        let displaced =
+            layout.0.contains(Mesh::ATTRIBUTE_UV_0) && layout.0.contains(Mesh::ATTRIBUTE_NORMAL);
+        for (view, view_defs) in view_setups() {
+            for phong in &phong_defs {
+                let mut variant = phong_variant(mesh, &layout, &view, &view_defs, phong);
+                if displaced {
+                    variant.defs.push("PHONG_DISPLACEMENT_MAP".into());
+                }
+                variants.push(variant);
+            }
+        }
+    }
+    variants
+}
 
 /// The variants of the displaced vertex stages (`PHONG_DISPLACEMENT_MAP`): every mesh with
 /// UVs and normals, each pose, under every camera and device (`prepass`: in every prepass).

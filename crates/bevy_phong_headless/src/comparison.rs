@@ -36,6 +36,8 @@ pub struct Comparison {
     pub skipped_pixels: usize,
     actual: Vec<[f32; 3]>,
     expected: Vec<[f32; 3]>,
+    /// Each lit pixel's error, as `max_error` measures it.
+    errors: Vec<f64>,
 }
 
 impl Comparison {
@@ -51,6 +53,7 @@ impl Comparison {
             skipped_pixels: 0,
             actual: vec![[0.0; 3]; count],
             expected: vec![[0.0; 3]; count],
+            errors: Vec::new(),
         }
     }
 
@@ -100,6 +103,7 @@ impl Comparison {
                 }
             })
             .fold(0.0, f64::max);
+        self.errors.push(error);
         if error > self.max_error || self.worst_pixel.is_none() {
             self.max_error = error;
             let (x, y) = (index as u32 % self.width, index as u32 / self.width);
@@ -127,6 +131,18 @@ impl Comparison {
                 directory.display()
             );
         }
+    }
+
+    /// The error that the share `quantile` (in `[0, 1]`) of the lit pixels stays within (the
+    /// nearest rank): 0.5 the median, 1 [`Self::max_error`]; 0 without lit pixels.
+    pub fn error_quantile(&self, quantile: f64) -> f64 {
+        let mut errors = self.errors.clone();
+        errors.sort_by(f64::total_cmp);
+        let rank = (quantile.clamp(0.0, 1.0) * errors.len() as f64).ceil() as usize;
+        errors
+            .get(rank.saturating_sub(1))
+            .copied()
+            .unwrap_or_default()
     }
 
     /// Asserts that fewer than a fifth of the lit pixels went unjudged (texel edges, the

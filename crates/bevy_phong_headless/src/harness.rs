@@ -536,8 +536,16 @@ impl Harness {
         let scene = self.reference_scene();
         let images = pixel_model::loaded_images(self);
         let flat_triangles = self.flat_shaded_triangles();
+        let vertex_lit = self.vertex_lit_triangles(&scene, inputs, &images);
         self.compare_pixels(rendered, inputs, |material, surface, pixel| {
-            let lights = scene.lights_at(surface.position, inputs.every_map_bound)?;
+            let mut lights = scene.lights_at(surface.position, inputs.every_map_bound)?;
+            if lit_per_vertex(material) {
+                // The built-in lights' sums interpolated from the vertices, weighed at the
+                // pixel; the other lights' terms as they are.
+                let light = vertex_lit.light_at(surface.position)?;
+                lights.lights.clear();
+                lights.others.0.push(std::sync::Arc::new(light));
+            }
             let surface = if material.flat_shading {
                 let face = pixel_model::face_normal_at(&flat_triangles, surface.position)?;
                 SurfacePoint {
@@ -549,6 +557,38 @@ impl Harness {
             };
             pixel_model::expected_color(material, &surface, pixel, inputs, &images, &lights)
         })
+    }
+
+    /// The triangles of every mesh drawn with a [`PhongMaterial`] lit per vertex, each corner
+    /// with the sums of `scene`'s lights there (tinted by their cookies where `inputs` say
+    /// the device binds them; the toon ramp where it binds that).
+    fn vertex_lit_triangles(
+        &mut self,
+        scene: &ReferenceScene,
+        inputs: &SurfaceInputs,
+        images: &HashMap<AssetId<Image>, Image>,
+    ) -> pixel_model::VertexLitTriangles {
+        let camera = self.camera_position();
+        let world = self.app.world_mut();
+        let mut drawn =
+            world.query::<(&Mesh3d, &MeshMaterial3d<PhongMaterial>, &GlobalTransform)>();
+        let meshes = world.resource::<Assets<Mesh>>();
+        let materials = world.resource::<Assets<PhongMaterial>>();
+        let mut triangles = pixel_model::VertexLitTriangles::default();
+        for (mesh, material, transform) in drawn.iter(world) {
+            let Some(material) = materials.get(&material.0).filter(|m| lit_per_vertex(m)) else {
+                continue;
+            };
+            let Some(mesh) = meshes.get(&mesh.0) else {
+                continue;
+            };
+            let mut model = reference::Material::from(material);
+            model.toon_ramp = pixel_model::toon_ramp(material, inputs, images);
+            triangles.add(mesh, transform, &model, camera, |position| {
+                scene.lights_at(position, inputs.every_map_bound)
+            });
+        }
+        triangles
     }
 
     /// The world-space triangles of every mesh drawn with a flat-shaded [`PhongMaterial`].
@@ -618,4 +658,9 @@ impl Harness {
         }
         comparison
     }
+}
+
+/// Whether `material`'s lights are summed at its vertices (SPEC.md, "Per-vertex lighting").
+fn lit_per_vertex(material: &PhongMaterial) -> bool {
+    material.vertex_lighting && !material.unlit
 }

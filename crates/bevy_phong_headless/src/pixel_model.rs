@@ -379,16 +379,35 @@ pub fn near_a_cube_edge(direction: DVec3) -> bool {
 
 /// The world-space triangles of `mesh` placed by `transform` (none without positions).
 pub fn world_triangles(mesh: &Mesh, transform: &GlobalTransform) -> Vec<[DVec3; 3]> {
+    world_corners(mesh, transform)
+        .into_iter()
+        .map(|corners| corners.map(|(position, _)| position))
+        .collect()
+}
+
+/// The world-space triangles of `mesh` placed by `transform`, each corner's position and
+/// normal (as the vertex stage turns it: by the inverse transpose of the transform, any
+/// length; zero where the mesh has no normals). None without positions.
+pub fn world_corners(mesh: &Mesh, transform: &GlobalTransform) -> Vec<[(DVec3, DVec3); 3]> {
     let Some(positions) = mesh
         .attribute(Mesh::ATTRIBUTE_POSITION)
         .and_then(|positions| positions.as_float3())
     else {
         return Vec::new();
     };
-    let world = |index: usize| {
-        transform
+    let normals = mesh
+        .attribute(Mesh::ATTRIBUTE_NORMAL)
+        .and_then(|normals| normals.as_float3());
+    let affine = transform.affine();
+    let normal_matrix = affine.matrix3.as_dmat3().inverse().transpose();
+    let corner = |index: usize| {
+        let position = transform
             .transform_point(Vec3::from(positions[index]))
-            .as_dvec3()
+            .as_dvec3();
+        let normal = normals.map_or(DVec3::ZERO, |normals| {
+            normal_matrix * Vec3::from(normals[index]).as_dvec3()
+        });
+        (position, normal)
     };
     let indices: Vec<usize> = match mesh.indices() {
         Some(indices) => indices.iter().collect(),
@@ -396,32 +415,125 @@ pub fn world_triangles(mesh: &Mesh, transform: &GlobalTransform) -> Vec<[DVec3; 
     };
     indices
         .chunks_exact(3)
-        .map(|triangle| [world(triangle[0]), world(triangle[1]), world(triangle[2])])
+        .map(|triangle| {
+            [
+                corner(triangle[0]),
+                corner(triangle[1]),
+                corner(triangle[2]),
+            ]
+        })
         .collect()
 }
 
-/// The geometric normal (any length) of the one triangle among `triangles` that holds
-/// `position`, to 10⁻⁴; `None` where none or two with different planes do (an edge).
-pub fn face_normal_at(triangles: &[[DVec3; 3]], position: DVec3) -> Option<DVec3> {
+/// Each triangle among `triangles` that holds `position` to 10⁻⁴ (world units, off its
+/// plane and outside its edges), with `position`'s barycentric weights in it (summing to
+/// one): the weights by which the device interpolates its vertices' outputs there.
+pub fn triangles_holding(triangles: &[[DVec3; 3]], position: DVec3) -> Vec<(usize, [f64; 3])> {
     const NEAR: f64 = 1e-4;
-    let mut found: Option<DVec3> = None;
-    for [a, b, c] in triangles {
+    let mut holding = Vec::new();
+    for (index, [a, b, c]) in triangles.iter().enumerate() {
         let normal = (*b - *a).cross(*c - *a);
-        let unit = normal.normalize();
+        let area_squared = normal.length_squared();
+        // A degenerate triangle (or a NaN corner) holds nothing.
+        if area_squared.is_nan() || area_squared <= 0.0 {
+            continue;
+        }
+        let unit = normal / area_squared.sqrt();
         if unit.dot(position - *a).abs() > NEAR {
             continue;
         }
-        // Inside: on the inner side of each edge, within NEAR.
         let inside = [(a, b), (b, c), (c, a)]
             .iter()
             .all(|(from, to)| unit.cross(**to - **from).normalize().dot(position - **from) > -NEAR);
         if !inside {
             continue;
         }
+        let weight =
+            |from: DVec3, to: DVec3| (to - from).cross(position - from).dot(normal) / area_squared;
+        let (weight_a, weight_b) = (weight(*b, *c), weight(*c, *a));
+        holding.push((index, [weight_a, weight_b, 1.0 - weight_a - weight_b]));
+    }
+    holding
+}
+
+/// The geometric normal (any length) of the one triangle among `triangles` that holds
+/// `position`, to 10⁻⁴; `None` where none or two with different planes do (an edge).
+pub fn face_normal_at(triangles: &[[DVec3; 3]], position: DVec3) -> Option<DVec3> {
+    let mut found: Option<DVec3> = None;
+    for (index, _) in triangles_holding(triangles, position) {
+        let [a, b, c] = triangles[index];
+        let normal = (b - a).cross(c - a);
         match found {
-            Some(other) if other.normalize().dot(unit) < 1.0 - 1e-9 => return None,
+            Some(other) if other.normalize().dot(normal.normalize()) < 1.0 - 1e-9 => return None,
             _ => found = Some(normal),
         }
     }
     found
+}
+
+/// The triangles of the meshes lit per vertex (`PhongMaterial::vertex_lighting`), each
+/// corner with the lights' sums there (`reference::VertexLight`), to interpolate at a pixel.
+#[derive(Default)]
+pub struct VertexLitTriangles {
+    corners: Vec<[DVec3; 3]>,
+    /// The sums at each corner; `None` where the model cannot say at some corner (a point
+    /// light's cookie read on a cube edge).
+    sums: Vec<Option<[reference::VertexLight; 3]>>,
+}
+
+impl VertexLitTriangles {
+    /// Adds the triangles of `mesh` placed by `transform`, made of `material`, seen from
+    /// `camera`, each corner lit by the built-in lights of `lights_at(its position)`.
+    pub fn add(
+        &mut self,
+        mesh: &Mesh,
+        transform: &GlobalTransform,
+        material: &reference::Material,
+        camera: DVec3,
+        lights_at: impl Fn(DVec3) -> Option<reference::Lights>,
+    ) {
+        for triangle in world_corners(mesh, transform) {
+            let sum = |(position, normal): (DVec3, DVec3)| {
+                let vertex = reference::SurfacePoint {
+                    position,
+                    normal,
+                    camera,
+                };
+                let lights = lights_at(position)?;
+                Some(reference::VertexLight::at(
+                    &vertex,
+                    material,
+                    &lights.lights,
+                ))
+            };
+            let [a, b, c] = triangle.map(sum);
+            self.corners.push(triangle.map(|(position, _)| position));
+            self.sums.push(a.zip(b).zip(c).map(|((a, b), c)| [a, b, c]));
+        }
+    }
+
+    /// The sums interpolated at world position `position`; `None` where no triangle holds it,
+    /// or where two that do (an edge between faces whose vertices differ) disagree by more
+    /// than 10⁻⁶.
+    pub fn light_at(&self, position: DVec3) -> Option<reference::VertexLight> {
+        let mut found: Option<reference::VertexLight> = None;
+        for (index, weights) in triangles_holding(&self.corners, position) {
+            let light = reference::VertexLight::interpolated(self.sums[index].as_ref()?, weights);
+            if let Some(other) = found {
+                let apart = [
+                    light.diffuse - other.diffuse,
+                    light.specular - other.specular,
+                    light.rim - other.rim,
+                ]
+                .iter()
+                .map(|difference| difference.abs().max_element())
+                .fold(0.0, f64::max);
+                if apart > 1e-6 {
+                    return None;
+                }
+            }
+            found = Some(light);
+        }
+        found
+    }
 }
