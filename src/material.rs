@@ -285,10 +285,10 @@ pub struct PhongMaterial {
     /// as in Bevy and three.js. A transform that is not finite is replaced by the identity,
     /// with a warning. Default [`Affine2::IDENTITY`] (no shader work).
     pub uv_transform: Affine2,
-    /// Draws the surface without light: its color is `emissive + k_d` (both with their
-    /// maps, `k_d` with the vertex colors), alpha as a lit surface's, and no light,
-    /// ambient or shadow changes it (glTF's `KHR_materials_unlit`, Bevy's
-    /// `StandardMaterial::unlit`). The camera's fog and tonemapping still apply. Default
+    /// Draws the surface without light: its color is `k_d` alone (with its map and the vertex
+    /// colors), alpha as a lit surface's; no light, ambient or shadow changes it, and the
+    /// emissive color and map are not drawn, as with glTF's `KHR_materials_unlit` and Bevy's
+    /// `StandardMaterial::unlit`. The camera's fog and tonemapping still apply. Default
     /// `false`.
     pub unlit: bool,
     /// Whether the camera's `DistanceFog` applies to this surface, as

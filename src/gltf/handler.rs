@@ -26,6 +26,15 @@ pub fn phong_material_label(material_label: &str) -> String {
     format!("{material_label}{PHONG_LABEL_SUFFIX}")
 }
 
+/// Sets on `phong` what Bevy's loader drops from the file's `material` (its `GltfMaterial`
+/// has no field for it): `occlusionTexture.strength` as `ao_map_intensity`, glTF's
+/// `1 + strength · (texel − 1)` being the crate's AO formula.
+pub(crate) fn with_what_bevy_drops(phong: &mut PhongMaterial, material: &gltf::Material) {
+    if let Some(occlusion) = material.occlusion_texture() {
+        phong.ao_map_intensity = occlusion.strength();
+    }
+}
+
 /// Registered by [`PhongGltfPlugin`](super::PhongGltfPlugin); cloned for each load.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct PhongGltfExtensionHandler;
@@ -54,17 +63,16 @@ impl GltfExtensionHandler for PhongGltfExtensionHandler {
     fn on_material(
         &mut self,
         load_context: &mut LoadContext<'_>,
-        _gltf_material: &gltf::Material,
+        gltf_material: &gltf::Material,
         _material: Handle<GltfMaterial>,
         material_asset: &GltfMaterial,
         material_label: &str,
     ) {
         let path = load_context.path().clone();
         let named = format!("{path}#{material_label}");
-        load_context.add_labeled_asset(
-            phong_material_label(material_label),
-            phong_material_from_gltf(material_asset, Some(&named)),
-        );
+        let mut phong = phong_material_from_gltf(material_asset, Some(&named));
+        with_what_bevy_drops(&mut phong, gltf_material);
+        load_context.add_labeled_asset(phong_material_label(material_label), phong);
     }
 
     /// Inserts `MeshMaterial3d<PhongMaterial>` with the primitive's material.
@@ -80,5 +88,41 @@ impl GltfExtensionHandler for PhongGltfExtensionHandler {
         let handle =
             load_context.get_label_handle::<PhongMaterial>(phong_material_label(material_label));
         entity.insert(MeshMaterial3d(handle));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first material of a file whose materials are `materials` (JSON), with one texture.
+    fn first_material(materials: &str, check: impl FnOnce(&gltf::Material)) {
+        let json = format!(
+            r#"{{"asset": {{"version": "2.0"}}, "images": [{{"uri": "ao.png"}}],
+                "textures": [{{"source": 0}}], "materials": {materials}}}"#
+        );
+        let file = gltf::Gltf::from_slice(json.as_bytes()).expect("a valid glTF document");
+        check(&file.materials().next().expect("one material"));
+    }
+
+    #[test]
+    fn the_occlusion_strength_is_read_from_the_file_as_the_ao_map_intensity() {
+        first_material(
+            r#"[{"occlusionTexture": {"index": 0, "strength": 0.5}}]"#,
+            |material| {
+                let mut phong = PhongMaterial::default();
+                with_what_bevy_drops(&mut phong, material);
+                assert_eq!(phong.ao_map_intensity, 0.5);
+            },
+        );
+        // Absent, glTF's default strength 1.
+        first_material(r#"[{"occlusionTexture": {"index": 0}}]"#, |material| {
+            let mut phong = PhongMaterial {
+                ao_map_intensity: 0.25,
+                ..PhongMaterial::default()
+            };
+            with_what_bevy_drops(&mut phong, material);
+            assert_eq!(phong.ao_map_intensity, 1.0);
+        });
     }
 }

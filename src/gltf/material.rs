@@ -37,7 +37,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
 /// | `uv_transform` (`KHR_texture_transform`, as Bevy's loader reads it) | `uv_transform` |
 /// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
-/// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` |
+/// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` (`PhongGltfPlugin` then reads the file's `strength`, which `GltfMaterial` drops) |
 /// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
 /// | | `ambient_factor = 1` |
 ///

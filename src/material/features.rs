@@ -189,7 +189,7 @@ material_features! {
         |m, u| has_specular(m, u) && m.specular_texture.is_some();
     /// An emissive map (`PHONG_EMISSIVE_TEXTURE`).
     EMISSIVE_TEXTURE: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE"], Uv0,
-        |m, u| m.emissive_texture.is_some();
+        |m, u| m.emissive_texture.is_some() && !m.unlit;
     /// An alpha map (`PHONG_ALPHA_MAP`).
     ALPHA_MAP: "alpha_map_texture", ["PHONG_ALPHA_MAP"], Uv0,
         |m, u| m.alpha_map_texture.is_some();

@@ -14,9 +14,9 @@ impl Material {
         }
     }
 
-    /// The color of this material drawn unlit (`PhongMaterial::unlit`): `emissive + k_d`.
+    /// The color of this material drawn unlit (`PhongMaterial::unlit`): `k_d` alone.
     pub fn unlit_color(&self) -> DVec3 {
-        self.emissive + self.diffuse
+        self.diffuse
     }
 }
 
@@ -49,8 +49,8 @@ mod tests {
         };
         let colored = material.with_vertex_color(DVec4::new(0.5, 1.0, 0.25, 0.3));
         assert_eq!(colored.diffuse, DVec3::new(0.25, 0.6, 0.2));
-        let unlit = colored.unlit_color() - DVec3::new(0.35, 0.7, 0.3);
-        assert!(unlit.abs().max_element() < 1e-15, "emissive + k_d: {unlit}");
+        let unlit = colored.unlit_color() - DVec3::new(0.25, 0.6, 0.2);
+        assert!(unlit.abs().max_element() < 1e-15, "k_d alone: {unlit}");
         assert_eq!(
             Material {
                 diffuse: material.diffuse,

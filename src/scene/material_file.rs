@@ -174,7 +174,7 @@ macro_rules! material_description {
             pub double_sided: bool,
             /// How the UVs move before the maps are sampled. Default none.
             pub uv_transform: UvTransformDescription,
-            /// Draw without light: `emissive + base_color`. Default `false`.
+            /// Draw without light: `base_color` alone. Default `false`.
             pub unlit: bool,
             /// Whether the camera's fog applies. Default `true`.
             pub fog_enabled: bool,

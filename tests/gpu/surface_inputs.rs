@@ -120,10 +120,10 @@ fn vertex_colors_and_the_uv_transform_follow_the_reference_model() {
     assert_follows_the_reference(harness, objects, "vertex colors and the UV transform");
 }
 
-/// An unlit surface shows `emissive + k_d` (with its vertex colors and maps) whatever the
-/// lights, which are there to be ignored.
+/// An unlit surface shows `k_d` (with its vertex colors and map) whatever the lights, which
+/// are there to be ignored, and without its emissive color, which is there to be left out.
 #[test]
-fn unlit_materials_show_their_emissive_and_base_colors_only() {
+fn unlit_materials_show_their_base_colors_only() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     spawn_map_lights(world);

@@ -309,7 +309,7 @@ pub fn mapped_material<M: Material>(
 }
 
 /// The reference color of a pixel of `material` that is drawn (not masked out), given its
-/// captured inputs and its maps' `texels` (`emissive + k_d` where it is unlit); `None` on a
+/// captured inputs and its maps' `texels` (`k_d` alone where it is unlit); `None` on a
 /// texel edge of the normal map.
 pub fn lit_color<M: Material>(
     material: &PhongMaterial,
