@@ -231,7 +231,8 @@ fn point_cookie(_: &BevyLightExposure, texture: &PointLightTexture) -> PhongLigh
 }
 
 /// The cookie of a Bevy `DirectionalLightTexture`: its image on the light's plane, tiled or
-/// not, its red channel.
+/// not, its red channel, the light dark outside an untiled image (`pbr_lighting.wesl`'s
+/// `texture_sample = 0`).
 fn directional_cookie(
     _: &BevyLightExposure,
     texture: &DirectionalLightTexture,
@@ -240,6 +241,7 @@ fn directional_cookie(
         image: texture.image.clone(),
         tiled: texture.tiled,
         red_only: true,
+        dark_outside: true,
         ..Default::default()
     }
 }
@@ -390,7 +392,8 @@ mod tests {
             });
         app.update();
         let cookie = app.world().get::<PhongLightCookie>(sun).unwrap();
-        assert!(cookie.tiled && cookie.red_only);
+        // Read as Bevy reads it: its red channel, dark outside an untiled image.
+        assert!(cookie.tiled && cookie.red_only && cookie.dark_outside);
         assert!(app.world().get::<PhongLightCookie>(spot).unwrap().red_only);
 
         app.world_mut().get_mut::<PointLight>(point).unwrap().range = 7.0;

@@ -136,6 +136,10 @@ pub const MAX_COOKIE_IMAGES: usize = 64;
 /// A signed scale such as a material's bump scale: `[-1e6, 1e6]`, NaN → 0.
 pub const SIGNED_SCALE: Limits = Limits::new(-MAX_INTENSITY, MAX_INTENSITY, 0.0);
 
+/// A factor on a normal map's `n.x` or `n.y` (`PhongMaterial::normal_map_scale`): `[-1e6,
+/// 1e6]`, NaN → 1 (the map as it is).
+pub const NORMAL_MAP_SCALE: Limits = Limits::new(-MAX_INTENSITY, MAX_INTENSITY, 1.0);
+
 /// A material's depth bias, in the depth buffer's steps: wgpu takes an `i32`. NaN → 0.
 pub const DEPTH_BIAS: Limits = Limits::new(-2_147_483_500.0, 2_147_483_500.0, 0.0);
 

@@ -18,7 +18,7 @@ use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
     image::Image,
-    math::{Affine2, Mat3, Vec3, Vec4},
+    math::{Affine2, Mat3, Vec2, Vec3, Vec4},
     mesh::{MeshVertexBufferLayoutRef, UvChannel},
     pbr::{
         ExtendedMaterial, Material, MaterialExtension, MaterialPipeline, MaterialPipelineKey,
@@ -232,6 +232,11 @@ pub struct PhongMaterial {
     /// Negates the normal map's green channel, for maps made with the other convention
     /// (Direct3D's, green pointing down). Default `false`.
     pub flip_normal_map_y: bool,
+    /// Scales the normal map's `n.x` and `n.y` before the normal is built (three.js's
+    /// `normalScale`, glTF's `normalTexture.scale` on both): `(0, 0)` leaves the interpolated
+    /// normal, larger values deepen the relief. Each in `[−10⁶, 10⁶]` (NaN → 1). Default
+    /// `(1, 1)`.
+    pub normal_map_scale: Vec2,
     /// A height map (three.js's `bumpMap`): its red channel `h` is a height whose slope
     /// tilts the normal, after the normal map, by `−bump_scale · (Δu·T + Δv·B)`, where `Δu`
     /// and `Δv` are the changes of `h` one texel along `u` and `v` (of its largest mip) and
@@ -390,6 +395,7 @@ impl Default for PhongMaterial {
             alpha_map_texture: None,
             normal_map_texture: None,
             flip_normal_map_y: false,
+            normal_map_scale: Vec2::ONE,
             bump_map_texture: None,
             bump_scale: 1.0,
             displacement_map: None,
@@ -502,6 +508,8 @@ pub struct PhongMaterialUniform {
     pub style: Vec4,
     /// The rim: `rim_color · rim_strength` (linear RGB) and `rim_power`.
     pub rim: Vec4,
+    /// [`PhongMaterial::normal_map_scale`].
+    pub normal_map_scale: Vec2,
 }
 
 impl PhongMaterialUniform {
@@ -547,6 +555,7 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
             bump_scale: material.bump_scale,
             style: Self::style_of(material.diffuse_mode, material.specular_mode),
             rim: (material.rim_color.to_vec3() * material.rim_strength).extend(material.rim_power),
+            normal_map_scale: material.normal_map_scale,
         }
     }
 }

@@ -29,6 +29,7 @@
 //! | `specular_mode` | toon smoothing 0 to 1 | `0` | clamped |
 //! | `alpha_mode` | a `Mask` cutoff 0 to 1 | `0.5` | clamped |
 //! | `bump_scale`, `displacement_scale`, `displacement_bias` | -1e6 to 1e6 | `0` | clamped |
+//! | `normal_map_scale` (each of x and y) | -1e6 to 1e6 | `1` | clamped |
 //! | `uv_transform` | every number finite | the identity | the identity |
 //! | `depth_bias` | what wgpu's `i32` holds (±2.1e9) | `0` | clamped |
 //! | `reflectivity` | 0 to 1 | `0` | clamped |

@@ -27,11 +27,15 @@ pub fn phong_material_label(material_label: &str) -> String {
 }
 
 /// Sets on `phong` what Bevy's loader drops from the file's `material` (its `GltfMaterial`
-/// has no field for it): `occlusionTexture.strength` as `ao_map_intensity`, glTF's
-/// `1 + strength · (texel − 1)` being the crate's AO formula.
+/// has no field for them): `occlusionTexture.strength` as `ao_map_intensity`, glTF's
+/// `1 + strength · (texel − 1)` being the crate's AO formula, and `normalTexture.scale` as
+/// `normal_map_scale` (glTF scales the map's x and y alike).
 pub(crate) fn with_what_bevy_drops(phong: &mut PhongMaterial, material: &gltf::Material) {
     if let Some(occlusion) = material.occlusion_texture() {
         phong.ao_map_intensity = occlusion.strength();
+    }
+    if let Some(normal) = material.normal_texture() {
+        phong.normal_map_scale = bevy::math::Vec2::splat(normal.scale());
     }
 }
 
@@ -103,6 +107,18 @@ mod tests {
         );
         let file = gltf::Gltf::from_slice(json.as_bytes()).expect("a valid glTF document");
         check(&file.materials().next().expect("one material"));
+    }
+
+    #[test]
+    fn the_normal_texture_scale_is_read_from_the_file_as_the_normal_map_scale() {
+        first_material(
+            r#"[{"normalTexture": {"index": 0, "scale": 0.25}}]"#,
+            |material| {
+                let mut phong = PhongMaterial::default();
+                with_what_bevy_drops(&mut phong, material);
+                assert_eq!(phong.normal_map_scale, bevy::math::Vec2::splat(0.25));
+            },
+        );
     }
 
     #[test]

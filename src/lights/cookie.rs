@@ -25,8 +25,8 @@ use bevy::{
 ///   `PointLightTexture`);
 /// - **directional**: the image lies on the light's local XY plane, one copy over
 ///   `[−1, 1]²` (the transform's scale sizes it), `uv = P.xy · (−½, ½) + ½`; outside it the
-///   light is untouched unless [`tiled`](Self::tiled) repeats it (Bevy's
-///   `DirectionalLightTexture`).
+///   light is untouched, or dark with [`dark_outside`](Self::dark_outside), unless
+///   [`tiled`](Self::tiled) repeats it (Bevy's `DirectionalLightTexture`).
 ///
 /// The light's diffuse and specular colors are multiplied by the image's color there
 /// (bilinear between texels, clamped to `[0, 1]`: a cookie only takes light away), or by its
@@ -53,6 +53,11 @@ pub struct PhongLightCookie {
     /// Multiplies the light by the image's red channel only, as Bevy's light textures do
     /// (the interop plugin sets it). Default `false`: by its RGB.
     pub red_only: bool,
+    /// Leaves a directional light dark outside its untiled image, as Bevy's
+    /// `DirectionalLightTexture` does (the interop plugin sets it): the light shines only
+    /// through the image, a window's shape. Default `false`: the light is untouched outside
+    /// it (a cloud's shadow over one place). Ignored by other lights and by tiled images.
+    pub dark_outside: bool,
 }
 
 /// How a light's [`PhongLightCookie`] lays its image over the light's rays: what a kind of

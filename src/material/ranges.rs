@@ -61,6 +61,17 @@ pub(crate) fn visit_numbers(material: &mut PhongMaterial, visitor: &mut impl Num
         visitor.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
     }
     visitor.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
+    let normal_map_scale = &mut material.normal_map_scale;
+    visitor.scalar(
+        "normal_map_scale",
+        &mut normal_map_scale.x,
+        limits::NORMAL_MAP_SCALE,
+    );
+    visitor.scalar(
+        "normal_map_scale",
+        &mut normal_map_scale.y,
+        limits::NORMAL_MAP_SCALE,
+    );
     let scale = &mut material.displacement_scale;
     visitor.scalar("displacement_scale", scale, limits::SIGNED_SCALE);
     let bias = &mut material.displacement_bias;

@@ -23,6 +23,8 @@ pub enum CookieProjection {
     Directional {
         /// Whether the image repeats.
         tiled: bool,
+        /// Whether the light is dark outside an untiled image.
+        dark_outside: bool,
     },
 }
 
@@ -67,6 +69,7 @@ impl Cookie {
             (None, true) => CookieProjection::Point(cookie.cubemap_layout),
             (None, false) => CookieProjection::Directional {
                 tiled: cookie.tiled,
+                dark_outside: cookie.dark_outside,
             },
         };
         Some(Self {
@@ -81,7 +84,8 @@ impl Cookie {
     /// The tint at world position `position`: the image's linear color there (bilinear
     /// between texel centers, the coordinates clamped, or wrapped for a tiled image),
     /// clamped to `[0, 1]`, or its red channel thrice with `red_only`; 1 where the image
-    /// does not reach (behind a spot light, off an untiled directional light's tile).
+    /// does not reach (behind a spot light, off an untiled directional light's tile), 0 off
+    /// the tile of one that is dark outside it.
     pub fn tint(&self, position: DVec3) -> DVec3 {
         let local = self.light_from_world.transform_point3(position);
         let (uv, tiled) = match self.projection {
@@ -92,10 +96,17 @@ impl Cookie {
                 let plane = local.truncate() / (local.z * tan_outer);
                 (plane * DVec2::new(-0.5, 0.5) + 0.5, false)
             }
-            CookieProjection::Directional { tiled } => {
+            CookieProjection::Directional {
+                tiled,
+                dark_outside,
+            } => {
                 let uv = local.truncate() * DVec2::new(-0.5, 0.5) + 0.5;
                 if !tiled && uv != uv.clamp(DVec2::ZERO, DVec2::ONE) {
-                    return DVec3::ONE;
+                    return if dark_outside {
+                        DVec3::ZERO
+                    } else {
+                        DVec3::ONE
+                    };
                 }
                 (uv, tiled)
             }

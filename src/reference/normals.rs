@@ -5,13 +5,21 @@
 use glam::{DVec2, DVec3, DVec4};
 
 /// The normal a normal map gives: `n.x·T + n.y·B + n.z·N`, with `n = 2·texel − 1` (its `y`
-/// negated when `flip_y`), `T = tangent.xyz`, `B = tangent.w · N × T`, from the
-/// interpolated, unnormalized `normal` and `tangent` (MikkTSpace's frame).
-pub fn mapped_normal(normal: DVec3, tangent: DVec4, texel: DVec3, flip_y: bool) -> DVec3 {
+/// negated when `flip_y`, then its `x` and `y` times `scale`), `T = tangent.xyz`,
+/// `B = tangent.w · N × T`, from the interpolated, unnormalized `normal` and `tangent`
+/// (MikkTSpace's frame).
+pub fn mapped_normal(
+    normal: DVec3,
+    tangent: DVec4,
+    texel: DVec3,
+    flip_y: bool,
+    scale: DVec2,
+) -> DVec3 {
     let mut n = texel * 2.0 - 1.0;
     if flip_y {
         n.y = -n.y;
     }
+    let n = (n.truncate() * scale).extend(n.z);
     n.x * tangent.truncate() + n.y * bitangent(normal, tangent) + n.z * normal
 }
 
@@ -49,16 +57,36 @@ mod tests {
         let normal = DVec3::Z * 2.0;
         let tangent = DVec4::new(1.0, 0.0, 0.0, 1.0);
         let flat = DVec3::new(0.5, 0.5, 1.0);
-        assert_eq!(mapped_normal(normal, tangent, flat, false), normal);
+        assert_eq!(
+            mapped_normal(normal, tangent, flat, false, DVec2::ONE),
+            normal
+        );
         // Green up: toward B = N × T = +Y (times |N| = 2); flipped: toward -Y.
         let up = DVec3::new(0.5, 1.0, 0.5);
-        assert_eq!(mapped_normal(normal, tangent, up, false), DVec3::Y * 2.0);
-        assert_eq!(mapped_normal(normal, tangent, up, true), -DVec3::Y * 2.0);
+        assert_eq!(
+            mapped_normal(normal, tangent, up, false, DVec2::ONE),
+            DVec3::Y * 2.0
+        );
+        assert_eq!(
+            mapped_normal(normal, tangent, up, true, DVec2::ONE),
+            -DVec3::Y * 2.0
+        );
         // A left-handed tangent (w = -1) mirrors the bitangent.
         let mirrored = DVec4::new(1.0, 0.0, 0.0, -1.0);
-        assert_eq!(mapped_normal(normal, mirrored, up, false), -DVec3::Y * 2.0);
+        assert_eq!(
+            mapped_normal(normal, mirrored, up, false, DVec2::ONE),
+            -DVec3::Y * 2.0
+        );
         let right = DVec3::new(1.0, 0.5, 0.5);
-        assert_eq!(mapped_normal(normal, tangent, right, false), DVec3::X);
+        assert_eq!(
+            mapped_normal(normal, tangent, right, false, DVec2::ONE),
+            DVec3::X
+        );
+        // Scaled: n.x and n.y times the scale, n.z as it is (three.js's `normalScale`): n is
+        // (1, 0.5, 0), flipped (1, −0.5, 0), scaled (0.5, −1, 0); B is 2·Y (|N| = 2).
+        let tilted = DVec3::new(1.0, 0.75, 0.5);
+        let scaled = mapped_normal(normal, tangent, tilted, true, DVec2::new(0.5, 2.0));
+        assert_eq!(scaled, DVec3::new(0.5, -2.0, 0.0));
     }
 
     #[test]

@@ -222,7 +222,12 @@ fn cookie_record(
         GpuCookie::RED_ONLY
     } else {
         0
-    } | if cookie.tiled { GpuCookie::TILED } else { 0 };
+    } | if cookie.tiled { GpuCookie::TILED } else { 0 }
+        | if cookie.dark_outside {
+            GpuCookie::DARK_OUTSIDE
+        } else {
+            0
+        };
     Some(GpuCookie {
         light_from_world: [row(0), row(1), row(2)],
         layer,

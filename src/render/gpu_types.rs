@@ -22,7 +22,7 @@ pub struct GpuCookie {
     pub projection: u32,
     /// `tan(outer_angle)` of a spot light (its angle below 90°).
     pub tan_outer: f32,
-    /// [`Self::RED_ONLY`] and [`Self::TILED`].
+    /// [`Self::RED_ONLY`], [`Self::TILED`] and [`Self::DARK_OUTSIDE`].
     pub flags: u32,
     /// Unused: the record is as long as a light's.
     pub padding: [u32; 4],
@@ -39,6 +39,8 @@ impl GpuCookie {
     pub const RED_ONLY: u32 = 1;
     /// The image repeats over a directional light's plane.
     pub const TILED: u32 = 2;
+    /// An untiled directional light is dark outside its image.
+    pub const DARK_OUTSIDE: u32 = 4;
 }
 
 /// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its

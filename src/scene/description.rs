@@ -180,6 +180,9 @@ pub struct CookieDescription {
     /// Whether the red channel alone tints the light. Default `false`.
     #[serde(default)]
     pub red_only: bool,
+    /// Whether a directional light is dark outside its untiled image. Default `false`.
+    #[serde(default)]
+    pub dark_outside: bool,
 }
 
 /// Bevy's `CubemapLayout`, by name.

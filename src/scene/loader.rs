@@ -161,6 +161,7 @@ fn scene_light(
                 cubemap_layout: cookie.cubemap_layout.to_layout(),
                 tiled: cookie.tiled,
                 red_only: cookie.red_only,
+                dark_outside: cookie.dark_outside,
             })
         }
     };

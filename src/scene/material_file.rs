@@ -158,6 +158,8 @@ macro_rules! material_description {
             pub alpha_mode: AlphaModeDescription,
             /// Negate the normal map's green channel. Default `false`.
             pub flip_normal_map_y: bool,
+            /// The factors on the normal map's `n.x` and `n.y`. Default `(1, 1)`.
+            pub normal_map_scale: (f32, f32),
             /// How far a height step of 1 between neighbouring texels tilts the normal. Default
             /// `1`.
             pub bump_scale: f32,
@@ -226,6 +228,7 @@ macro_rules! material_description {
                     emissive: SceneColor::black(),
                     alpha_mode: AlphaModeDescription::Opaque,
                     flip_normal_map_y: false,
+                    normal_map_scale: material.normal_map_scale.into(),
                     bump_scale: material.bump_scale,
                     displacement_scale: material.displacement_scale,
                     displacement_bias: material.displacement_bias,
@@ -289,6 +292,7 @@ macro_rules! material_description {
                         AlphaModeDescription::Blend => AlphaMode::Blend,
                     },
                     flip_normal_map_y: self.flip_normal_map_y,
+                    normal_map_scale: self.normal_map_scale.into(),
                     bump_scale: self.bump_scale,
                     displacement_scale: self.displacement_scale,
                     displacement_bias: self.displacement_bias,

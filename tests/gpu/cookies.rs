@@ -11,7 +11,8 @@
 //! reach inside it exactly.
 
 use crate::frames::SIZE;
-use crate::texture_maps::{assert_pixels_follow, expected_color};
+use crate::frames::TOLERANCE;
+use crate::texture_maps::{assert_pixels_follow, expected_color, spawn_objects};
 use bevy::{
     asset::RenderAssetUsages,
     camera::primitives::CubemapLayout,
@@ -300,4 +301,49 @@ fn cookied_lights_just_outside_the_frustum_are_clustered_and_tint_their_reach_ex
         &lights,
         1,
     );
+}
+
+/// An untiled directional light's image lights its square only; outside it the light is
+/// dark with `dark_outside` (Bevy's `DirectionalLightTexture`) and untouched without, each
+/// pixel as the reference model says (`Harness::compare`, the cookies read from the lights).
+#[test]
+fn an_untiled_directional_cookie_leaves_its_light_dark_or_untouched_outside_its_tile() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let image = world
+        .resource_mut::<Assets<Image>>()
+        .add(cookie_image(|x, y| [wave(x, 40.0), wave(y, 60.0), 180]));
+    // Each tile 2 units across (scale 1), seen from above on either side of the floor.
+    for (dark_outside, color, from) in [
+        (
+            true,
+            Color::linear_rgb(0.6, 0.5, 0.3),
+            Vec3::new(1.5, 3.0, 1.0),
+        ),
+        (
+            false,
+            Color::linear_rgb(0.2, 0.3, 0.4),
+            Vec3::new(-1.5, 3.0, 0.5),
+        ),
+    ] {
+        world.spawn((
+            PhongDirectionalLight { color, ..default() },
+            Transform::from_translation(from).looking_at(from - Vec3::Y, Vec3::Z),
+            PhongLightCookie {
+                image: image.clone(),
+                dark_outside,
+                ..default()
+            },
+        ));
+    }
+    spawn_objects(harness.world_mut(), floor_and_sphere(8.0, 1.2));
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let comparison = harness.compare(&rendered, &inputs);
+    comparison.assert_within("untiled directional cookies", TOLERANCE);
+    comparison.assert_mostly_judged("untiled directional cookies");
 }

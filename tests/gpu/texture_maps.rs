@@ -175,6 +175,8 @@ fn texture_maps_follow_the_reference_model() {
         emissive_texture: Some(emissive),
         normal_map_texture: Some(normals.clone()),
         flip_normal_map_y: true,
+        // Deeper across, shallower and turned back along (three.js's `normalScale`).
+        normal_map_scale: Vec2::new(1.8, -0.6),
         specular_strength: 2.0,
         shininess: 40.0,
         emissive: LinearRgba::WHITE,

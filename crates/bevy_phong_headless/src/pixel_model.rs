@@ -190,7 +190,13 @@ pub fn lit_normal<M: Material>(
     let mut normal = surface.normal;
     if let Some(handle) = &material.normal_map_texture {
         let texel = texel(handle, uv)?.truncate();
-        normal = reference::mapped_normal(normal, tangent, texel, material.flip_normal_map_y);
+        let scale = bevy_phong::testing::limits::NORMAL_MAP_SCALE;
+        let scale = DVec2::new(
+            scale.apply(material.normal_map_scale.x).into(),
+            scale.apply(material.normal_map_scale.y).into(),
+        );
+        normal =
+            reference::mapped_normal(normal, tangent, texel, material.flip_normal_map_y, scale);
     }
     if let Some(handle) = material
         .bump_map_texture
