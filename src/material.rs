@@ -342,7 +342,8 @@ pub struct PhongMaterial {
     /// square layers viewed as a cube (`TextureViewDimension::Cube`), in linear color.
     /// The ray from the camera, reflected about the lit normal (or refracted, with
     /// [`refraction_ratio`](Self::refraction_ratio)), reads it at a mip level as wide as
-    /// the highlight's lobe (SPEC.md, "Environment map"), and
+    /// the highlight's lobe (SPEC.md, "Environment map"), in Bevy's cube frame (`z` negated:
+    /// the cube shows the same sky as Bevy's `Skybox` of it), and
     /// [`environment_combine`](Self::environment_combine) joins it to the lit color. Not
     /// drawn on unlit materials, nor under WebGL2 (`crate::render::binds_every_map`).
     /// Default none.

@@ -48,9 +48,7 @@ mod surface_inputs;
 mod texture_maps;
 pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use cookies::{Cookie, CookieProjection, cube_face_uv};
-pub use environment::{
-    camera_environment_direction, environment_direction, environment_lod, with_environment,
-};
+pub use environment::{cube_direction, environment_direction, environment_lod, with_environment};
 pub use hemisphere::Hemisphere;
 pub use normals::{bumped_normal, face_normal, mapped_normal};
 pub use per_vertex::VertexLight;

@@ -34,10 +34,12 @@ pub fn environment_direction(surface: &SurfacePoint, refraction_ratio: Option<f6
     }
 }
 
-/// The direction the camera's Bevy `EnvironmentMapLight` is read along for the world
-/// direction `direction`: turned by the inverse of the light's `rotation`, then `z` negated
-/// (the cube's left-handed frame), as Bevy reads it.
-pub fn camera_environment_direction(direction: DVec3, rotation: DQuat) -> DVec3 {
+/// The direction a cube is read along for the world direction `direction`, in Bevy's cube
+/// frame: turned by the inverse of the cube's `rotation`, then `z` negated (Bevy's cubes are
+/// left-handed), as Bevy's `Skybox` and `EnvironmentMapLight` read theirs. A material's own
+/// `environment_map` (no rotation) and the camera's `EnvironmentMapLight` (its `rotation`)
+/// are both read so.
+pub fn cube_direction(direction: DVec3, rotation: DQuat) -> DVec3 {
     let turned = rotation.inverse() * direction;
     DVec3::new(turned.x, turned.y, -turned.z)
 }
@@ -62,15 +64,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_cameras_environment_turns_against_its_rotation_into_a_left_handed_cube() {
+    fn a_cube_is_read_turned_against_its_rotation_in_a_left_handed_frame() {
         let quarter_turn = DQuat::from_rotation_y(FRAC_PI_2);
         // The light turned a quarter about +Y: what was seen along +X is now along -Z.
-        let direction = camera_environment_direction(-DVec3::Z, quarter_turn);
+        let direction = cube_direction(-DVec3::Z, quarter_turn);
         assert!((direction - DVec3::X).length() < 1e-12, "{direction}");
-        assert_eq!(
-            camera_environment_direction(DVec3::Z, DQuat::IDENTITY),
-            -DVec3::Z
-        );
+        assert_eq!(cube_direction(DVec3::Z, DQuat::IDENTITY), -DVec3::Z);
     }
 
     #[test]

@@ -271,7 +271,11 @@ fn environment_maps_follow_the_reference_model() {
                     lights: &reference::Lights| {
         // Where the device does not bind every map (WebGL2), the environment is left out.
         let drawn = inputs.every_map_bound;
-        let environment_at = |direction, level| Some(cube_texel_at(direction, level)?.truncate());
+        // The material's cube in Bevy's cube frame, as the camera's below (no rotation).
+        let environment_at = |direction, level| {
+            let in_cube = reference::cube_direction(direction, glam::DQuat::IDENTITY);
+            Some(cube_texel_at(in_cube, level)?.truncate())
+        };
         reflected_color(
             material,
             surface,
@@ -344,7 +348,7 @@ fn the_cameras_environment_map_light_is_reflected_as_the_materials_own_map() {
                     images: &HashMap<AssetId<Image>, Image>,
                     lights: &reference::Lights| {
         let environment_at = |direction, level: u32| {
-            let turned = reference::camera_environment_direction(direction, rotation);
+            let turned = reference::cube_direction(direction, rotation);
             let (face, coordinates) = cube_face(turned);
             // Half a texel (2 / size in these coordinates, halved) and 1 %: where bilinear
             // filtering reaches the next face.
