@@ -14,8 +14,9 @@ use bevy::{
     shader::Shader,
 };
 
-/// The main pass's vertex shader of a displaced material or one lit per vertex, at a fixed handle: a pipeline is specialized
-/// without the asset server, in every app of the process (`PhongPlugin` inserts it).
+/// The main pass's vertex shader of a displaced material or one lit per vertex, at a fixed
+/// handle: a pipeline is specialized without the asset server, in every app of the process
+/// (`PhongPlugin` inserts it).
 pub(crate) const PHONG_VERTEX_SHADER: Handle<Shader> =
     uuid_handle!("ce73eaa7-033c-45da-97a1-26b4474aa77d");
 /// The prepass's displaced vertex shader, as [`PHONG_VERTEX_SHADER`].

@@ -11,8 +11,7 @@
 //! reach inside it exactly.
 
 use crate::frames::SIZE;
-use crate::frames::TOLERANCE;
-use crate::texture_maps::{assert_pixels_follow, expected_color, spawn_objects};
+use crate::texture_maps::{assert_pixels_follow, assert_scene_follows, expected_color};
 use bevy::{
     asset::RenderAssetUsages,
     camera::primitives::CubemapLayout,
@@ -339,11 +338,6 @@ fn an_untiled_directional_cookie_leaves_its_light_dark_or_untouched_outside_its_
             },
         ));
     }
-    spawn_objects(harness.world_mut(), floor_and_sphere(8.0, 1.2));
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let comparison = harness.compare(&rendered, &inputs);
-    comparison.assert_within("untiled directional cookies", TOLERANCE);
-    comparison.assert_mostly_judged("untiled directional cookies");
+    let objects = floor_and_sphere(8.0, 1.2);
+    assert_scene_follows(&mut harness, objects, "untiled directional cookies");
 }

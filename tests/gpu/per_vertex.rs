@@ -15,7 +15,7 @@
 
 use crate::cookies::{cookie_image, wave};
 use crate::frames::{SIZE, TOLERANCE};
-use crate::texture_maps::{color_map, expected_color, spawn_objects};
+use crate::texture_maps::{assert_scene_follows, color_map, expected_color};
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
 use bevy_phong_headless::{Harness, pixel_model::loaded_images};
@@ -125,13 +125,8 @@ fn lights_summed_at_the_vertices_follow_the_reference_model() {
             PhongMaterial::from(Color::srgb(0.9, 0.9, 0.4)),
         ),
     ];
-    spawn_objects(harness.world_mut(), objects);
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let comparison = harness.compare(&rendered, &inputs);
-    comparison.assert_within("lights summed at the vertices", TOLERANCE);
-    comparison.assert_mostly_judged("lights summed at the vertices");
+    let (rendered, inputs) =
+        assert_scene_follows(&mut harness, objects, "lights summed at the vertices");
 
     // The same pixels against the per-pixel model: per-vertex lighting shows.
     let lights = harness.reference_lights();
@@ -181,24 +176,17 @@ fn a_vertex_outside_the_view_is_lit_by_the_lights_that_reach_it() {
         },
         Transform::from_xyz(16.5, -0.5, -15.0),
     ));
-    spawn_objects(
-        harness.world_mut(),
-        [(
-            Plane3d::default().mesh().size(30.0, 30.0).into(),
-            Transform::from_xyz(0.0, -1.0, 0.0),
-            PhongMaterial {
-                base_color: Color::srgb(0.8, 0.8, 0.7),
-                vertex_lighting: true,
-                ..default()
-            },
-        )],
+    let floor = (
+        Plane3d::default().mesh().size(30.0, 30.0).into(),
+        Transform::from_xyz(0.0, -1.0, 0.0),
+        PhongMaterial {
+            base_color: Color::srgb(0.8, 0.8, 0.7),
+            vertex_lighting: true,
+            ..default()
+        },
     );
-    harness.settle();
-    let rendered = harness.render_next_frame();
-    let inputs = harness.capture_inputs_with_maps();
-    let comparison = harness.compare(&rendered, &inputs);
-    comparison.assert_within("a light reaching only off-screen vertices", TOLERANCE);
-    comparison.assert_mostly_judged("a light reaching only off-screen vertices");
+    let name = "a light reaching only off-screen vertices";
+    let (rendered, _) = assert_scene_follows(&mut harness, [floor], name);
     let brightest = rendered
         .pixels
         .iter()

@@ -22,7 +22,7 @@ pub(crate) use bevy_phong_headless::pixel_model::{
     SrgbDecoding, expected_color, lit_color, lit_normal, loaded_images, masked_out, output_alpha,
     texel_at, texels_at, toon_ramp, vertex_color,
 };
-use bevy_phong_headless::{Harness, SurfaceInputs};
+use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -122,6 +122,25 @@ pub(crate) fn spawn_objects(
         let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
         world.spawn((Mesh3d(mesh), MeshMaterial3d(material), transform));
     }
+}
+
+/// Spawns `objects`, renders a frame and compares every pixel with the reference model on the
+/// harness's scene as spawned (`Harness::compare`: its lights with their cookies, lighting per
+/// vertex); at most a fifth of the lit pixels may go unjudged. Returns the frame and its
+/// captured inputs.
+pub(crate) fn assert_scene_follows(
+    harness: &mut Harness,
+    objects: impl IntoIterator<Item = (Mesh, Transform, PhongMaterial)>,
+    name: &str,
+) -> (FloatImage, SurfaceInputs) {
+    spawn_objects(harness.world_mut(), objects);
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let comparison = harness.compare(&rendered, &inputs);
+    comparison.assert_within(name, TOLERANCE);
+    comparison.assert_mostly_judged(name);
+    (rendered, inputs)
 }
 
 /// Spawns `objects`, renders a frame, captures its inputs with the maps' and compares every

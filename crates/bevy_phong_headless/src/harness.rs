@@ -15,6 +15,7 @@ use bevy::{
     },
 };
 use bevy_phong::{
+    MaterialFeatures,
     prelude::*,
     reference::{self, SurfacePoint},
     testing::{SurfaceInput, SurfaceInputsMaterial, SurfaceInputsPlugin, is_finite_transform},
@@ -660,7 +661,8 @@ impl Harness {
     }
 }
 
-/// Whether `material`'s lights are summed at its vertices (SPEC.md, "Per-vertex lighting").
+/// Whether `material`'s lights are summed at its vertices (SPEC.md, "Per-vertex lighting"):
+/// the material's own feature, as its shader variant has it.
 fn lit_per_vertex(material: &PhongMaterial) -> bool {
-    material.vertex_lighting && !material.unlit
+    MaterialFeatures::of(material).contains(MaterialFeatures::VERTEX_LIGHTING)
 }
