@@ -7,7 +7,8 @@
 //! ```
 //!
 //! Keys: G turns the light clusters on and off (the frame time printed each second shows the
-//! difference), B switches Phong / Blinn-Phong, Space pauses the lights.
+//! difference), B cycles the highlight model (Phong, Blinn-Phong, normalized), Space pauses
+//! the lights.
 
 mod support;
 
@@ -35,7 +36,7 @@ fn main() {
     let mut app = support::example_app("many_lights");
     support::show_key_help(
         &mut app,
-        "G light clusters on/off, B Phong / Blinn-Phong, Space pause",
+        "G light clusters on/off, B highlight model, Space pause",
     )
     .add_plugins((PhongPlugin, FrameTimeDiagnosticsPlugin::default()))
     .insert_resource(PhongAmbientLight {

@@ -15,7 +15,7 @@
 //! cargo run --example orbiting_light -- --headless out.png # a PNG, and exit
 //! ```
 //!
-//! Keys: B switches Blinn-Phong / Phong, S the shadows on and off, Space pauses the light.
+//! Keys: B cycles the highlight model (Blinn-Phong, normalized, Phong), S the shadows on and off, Space pauses the light.
 
 mod support;
 
@@ -36,7 +36,7 @@ struct Paused(bool);
 
 fn main() {
     let mut app = support::example_app("orbiting_light");
-    support::show_key_help(&mut app, "B Blinn-Phong / Phong, S shadows, Space pause")
+    support::show_key_help(&mut app, "B highlight model, S shadows, Space pause")
         .add_plugins(PhongPlugin)
         .insert_resource(PhongAmbientLight::NONE)
         .init_resource::<Paused>()

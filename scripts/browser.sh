@@ -6,8 +6,8 @@
 #                               checks the sphere's three highlights on it (`--check`);
 #   scripts/browser.sh --serve  keeps serving it and prints the address to open.
 # Installs what is missing: the pinned toolchain and its wasm32 target, wasm-bindgen-cli at
-# the version in Cargo.lock and, for the test, Chromium and Node.js (Debian's packages) and
-# playwright-core (npm, into target/browser/node_modules).
+# the version in Cargo.lock and, for the test, what scripts/ensure-browser.sh installs
+# (Chromium and Node.js, and playwright-core and three.js in target/browser/node_modules).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,7 +20,6 @@ esac
 
 out=target/browser
 site=$out/site
-playwright_version=1.65.1
 fail() {
     echo "browser test failed: $*" >&2
     exit 1
@@ -36,20 +35,7 @@ if [[ $(wasm-bindgen --version 2>/dev/null) != "wasm-bindgen $bindgen_version" ]
     cargo install wasm-bindgen-cli --version "$bindgen_version"
 fi
 if [[ $mode == test ]]; then
-    if [[ ! -x /usr/bin/chromium ]]; then
-        apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
-    fi
-    if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-        apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null
-    fi
-    if [[ ! -f $out/node_modules/playwright-core/package.json ]] ||
-        [[ $(node -p "require('./$out/node_modules/playwright-core/package.json').version") != "$playwright_version" ]]; then
-        mkdir -p "$out"
-        npm install --prefix "$out" --no-save --no-audit --no-fund --loglevel=error \
-            "playwright-core@$playwright_version"
-    fi
+    scripts/ensure-browser.sh
 fi
 
 # The page: the wasm module, its JavaScript bindings and index.html. The showcase needs no

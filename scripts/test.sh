@@ -8,6 +8,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/ensure-toolchain.sh
 scripts/ensure-vulkan.sh
+# Chromium, Node.js and three.js, for the render test that compares with three.js's picture.
+scripts/ensure-browser.sh
 source scripts/runtime-dir.sh
 export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
 # Each part says when it starts, in seconds since the script began.

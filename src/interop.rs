@@ -34,6 +34,10 @@
 //! directional light's cascades are [`PhongCascades::default`], not Bevy's
 //! `CascadeShadowConfig`; resolution and softness are the defaults.
 //!
+//! A `Lightmap` on a Phong mesh is read as Bevy reads it, weighed by the material's
+//! `light_map_intensity`; [`BevyLightExposure::light_map_intensity`] gives the intensity that
+//! shows it as a `StandardMaterial` with a `lightmap_exposure` does under the exposure.
+//!
 //! Bevy's light textures (`SpotLightTexture`, `PointLightTexture`,
 //! `DirectionalLightTexture`) become a [`PhongLightCookie`] on the same entity, laid out the
 //! same way and read, as Bevy reads them, by their red channel (`red_only`).
@@ -43,7 +47,7 @@
 
 use crate::{
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCookie,
+        ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCookie,
         PhongPointLight, PhongShadows, PhongSpotLight,
     },
     schedule::PhongSystems,
@@ -104,6 +108,17 @@ impl BevyLightExposure {
         Exposure { ev100: self.ev100 }.exposure()
     }
 
+    /// The [`light_map_intensity`](crate::PhongMaterial::light_map_intensity) under which
+    /// Bevy's `Lightmap` on a Phong mesh shows as it does on a `StandardMaterial` with
+    /// `lightmap_exposure`: Bevy weighs a lightmap's light by the material's
+    /// `lightmap_exposure` and the camera's exposure and, unlike a light's, does not divide
+    /// it by π, so the intensity is `lightmap_exposure · factor()` (Bevy's `lightmaps`
+    /// example, 250 at EV100 9.7: 0.25). An AO map still darkens it, as three.js's `aoMap`
+    /// darkens its `lightMap` (Bevy's occlusion texture leaves a lightmap alone).
+    pub fn light_map_intensity(&self, lightmap_exposure: f32) -> f32 {
+        lightmap_exposure * self.factor()
+    }
+
     /// The Phong directional light that shows like `light`.
     pub fn directional(&self, light: &DirectionalLight) -> PhongDirectionalLight {
         PhongDirectionalLight {
@@ -145,6 +160,7 @@ impl BevyLightExposure {
             inner_angle: light.inner_angle,
             outer_angle: light.outer_angle,
             exponent: 0.0,
+            cone_edge: ConeEdge::Linear,
             shadows: point_shadows(
                 light.shadow_maps_enabled,
                 light.shadow_depth_bias,
@@ -302,6 +318,16 @@ mod tests {
         let candela = f64::from(lumens) / (4.0 * std::f64::consts::PI);
         let illuminance = candela / (distance * distance).max(1e-4);
         illuminance / std::f64::consts::PI * f64::from(exposure)
+    }
+
+    /// Bevy's `lightmaps` example (`lightmap_exposure` 250) at its default EV100 of 9.7:
+    /// Bevy shows `2^-9.7 / 1.2 · 250 = 0.2505` of the texel times the base color
+    /// (`pbr_functions.wesl`: `view.exposure · lightmap · lightmap_exposure · diffuse`),
+    /// worked by hand; the Phong material's term is `texel · intensity · k_d`.
+    #[test]
+    fn a_lightmaps_intensity_carries_bevys_exposures() {
+        let intensity = BevyLightExposure::default().light_map_intensity(250.0);
+        assert!((intensity - 0.250_477).abs() < 1e-6, "{intensity}");
     }
 
     #[test]

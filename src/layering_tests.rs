@@ -42,7 +42,13 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("gather and bindings", &["render"]),
     (
         "features",
-        &["scene", "interop", "extension", "surface_inputs"],
+        &[
+            "scene",
+            "interop",
+            "from_three",
+            "extension",
+            "surface_inputs",
+        ],
     ),
     ("the plugin", &["plugin"]),
     ("glTF", &["gltf"]),

@@ -112,7 +112,8 @@
 //!    built-in or an extension's, implements: record, reach, validation, shadows, reference
 //!    light);
 //! 6. `render`, which gathers the lights and binds them, with the shadow maps, to materials;
-//! 7. features on top of those: `scene`, `interop`, `extension`, `surface_inputs`;
+//! 7. features on top of those: `scene`, `interop`, `from_three`, `extension`,
+//!    `surface_inputs`;
 //! 8. `plugin`, which adds all of it to an app;
 //! 9. `gltf`, whose [`PhongGltfPlugin`] adds the mirror of Bevy's lights and expects
 //!    [`PhongPlugin`];
@@ -143,6 +144,7 @@ pub mod culling;
 mod direction;
 mod displacement;
 pub mod extension;
+pub mod from_three;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 pub mod interop;
@@ -177,7 +179,7 @@ pub use culling::{PhongLightCulling, PhongViewClusters};
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
 pub use lights::{
-    Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
+    ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
     PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
 };
 pub use material::{
@@ -193,7 +195,7 @@ pub use validation::{InvalidInput, Owner};
 /// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
 pub mod prelude {
     pub use crate::{
-        Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
+        ConeEdge, Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
         PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
         PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSceneMaterial, PhongShadows,
         PhongSpotLight, PhongViewClusters, SpecularMode, SpecularModel,

@@ -50,6 +50,13 @@ pub enum SpecularModel {
     /// `max(N·H, 0)^α` with `H = normalize(L + V)`, the half vector. For the same
     /// look as Phong, use about four times the shininess.
     BlinnPhong,
+    /// three.js's `MeshPhongMaterial` highlight: `F · (α + 2)/(8π) · max(N·H, 0)^α · N·L`, its
+    /// Blinn-Phong lobe normalized and weighed by `N·L`, and `k_s · strength` replaced by
+    /// Schlick's Fresnel term `F = f₀ + (1 − f₀) · w(V·H)` with `f₀ = k_s · strength` and
+    /// three.js's weight `w(c) = 2^((−5.55473·c − 6.98316)·c)`: brighter toward grazing
+    /// angles, and present (as `w`) even on a black specular color. A zero
+    /// `specular_strength` still turns the highlight off. SPEC.md, "Normalized Blinn-Phong".
+    NormalizedBlinnPhong,
 }
 
 impl SpecularModel {
@@ -58,6 +65,7 @@ impl SpecularModel {
         match self {
             SpecularModel::Phong => 0,
             SpecularModel::BlinnPhong => 1,
+            SpecularModel::NormalizedBlinnPhong => 2,
         }
     }
 }

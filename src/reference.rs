@@ -24,7 +24,8 @@
 use crate::{
     culling::influence_radius,
     lights::{
-        PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight, light_direction,
+        ConeEdge, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
+        light_direction,
     },
     limits,
     material::{DiffuseMode, PhongMaterial, SpecularMode, SpecularModel},
@@ -155,6 +156,8 @@ pub enum Light {
         outer_angle: f64,
         /// Exponent of the `cos(θ)^exponent` rim darkening.
         exponent: f64,
+        /// How the light fades between the cones.
+        edge: ConeEdge,
     },
 }
 
@@ -428,6 +431,7 @@ pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &L
             inner_angle,
             outer_angle,
             exponent,
+            edge,
         } => {
             let Some((to_light, attenuation)) = toward(surface, position, decay, range) else {
                 return DVec3::ZERO;
@@ -437,7 +441,13 @@ pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &L
                 return DVec3::ZERO;
             }
             let cos_theta = (-to_light).dot(normalize_or_zero(direction));
-            let cone = spot_cone(cos_theta, inner_angle.cos(), outer_angle.cos(), exponent);
+            let cone = spot_cone(
+                cos_theta,
+                inner_angle.cos(),
+                outer_angle.cos(),
+                exponent,
+                edge,
+            );
             attenuation * cone * phong_light(surface, material, to_light, color, specular)
         }
     }
@@ -508,12 +518,33 @@ pub fn phong_light(
     );
     color * material.diffuse * diffuse
         + rim
-        + specular * material.specular * material.specular_strength * highlight
+        + specular * specular_weight(material, view, to_light) * highlight
+}
+
+/// What weighs a light's highlight: `k_s · strength`, or for the normalized model Schlick's
+/// `F = f₀ + (1 − f₀) · w` with `f₀ = k_s · strength` ([`fresnel_weight`]; zero for a zero
+/// strength, which has no specular term).
+pub fn specular_weight(material: &Material, view: DVec3, to_light: DVec3) -> DVec3 {
+    let f0 = material.specular * material.specular_strength;
+    if material.specular_model != SpecularModel::NormalizedBlinnPhong
+        || material.specular_strength <= 0.0
+    {
+        return f0;
+    }
+    let w = fresnel_weight(view, to_light);
+    f0 + (DVec3::ONE - f0) * w
+}
+
+/// three.js's Schlick weight `w = 2^((−5.55473·c − 6.98316)·c)` for `c = max(V·H, 0)`,
+/// `H = normalize(L + V)` (SPEC.md, "Normalized Blinn-Phong").
+pub fn fresnel_weight(view: DVec3, to_light: DVec3) -> f64 {
+    let c = view.dot(normalize_or_zero(to_light + view)).clamp(0.0, 1.0);
+    ((-5.55473 * c - 6.98316) * c).exp2()
 }
 
 /// `H(N, L, V)` for unit `N`, `L` and `V` with `N·L > 0`:
 /// Phong `max(R·V, 0)^α` with `R = 2(N·L)N - L` (SPEC.md), Blinn-Phong `max(N·H, 0)^α` with
-/// `H = normalize(L + V)`.
+/// `H = normalize(L + V)`, normalized Blinn-Phong that times `(α + 2)/(8π) · N·L`.
 pub fn highlight(
     model: SpecularModel,
     normal: DVec3,
@@ -521,11 +552,18 @@ pub fn highlight(
     view: DVec3,
     shininess: f64,
 ) -> f64 {
+    let half_vector = || normal.dot(normalize_or_zero(to_light + view));
     let cosine = match model {
         SpecularModel::Phong => reflect(-to_light, normal).dot(view),
-        SpecularModel::BlinnPhong => normal.dot(normalize_or_zero(to_light + view)),
+        SpecularModel::BlinnPhong | SpecularModel::NormalizedBlinnPhong => half_vector(),
     };
-    power(cosine.max(0.0), shininess)
+    let lobe = power(cosine.max(0.0), shininess);
+    match model {
+        SpecularModel::NormalizedBlinnPhong => {
+            lobe * (shininess + 2.0) / (8.0 * std::f64::consts::PI) * normal.dot(to_light)
+        }
+        _ => lobe,
+    }
 }
 
 /// GLSL's `reflect(incident, normal) = incident - 2(N·I)N`; with `incident = -L` it is
@@ -563,12 +601,22 @@ pub fn attenuation(
 }
 
 /// `S_cone = edge · max(cosθ, 0)^exponent`, where `edge` is
-/// `clamp((cosθ - cos_outer) / (cos_inner - cos_outer), 0, 1)` (a soft edge) or,
-/// when the inner cone is not narrower than the outer one, `step(cos_outer, cosθ)` (a
-/// hard edge).
-pub fn spot_cone(cos_theta: f64, cos_inner: f64, cos_outer: f64, exponent: f64) -> f64 {
+/// `t = clamp((cosθ - cos_outer) / (cos_inner - cos_outer), 0, 1)` (a soft edge; `t² (3 − 2t)`
+/// for [`ConeEdge::Smooth`]) or, when the inner cone is not narrower than the outer one,
+/// `step(cos_outer, cosθ)` (a hard edge).
+pub fn spot_cone(
+    cos_theta: f64,
+    cos_inner: f64,
+    cos_outer: f64,
+    exponent: f64,
+    shape: ConeEdge,
+) -> f64 {
     let edge = if cos_inner > cos_outer {
-        ((cos_theta - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0)
+        let t = ((cos_theta - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0);
+        match shape {
+            ConeEdge::Linear => t,
+            ConeEdge::Smooth => t * t * (3.0 - 2.0 * t),
+        }
     } else if cos_theta >= cos_outer {
         1.0
     } else {
@@ -706,6 +754,7 @@ impl Light {
             inner_angle: limits::SPOT_ANGLE.apply(light.inner_angle).into(),
             outer_angle: limits::SPOT_ANGLE.apply(light.outer_angle).into(),
             exponent: light.exponent.into(),
+            edge: light.cone_edge,
         }
     }
 }
@@ -858,31 +907,99 @@ mod tests {
     fn seed_004_soft_cone_is_full_inside_12_5_degrees_and_dark_past_17_5() {
         let (inner, outer) = (12.5f64.to_radians().cos(), 17.5f64.to_radians().cos());
         assert!(close(
-            spot_cone(10f64.to_radians().cos(), inner, outer, 0.0),
+            spot_cone(
+                10f64.to_radians().cos(),
+                inner,
+                outer,
+                0.0,
+                ConeEdge::Linear
+            ),
             1.0
         ));
-        assert_eq!(spot_cone(18f64.to_radians().cos(), inner, outer, 0.0), 0.0);
+        assert_eq!(
+            spot_cone(
+                18f64.to_radians().cos(),
+                inner,
+                outer,
+                0.0,
+                ConeEdge::Linear
+            ),
+            0.0
+        );
         // At 15°: (cos 15° - cos 17.5°) / (cos 12.5° - cos 17.5°), worked by hand
         // (0.965925826 - 0.953716951) / (0.976296007 - 0.953716951) = 0.540717…
         let by_hand = (0.965_925_826_289_068 - 0.953_716_950_748_227)
             / (0.976_296_007_119_933_4 - 0.953_716_950_748_227);
         assert!(close(
-            spot_cone(15f64.to_radians().cos(), inner, outer, 0.0),
+            spot_cone(
+                15f64.to_radians().cos(),
+                inner,
+                outer,
+                0.0,
+                ConeEdge::Linear
+            ),
             by_hand
         ));
+    }
+
+    /// three.js's `smoothstep(cos outer, cos inner, cos θ)`: at 15° between 12.5° and 17.5°,
+    /// `t = 0.540717…` (above) gives `t² (3 − 2t) = 0.560940…`, worked by hand.
+    #[test]
+    fn a_smooth_cone_edge_is_the_smoothstep_of_the_linear_one() {
+        let (inner, outer) = (12.5f64.to_radians().cos(), 17.5f64.to_radians().cos());
+        let smooth = spot_cone(
+            15f64.to_radians().cos(),
+            inner,
+            outer,
+            0.0,
+            ConeEdge::Smooth,
+        );
+        assert!((smooth - 0.560_940_2).abs() < 1e-6, "{smooth}");
+        assert_eq!(
+            spot_cone(
+                10f64.to_radians().cos(),
+                inner,
+                outer,
+                0.0,
+                ConeEdge::Smooth
+            ),
+            1.0
+        );
+        assert_eq!(
+            spot_cone(
+                18f64.to_radians().cos(),
+                inner,
+                outer,
+                0.0,
+                ConeEdge::Smooth
+            ),
+            0.0
+        );
     }
 
     #[test]
     fn seed_000_hard_cone_is_a_step_at_the_angle() {
         let edge = 20f64.to_radians().cos();
-        assert_eq!(spot_cone(19f64.to_radians().cos(), edge, edge, 0.0), 1.0);
-        assert_eq!(spot_cone(21f64.to_radians().cos(), edge, edge, 0.0), 0.0);
+        assert_eq!(
+            spot_cone(19f64.to_radians().cos(), edge, edge, 0.0, ConeEdge::Linear),
+            1.0
+        );
+        assert_eq!(
+            spot_cone(21f64.to_radians().cos(), edge, edge, 0.0, ConeEdge::Linear),
+            0.0
+        );
     }
 
     #[test]
     fn seed_001_spot_exponent_darkens_by_cos_theta_to_the_exponent() {
         let cos_theta = 5f64.to_radians().cos();
-        let cone = spot_cone(cos_theta, 1.0_f64.cos(), 1.2_f64.cos(), 8.0);
+        let cone = spot_cone(
+            cos_theta,
+            1.0_f64.cos(),
+            1.2_f64.cos(),
+            8.0,
+            ConeEdge::Linear,
+        );
         assert!(close(cone, cos_theta.powi(8)));
     }
 
@@ -991,7 +1108,11 @@ mod properties {
     }
 
     fn model() -> impl Strategy<Value = SpecularModel> {
-        prop_oneof![Just(SpecularModel::Phong), Just(SpecularModel::BlinnPhong)]
+        prop_oneof![
+            Just(SpecularModel::Phong),
+            Just(SpecularModel::BlinnPhong),
+            Just(SpecularModel::NormalizedBlinnPhong)
+        ]
     }
 
     fn material() -> impl Strategy<Value = Material> {
@@ -1066,6 +1187,7 @@ mod properties {
                             inner_angle: inner,
                             outer_angle: inner + width,
                             exponent,
+                            edge: ConeEdge::Linear,
                         }
                     }
                 ),

@@ -121,14 +121,16 @@ pub fn example_camera(transform: Transform) -> impl Bundle {
     (Camera3d::default(), Tonemapping::Linear, transform)
 }
 
-/// Switches every `PhongMaterial` between Phong and Blinn-Phong highlights (key B).
+/// Switches every `PhongMaterial` to the next highlight model (key B): Phong, Blinn-Phong,
+/// three.js's normalized Blinn-Phong, Phong again.
 #[allow(dead_code, reason = "only the examples that take keys use it")]
 pub fn switch_specular_model(materials: &mut Assets<bevy_phong::PhongMaterial>) {
     use bevy_phong::SpecularModel;
     for (_, material) in materials.iter_mut() {
         material.specular_model = match material.specular_model {
             SpecularModel::Phong => SpecularModel::BlinnPhong,
-            SpecularModel::BlinnPhong => SpecularModel::Phong,
+            SpecularModel::BlinnPhong => SpecularModel::NormalizedBlinnPhong,
+            SpecularModel::NormalizedBlinnPhong => SpecularModel::Phong,
         };
     }
     println!("specular model switched");

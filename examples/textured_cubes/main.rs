@@ -40,7 +40,7 @@ fn main() {
     let mut app = support::example_app("textured_cubes");
     support::show_key_help(
         &mut app,
-        "D directional, P point, S spot light on/off; N normal maps; B Phong / Blinn-Phong",
+        "D directional, P point, S spot light on/off; N normal maps; B highlight model",
     )
     .add_plugins(PhongPlugin)
     .insert_resource(PhongAmbientLight {

@@ -8,7 +8,8 @@
 use super::{GpuLight, PhongLightKind};
 use crate::culling::influence_radius;
 use crate::lights::{
-    PhongCookieProjection, PhongDirectionalLight, PhongPointLight, PhongSpotLight, light_direction,
+    ConeEdge, PhongCookieProjection, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
+    light_direction,
 };
 use crate::limits;
 use crate::reference::{Light, ReferenceLight};
@@ -151,11 +152,12 @@ fn intensities(color: Color, specular: Option<Color>) -> ([f32; 3], [f32; 3]) {
 }
 
 /// `(1 - cos(outer), cone_scale)` of a spot cone, computed in `f64` and rounded once:
-/// `cone_scale = 1 / (cos(inner) - cos(outer))`, or `0` (a hard edge at the outer angle)
-/// where the inner cone is not narrower. A cone whose outer angle is not positive is empty:
+/// `cone_scale = 1 / (cos(inner) - cos(outer))`, negated for a smooth edge
+/// ([`ConeEdge::Smooth`]), or `0` (a hard edge at the outer angle) where the inner cone is
+/// not narrower. A cone whose outer angle is not positive is empty:
 /// its `1 - cos(outer)` is stored as `-1`, which no `1 - cos θ` reaches. Angles are first
 /// brought into `[0, π]` ([`crate::limits::SPOT_ANGLE`]).
-fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
+fn spot_cone_terms(inner_angle: f32, outer_angle: f32, edge: ConeEdge) -> (f32, f32) {
     let inner_angle = limits::SPOT_ANGLE.apply(inner_angle);
     let outer_angle = limits::SPOT_ANGLE.apply(outer_angle);
     if outer_angle <= 0.0 {
@@ -169,7 +171,10 @@ fn spot_cone_terms(inner_angle: f32, outer_angle: f32) -> (f32, f32) {
     // Beyond f32's range (or for no width at all) the edge is hard.
     let cone_scale = (1.0 / width) as f32;
     let cone_scale = if width > 0.0 && cone_scale.is_finite() {
-        cone_scale
+        match edge {
+            ConeEdge::Linear => cone_scale,
+            ConeEdge::Smooth => -cone_scale,
+        }
     } else {
         0.0
     };
@@ -251,7 +256,8 @@ impl PhongSpotLight {
     /// cone's terms.
     fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
-        let (outer_versine, cone_scale) = spot_cone_terms(self.inner_angle, self.outer_angle);
+        let (outer_versine, cone_scale) =
+            spot_cone_terms(self.inner_angle, self.outer_angle, self.cone_edge);
         GpuLight {
             range: stored_range(self.range),
             outer_versine,

@@ -21,7 +21,8 @@ pub struct GpuLight {
     pub outer_versine: f32,
     /// Diffuse intensity, linear RGB.
     pub color: [f32; 3],
-    /// `1 / (cos(inner) - cos(outer))`, computed in `f64`, or `0` for a hard edge (spot).
+    /// `1 / (cos(inner) - cos(outer))`, computed in `f64`, negated for a smooth edge, or `0`
+    /// for a hard edge (spot).
     pub cone_scale: f32,
     /// Specular intensity, linear RGB.
     pub specular: [f32; 3],

@@ -27,4 +27,4 @@ pub(crate) use lit::{
 pub use lit::{is_finite_transform, light_direction};
 pub use point::PhongPointLight;
 pub use shadows::{PhongCascades, PhongShadows};
-pub use spot::PhongSpotLight;
+pub use spot::{ConeEdge, PhongSpotLight};

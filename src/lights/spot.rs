@@ -15,8 +15,9 @@ use serde::{Deserialize, Serialize};
 /// A light that shines from the entity's position into a cone around its local -Z axis.
 ///
 /// With `θ` the angle between the cone's axis and the ray to a surface point, the light is
-/// full inside `inner_angle`, fades smoothly (linearly in `cos θ`) to zero at `outer_angle`
-/// and is zero beyond; `inner_angle == outer_angle` gives a hard edge. On top of that,
+/// full inside `inner_angle`, fades (linearly in `cos θ`, or along a smoothstep:
+/// [`ConeEdge`]) to zero at `outer_angle` and is zero beyond; `inner_angle == outer_angle`
+/// gives a hard edge. On top of that,
 /// `cos(θ)^exponent` darkens the cone towards its rim. Distance fall-off is as for
 /// [`PhongPointLight`](crate::PhongPointLight). Scale is ignored; a hidden entity gives no
 /// light.
@@ -49,6 +50,24 @@ pub struct PhongSpotLight {
     /// Exponent of the `cos(θ)^exponent` rim darkening, `0` to `1e6`
     /// (`MAX_EXPONENT`). Default `0` (none).
     pub exponent: f32,
+    /// How the light fades between `inner_angle` and `outer_angle`. Default
+    /// [`ConeEdge::Linear`].
+    pub cone_edge: ConeEdge,
+}
+
+/// How a spot light fades from its inner cone to its outer one, as a function of
+/// `t = (cos θ − cos outer) / (cos inner − cos outer)` clamped to `[0, 1]` (SPEC.md, "Spot
+/// lights").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
+#[reflect(Default, Debug, PartialEq, Clone)]
+pub enum ConeEdge {
+    /// `t` itself.
+    #[default]
+    Linear,
+    /// `t² (3 − 2t)`: GLSL's `smoothstep(cos outer, cos inner, cos θ)`, three.js's spot edge
+    /// (its `angle` is the outer angle, `angle · (1 − penumbra)` the inner one).
+    Smooth,
 }
 
 impl Default for PhongSpotLight {
@@ -62,6 +81,7 @@ impl Default for PhongSpotLight {
             inner_angle: 12.5_f32.to_radians(),
             outer_angle: 17.5_f32.to_radians(),
             exponent: 0.0,
+            cone_edge: ConeEdge::Linear,
         }
     }
 }

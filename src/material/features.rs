@@ -4,7 +4,10 @@
 //! `shader_defs` turns them into defs; a material feature that switches shader code adds one
 //! row to [`material_features!`]'s table below and nothing else on the Rust side.
 
-use super::{DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialUniform, SpecularMode};
+use super::{
+    DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialUniform, SpecularMode,
+    SpecularModel,
+};
 use crate::limits;
 use bevy::{
     asset::Handle,
@@ -112,9 +115,16 @@ impl MaterialFeatures {
     }
 }
 
-/// Whether `material` has a specular term, its numbers in range (`uniform`).
+/// Whether `material` has a specular term, its numbers in range (`uniform`): a non-zero
+/// `k_s · strength`, or for the normalized model, whose Fresnel term lights grazing angles
+/// even on a black specular color, a non-zero strength.
 fn has_specular(material: &PhongMaterial, uniform: &PhongMaterialUniform) -> bool {
-    uniform.specular != Vec3::ZERO && material.specular_mode != SpecularMode::Off
+    let lit = if material.specular_model == SpecularModel::NormalizedBlinnPhong {
+        material.in_range().specular_strength > 0.0
+    } else {
+        uniform.specular != Vec3::ZERO
+    };
+    lit && material.specular_mode != SpecularMode::Off
 }
 
 /// Whether `material` has an environment (its own cube, or the camera's).
@@ -132,6 +142,9 @@ material_features! {
     /// `SpecularMode::Off` (`PHONG_NO_SPECULAR`).
     NO_SPECULAR: "specular_color", ["PHONG_NO_SPECULAR"], Nothing,
         |m, u| !has_specular(m, u);
+    /// Schlick's Fresnel term on the highlight (`PHONG_FRESNEL`, normalized Blinn-Phong).
+    FRESNEL: "specular_model", ["PHONG_FRESNEL"], Nothing,
+        |m, u| has_specular(m, u) && m.specular_model == SpecularModel::NormalizedBlinnPhong;
     /// A toon highlight (`PHONG_SPECULAR_TOON`).
     SPECULAR_TOON: "specular_mode", ["PHONG_SPECULAR_TOON"], Nothing,
         |m, u| has_specular(m, u) && matches!(m.specular_mode, SpecularMode::Toon { .. });

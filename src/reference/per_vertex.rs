@@ -7,16 +7,19 @@ use crate::material::DiffuseMode;
 use glam::DVec3;
 
 /// The lights' sums at a vertex, unweighed by the material's colors: `diffuse` (each light's
-/// `color · f_d(N·L)`, for `k_d`), `specular` (`specular · f_s(H)`, for `k_s · strength`) and
-/// `rim` (`color · max(N·L, 0)`, for a lit-side rim's color and factor), each light with its
-/// attenuation, cone and whatever scales it. A [`ReferenceLight`]: its term at a point is
-/// the sums weighed with the material there.
+/// `color · f_d(N·L)`, for `k_d`), `specular` (`specular · f_s(H)`, for `k_s · strength`;
+/// times `1 − w` under a Fresnel term), `grazing` (`specular · f_s(H) · w`, for 1: the
+/// normalized model's Fresnel share) and `rim` (`color · max(N·L, 0)`, for a lit-side rim's
+/// color and factor), each light with its attenuation, cone and whatever scales it. A
+/// [`ReferenceLight`]: its term at a point is the sums weighed with the material there.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct VertexLight {
     /// `Σ color · f_d(N·L)`, linear RGB.
     pub diffuse: DVec3,
-    /// `Σ specular · f_s(H(N, L, V))`, linear RGB.
+    /// `Σ specular · f_s(H(N, L, V))` (times `1 − w` under a Fresnel term), linear RGB.
     pub specular: DVec3,
+    /// `Σ specular · f_s(H(N, L, V)) · w`, linear RGB; zero without a Fresnel term.
+    pub grazing: DVec3,
     /// `Σ color · max(N·L, 0)`, linear RGB; zero unless the material's rim is on its lit side.
     pub rim: DVec3,
 }
@@ -24,7 +27,8 @@ pub struct VertexLight {
 impl VertexLight {
     /// The sums of `lights` at `vertex` (its position and normal, seen from its camera) for
     /// `material`: each is the model's own sum of the lights' terms for the material with that
-    /// part's weight set to one and the others to zero (the terms are linear in them).
+    /// part's weight set to one and the others to zero (the terms are affine in them: with
+    /// every weight zero, what remains is the Fresnel share `grazing`).
     pub fn at(vertex: &SurfacePoint, material: &Material, lights: &[Light]) -> Self {
         let sum = |weights: Material| -> DVec3 {
             lights
@@ -39,22 +43,24 @@ impl VertexLight {
             rim: super::Rim::NONE,
             ..material.clone()
         };
+        let grazing = sum(unweighed.clone());
         Self {
             diffuse: sum(Material {
                 diffuse: DVec3::ONE,
                 ..unweighed.clone()
-            }),
+            }) - grazing,
             specular: sum(Material {
                 specular: DVec3::ONE,
                 ..unweighed.clone()
-            }),
+            }) - grazing,
+            grazing,
             rim: if material.rim.lit_side {
                 sum(Material {
                     diffuse: DVec3::ONE,
                     diffuse_mode: DiffuseMode::Lambert,
                     toon_ramp: None,
                     ..unweighed
-                })
+                }) - grazing
             } else {
                 DVec3::ZERO
             },
@@ -70,13 +76,14 @@ impl VertexLight {
             .fold(Self::default(), |sum, (corner, weight)| Self {
                 diffuse: sum.diffuse + weight * corner.diffuse,
                 specular: sum.specular + weight * corner.specular,
+                grazing: sum.grazing + weight * corner.grazing,
                 rim: sum.rim + weight * corner.rim,
             })
     }
 }
 
-/// `diffuse ⊙ k_d + specular ⊙ k_s · strength + rim ⊙ rim color · rim factor`, the
-/// material and the rim factor those of `surface`.
+/// `diffuse ⊙ k_d + specular ⊙ k_s · strength + grazing + rim ⊙ rim color · rim factor`,
+/// the material and the rim factor those of `surface`.
 impl ReferenceLight for VertexLight {
     fn term(&self, surface: &SurfacePoint, material: &Material) -> DVec3 {
         let rim = if material.rim.lit_side {
@@ -88,6 +95,11 @@ impl ReferenceLight for VertexLight {
         };
         self.diffuse * material.diffuse
             + self.specular * material.specular * material.specular_strength
+            + if material.specular_strength > 0.0 {
+                self.grazing
+            } else {
+                DVec3::ZERO
+            }
             + rim
     }
 }
@@ -139,8 +151,17 @@ mod tests {
             normal: DVec3::new(0.1, 1.0, 0.3),
             camera: DVec3::new(0.0, 1.0, 4.0),
         };
-        for lit_side in [false, true] {
-            let material = material(lit_side);
+        use crate::SpecularModel::{NormalizedBlinnPhong, Phong};
+        for (lit_side, specular_model) in [
+            (false, Phong),
+            (true, Phong),
+            (false, NormalizedBlinnPhong),
+            (true, NormalizedBlinnPhong),
+        ] {
+            let material = Material {
+                specular_model,
+                ..material(lit_side)
+            };
             let corner = VertexLight::at(&vertex, &material, &lights());
             let other = VertexLight::at(
                 &SurfacePoint {
@@ -165,7 +186,7 @@ mod tests {
             );
             assert!(
                 (a - b).abs().max_element() < 1e-12,
-                "rim on the lit side {lit_side}: {a} against {b}"
+                "rim on the lit side {lit_side}, {specular_model:?}: {a} against {b}"
             );
         }
     }
@@ -175,6 +196,7 @@ mod tests {
         let corner = |value: f64| VertexLight {
             diffuse: DVec3::splat(value),
             specular: DVec3::splat(2.0 * value),
+            grazing: DVec3::splat(4.0 * value),
             rim: DVec3::splat(3.0 * value),
         };
         let middle =

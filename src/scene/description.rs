@@ -1,7 +1,7 @@
 //! A scene as written in a `*.phong_scene.ron` file.
 
 use super::{PhongMaterialDescription, SceneColor};
-use crate::lights::{Decay, PhongCascades, PhongShadows};
+use crate::lights::{ConeEdge, Decay, PhongCascades, PhongShadows};
 use bevy::math::{EulerRot, Quat, Vec2, Vec3};
 use bevy::transform::components::Transform;
 use serde::{Deserialize, Serialize};
@@ -154,6 +154,9 @@ pub enum LightDescription {
         /// Rim darkening exponent. Default 0.
         #[serde(default)]
         exponent: f32,
+        /// How the light fades between the cones, as `ConeEdge`. Default `Linear`.
+        #[serde(default)]
+        cone_edge: ConeEdge,
         /// Shadow settings, as `PhongShadows`. Default off.
         #[serde(default)]
         shadows: PhongShadows,

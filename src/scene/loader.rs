@@ -254,6 +254,7 @@ fn scene_light_alone(
             inner_angle_degrees,
             outer_angle_degrees,
             exponent,
+            cone_edge,
             shadows,
             ..
         } => (
@@ -265,6 +266,7 @@ fn scene_light_alone(
                 inner_angle: inner_angle_degrees.to_radians(),
                 outer_angle: outer_angle_degrees.to_radians(),
                 exponent: *exponent,
+                cone_edge: *cone_edge,
                 shadows: *shadows,
             }),
             aimed(*position, *direction)?,

@@ -74,6 +74,7 @@ fn reference_direction_lights(ambient: DVec3) -> reference::Lights {
             inner_angle: inner.to_radians(),
             outer_angle: outer.to_radians(),
             exponent: 2.0,
+            edge: ConeEdge::Linear,
         };
     reference::Lights {
         ambient,
@@ -246,6 +247,7 @@ fn huge_and_tiny_light_directions_light_the_scene_as_their_unit_vectors() {
                 inner_angle: f64::from(12.5_f32.to_radians()),
                 outer_angle: f64::from(17.5_f32.to_radians()),
                 exponent: 2.0,
+                edge: ConeEdge::Linear,
             },
         ],
         others: Default::default(),

@@ -41,6 +41,9 @@
 //!   reference model;
 //! - `fuzzed_scenes`: a sample of the fuzzer's files (`tests/fuzz`), rendered: no NaN or
 //!   infinite pixel;
+//! - `three_js`: a scene described as three.js describes it, converted with
+//!   `bevy_phong::from_three`, against the reference model and against three.js r187's own
+//!   picture of it (rendered in headless Chromium), pixel by pixel;
 //! - `two_apps`: two apps in one process, one with shadows, a cookie and a hemisphere light
 //!   and one without, their frames interleaved: each renders as it does alone.
 //!
@@ -81,4 +84,6 @@ mod stress;
 mod stylized;
 mod surface_inputs;
 mod texture_maps;
+#[cfg(feature = "scene")]
+mod three_js;
 mod two_apps;

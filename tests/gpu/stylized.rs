@@ -18,7 +18,7 @@ use bevy_phong::{DiffuseMode, SpecularMode, prelude::*, reference};
 use glam::DVec3;
 
 /// The directions toward every light of `lights` from `position`.
-fn toward_lights(lights: &reference::Lights, position: DVec3) -> Vec<DVec3> {
+pub(crate) fn toward_lights(lights: &reference::Lights, position: DVec3) -> Vec<DVec3> {
     lights
         .lights
         .iter()

@@ -243,6 +243,8 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         F::LIGHT_COOKIES,
         F::VERTEX_LIGHTING,
         F::VERTEX_LIGHTING.with(F::RIM_LIT),
+        F::FRESNEL,
+        F::VERTEX_LIGHTING.with(F::FRESNEL),
     ]
     .into_iter()
     .map(|features| (features, F::NONE))
@@ -271,9 +273,9 @@ fn material_keys() -> Vec<PhongMaterialKey> {
 /// the camera's environment mixed in or refracted and added (2), the stylized modes (4: wrap,
 /// toon bands, a toon highlight alone and over toon bands), a rim everywhere or on the lit
 /// side (2), a toon ramp (1), a hemisphere light (1), light cookies (1), lighting per vertex
-/// alone and with a rim on the lit side (2), each with no map and every map, under 3 kinds
-/// of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1 + 1 + 2) * 2 * 3;
+/// alone and with a rim on the lit side (2), the Fresnel term per pixel and per vertex (2),
+/// each with no map and every map, under 3 kinds of shadows.
+pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1 + 1 + 2 + 2) * 2 * 3;
 
 /// The fragment variants of a material that specializes as `PhongMaterial` does
 /// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that

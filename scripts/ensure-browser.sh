@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Makes sure what the browser tests need is installed: Chromium and Node.js (Debian's
+# packages) and, into target/browser/node_modules, playwright-core (which drives Chromium)
+# and three (three.js, whose own render of tests/three_js/scene.json scripts/three/render.cjs
+# makes). Installs only what is missing or at another version; quick when all is there.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+out=target/browser
+playwright_version=1.65.1
+three_version=0.187.0
+
+if [[ ! -x /usr/bin/chromium ]]; then
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+fi
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null
+fi
+
+# has NAME VERSION: whether NAME is installed in $out/node_modules at VERSION.
+has() {
+    [[ -f $out/node_modules/$1/package.json ]] &&
+        [[ $(node -p "require('./$out/node_modules/$1/package.json').version") == "$2" ]]
+}
+# Both in one command: an `npm install --no-save` removes the packages that an earlier one
+# installed with --no-save, so installing only the missing one would lose the other.
+if ! has playwright-core "$playwright_version" || ! has three "$three_version"; then
+    mkdir -p "$out"
+    npm install --prefix "$out" --no-save --no-audit --no-fund --loglevel=error \
+        "playwright-core@$playwright_version" "three@$three_version"
+fi
+has playwright-core "$playwright_version" || { echo "error: playwright-core@$playwright_version is not installed in $out" >&2; exit 1; }
+has three "$three_version" || { echo "error: three@$three_version is not installed in $out" >&2; exit 1; }
