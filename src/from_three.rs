@@ -5,8 +5,11 @@
 //! The numbers are three.js's own, named as its constructors and its JSON (`toJSON`) name
 //! them: colors as `0xRRGGBB` integers in sRGB (what `Color.getHex()` returns), angles in
 //! radians, the camera's field of view in degrees. With the `scene` feature each type
-//! deserializes from that JSON (its `type` key, camelCase fields, three.js's defaults for
-//! what is missing).
+//! deserializes from JSON of that shape (a `type` key, camelCase fields; for materials and
+//! lights three.js's defaults for what is missing), with a toon material's `gradientMap` as
+//! its texels rather than a texture's id. Only the fields each type lists are read: texture
+//! maps, `side`, `opacity`, `vertexColors`, partial spheres and segment counts of planes and
+//! boxes are not (docs/from-three.md).
 //!
 //! Where three.js's convention differs from the crate's, the conversion carries it:
 //! three.js divides the diffuse light by π (`BRDF_Lambert`), which the converted diffuse
@@ -14,7 +17,8 @@
 //! and spot lights fall off as `1 / max(d^decay, 0.01)`, which a [`Decay`] with the color
 //! scaled by 100 reproduces exactly for `decay` 0, 1 and 2; its spot edge is
 //! [`ConeEdge::Smooth`]; and its toon material without a `gradientMap` is a ramp of two
-//! tones. What cannot be converted is an error naming the field ([`ThreeError`]).
+//! tones. A light's fall-off that cannot be converted is an error naming the field
+//! ([`ThreeError`]).
 //!
 //! [`SpecularModel::NormalizedBlinnPhong`]: crate::SpecularModel::NormalizedBlinnPhong
 //! [`Decay`]: crate::Decay

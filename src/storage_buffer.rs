@@ -9,9 +9,24 @@ use bevy::{
     asset::{AssetApp, Assets, Handle},
     ecs::message::Message,
     platform::collections::AlignedVec,
-    render::storage::{ShaderBuffer, ShaderBufferData},
+    render::{
+        renderer::RenderDevice,
+        storage::{ShaderBuffer, ShaderBufferData},
+    },
 };
 use bytemuck::Pod;
+
+/// Storage buffers a shader stage needs for the scene data to stay in buffers: the plugin's
+/// three beside Bevy's own (its clustered lights and meshes take up to five). Every native
+/// backend with full WebGPU limits has 8; WebGL2 has none. The shaders follow through the
+/// flag `PHONG_STORAGE_BUFFERS`, set from the bind group layout this number chose.
+pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 8;
+
+/// Whether `device` has too few storage buffers per shader stage for the scene data, which
+/// then travels in the data texture.
+pub(crate) fn needs_scene_texture(device: &RenderDevice) -> bool {
+    device.limits().max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED
+}
 
 /// Registers the [`ShaderBuffer`] asset type where the renderer has not (as under
 /// `MinimalPlugins`), so that light buffers can be gathered without one.

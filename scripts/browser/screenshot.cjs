@@ -6,9 +6,7 @@
 // message when the page fails (a panic, a page error, data-failed) or has not drawn within
 // the time limit.
 "use strict";
-const fs = require("fs");
-const os = require("os");
-const path = require("path");
+const { launch } = require("./chromium.cjs");
 
 const [url, png, modules] = process.argv.slice(2);
 const { chromium } = require(require.resolve("playwright-core", { paths: [modules] }));
@@ -20,30 +18,8 @@ const DRAWN_TIMEOUT_MS = 600_000;
 // take seconds to give while the app keeps drawing.
 const SCREENSHOT_TIMEOUT_MS = 120_000;
 
-const FLAGS = [
-  "--headless",
-  "--no-sandbox",
-  "--disable-gpu",
-  "--disable-quic",
-  "--no-first-run",
-  "--disable-background-networking",
-  "--disable-component-update",
-  "--disable-sync",
-  // WebGL2 without a GPU: ANGLE on SwiftShader, Chromium's software Vulkan.
-  "--use-angle=swiftshader",
-  "--enable-unsafe-swiftshader",
-];
-
 async function main() {
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), "bevy-phong-chromium-"));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: "/usr/bin/chromium",
-    headless: true,
-    // Playwright adds its own flags (the profile, the pipe it drives Chromium through).
-    args: FLAGS,
-    viewport: { width: 1000, height: 600 },
-    deviceScaleFactor: 1,
-  });
+  const { context, close } = await launch(chromium, { width: 1000, height: 600 });
   let failure = null;
   try {
     const page = context.pages()[0] ?? (await context.newPage());
@@ -87,8 +63,7 @@ async function main() {
       console.log(`wrote ${png}`);
     }
   } finally {
-    await context.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
   if (failure !== null) {
     console.error(`browser test failed: ${failure}`);

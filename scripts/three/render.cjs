@@ -12,8 +12,8 @@
 // render that has not finished within the time limit.
 "use strict";
 const fs = require("fs");
-const os = require("os");
 const path = require("path");
+const { launch } = require("../browser/chromium.cjs");
 
 const [scenePath, outPath, modules] = process.argv.slice(2);
 if (modules === undefined) {
@@ -33,20 +33,6 @@ if (!fs.existsSync(path.join(threeDir, "build", "three.module.js"))) {
 const RENDER_TIMEOUT_MS = 300_000;
 const ORIGIN = "http://three.test";
 
-const FLAGS = [
-  "--headless",
-  "--no-sandbox",
-  "--disable-gpu",
-  "--disable-quic",
-  "--no-first-run",
-  "--disable-background-networking",
-  "--disable-component-update",
-  "--disable-sync",
-  // WebGL2 without a GPU: ANGLE on SwiftShader, Chromium's software Vulkan.
-  "--use-angle=swiftshader",
-  "--enable-unsafe-swiftshader",
-];
-
 const CONTENT_TYPES = { ".html": "text/html", ".mjs": "text/javascript", ".js": "text/javascript" };
 
 // The file that a request on ORIGIN stands for, or null: the page and its module from this
@@ -64,15 +50,7 @@ function fileFor(url) {
 
 async function main() {
   const scene = JSON.parse(fs.readFileSync(scenePath, "utf8"));
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), "bevy-phong-chromium-"));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: "/usr/bin/chromium",
-    headless: true,
-    // Playwright adds its own flags (the profile, the pipe it drives Chromium through).
-    args: FLAGS,
-    viewport: { width: 400, height: 300 },
-    deviceScaleFactor: 1,
-  });
+  const { context, close } = await launch(chromium, { width: 400, height: 300 });
   let failure = null;
   const fail = (message) => {
     failure = failure ?? message;
@@ -126,8 +104,7 @@ async function main() {
       }
     }
   } finally {
-    await context.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
   if (failure !== null) {
     console.error(`three.js render failed: ${failure}`);

@@ -127,6 +127,7 @@ fn sphere(radius: f64, width_segments: u32, height_segments: u32) -> Mesh {
     let (columns, rows) = (width_segments as usize + 1, height_segments as usize + 1);
     for iy in 0..rows {
         let v = iy as f64 / f64::from(height_segments);
+        // (r187: the ring's radius from y, `sqrt(r² − y²)`.)
         // The poles' UVs are moved half a segment, as three.js moves them.
         let u_offset = if iy == 0 {
             0.5 / f64::from(width_segments)
@@ -137,12 +138,10 @@ fn sphere(radius: f64, width_segments: u32, height_segments: u32) -> Mesh {
         };
         for ix in 0..columns {
             let u = ix as f64 / f64::from(width_segments);
-            let (phi, theta) = (u * (2.0 * PI), v * PI);
-            let position = [
-                -radius * phi.cos() * theta.sin(),
-                radius * theta.cos(),
-                radius * phi.sin() * theta.sin(),
-            ];
+            let phi = u * (2.0 * PI);
+            let y = radius * (v * PI).cos();
+            let ring_radius = (radius * radius - y * y).sqrt();
+            let position = [-ring_radius * phi.cos(), y, ring_radius * phi.sin()];
             let length = position.iter().map(|c| c * c).sum::<f64>().sqrt();
             // three.js's `normalize`: times `1 / length`, and as it is without a length.
             let normal = if length > 0.0 {
@@ -229,8 +228,8 @@ pub fn object_transform(position: Vec3, rotation: Vec3) -> Transform {
 }
 
 /// three.js's `PerspectiveCamera(fov, aspect, near, far)`, `fov` the vertical field of view
-/// in degrees. (Bevy's projection reaches to infinity with a reversed depth: `far` only
-/// bounds what is drawn, as three.js's does.)
+/// in degrees. Bevy's projection reaches to infinity with a reversed depth: `far` only culls
+/// whole objects beyond it, where three.js clips at it.
 pub fn perspective_projection(fov: f32, aspect: f32, near: f32, far: f32) -> PerspectiveProjection {
     PerspectiveProjection {
         fov: fov.to_radians(),

@@ -30,8 +30,8 @@ pub enum ThreeLight {
     /// `HemisphereLight(skyColor, groundColor, intensity)`.
     #[cfg_attr(feature = "scene", serde(rename_all = "camelCase"))]
     HemisphereLight {
-        /// `0xRRGGBB` sRGB.
-        #[cfg_attr(feature = "scene", serde(default = "white"))]
+        /// `0xRRGGBB` sRGB; `color` in three.js's JSON (its `Light.color`).
+        #[cfg_attr(feature = "scene", serde(default = "white", rename = "color"))]
         sky_color: u32,
         /// `0xRRGGBB` sRGB.
         #[cfg_attr(feature = "scene", serde(default = "white"))]
@@ -231,13 +231,14 @@ fn fall_off(object: &'static str, distance: f32, decay: f32) -> Result<(Decay, f
 
 /// The transform of a three.js directional or spot light at `position` shining toward
 /// `target` (its `target.position`), or of a camera at `position` after
-/// `lookAt(target)`: its -Z axis toward the target, +Y up where it can be.
+/// `lookAt(target)`: its -Z axis toward the target, +Y up where it can be (looking straight
+/// down or up, +Z or -Z up, as three.js's `lookAt` turns then).
 pub fn aimed_transform(position: Vec3, target: Vec3) -> Transform {
     let forward = target - position;
     let up = if forward.cross(Vec3::Y).length_squared() > 0.0 {
         Vec3::Y
     } else {
-        Vec3::Z
+        Vec3::Z * forward.y.signum()
     };
     Transform::from_translation(position).looking_at(target, up)
 }

@@ -56,8 +56,8 @@ pub struct PhongSpotLight {
 }
 
 /// How a spot light fades from its inner cone to its outer one, as a function of
-/// `t = (cos θ − cos outer) / (cos inner − cos outer)` clamped to `[0, 1]` (SPEC.md, "Spot
-/// lights").
+/// `t = (cos θ − cos outer) / (cos inner − cos outer)` clamped to `[0, 1]` (SPEC.md, "The
+/// equation", the spot cone).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
 #[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]

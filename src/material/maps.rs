@@ -48,7 +48,7 @@ macro_rules! material_maps {
             displacement_map: texture(24, visibility(vertex)) sampler(25, visibility(vertex)),
                 All, Linear,
                 "the displacement map (red channel), read in the vertex stage";
-            toon_ramp_texture: texture(27), Full, Linear,
+            toon_ramp_texture: texture(27, filterable = false), Full, Linear,
                 "the toon ramp (red channel, read texel by texel), used with a `Toon` diffuse mode";
         }
     };

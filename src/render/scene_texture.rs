@@ -44,17 +44,7 @@ use bevy::{
 pub(crate) const PHONG_SCENE_TEXTURE: Handle<Image> =
     uuid_handle!("3f6c2a71-8e0b-4d52-a9e4-1c7b5d3e8f90");
 
-/// Storage buffers a shader stage needs for the scene data to stay in buffers: the plugin's
-/// three beside Bevy's own (its clustered lights and meshes take up to five). Every native
-/// backend with full WebGPU limits has 8; WebGL2 has none. The shaders follow through the
-/// flag `PHONG_STORAGE_BUFFERS`, set from the bind group layout this number chose.
-pub(crate) const STORAGE_BUFFERS_NEEDED: u32 = 8;
-
-/// Whether `device` has too few storage buffers per shader stage for the scene data, which
-/// then travels in the data texture.
-pub(crate) fn needs_scene_texture(device: &RenderDevice) -> bool {
-    device.limits().max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED
-}
+pub(crate) use crate::storage_buffer::{STORAGE_BUFFERS_NEEDED, needs_scene_texture};
 
 /// Render startup: says once when the device reads the scene data from the texture.
 pub(crate) fn announce_scene_data_path(device: Res<RenderDevice>) {

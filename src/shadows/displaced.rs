@@ -103,20 +103,22 @@ pub(crate) fn prepare_displaced_bind_groups(
         let Some(image) = images.get(map) else {
             continue;
         };
-        let group = device.create_bind_group(
-            "phong_displaced_caster",
-            &layout,
-            &[
-                BindGroupEntry {
-                    binding: 0,
-                    resource: BindingResource::TextureView(&image.texture_view),
-                },
-                BindGroupEntry {
-                    binding: 1,
-                    resource: BindingResource::Sampler(&image.sampler),
-                },
-            ],
-        );
+        let group =
+            device.create_bind_group("phong_displaced_caster", &layout, &image_entries(0, image));
         groups.0.insert(map, group);
     }
+}
+
+/// The entries that bind `image`'s texture at `binding` and its sampler at `binding + 1`.
+pub(crate) fn image_entries(binding: u32, image: &GpuImage) -> [BindGroupEntry<'_>; 2] {
+    [
+        BindGroupEntry {
+            binding,
+            resource: BindingResource::TextureView(&image.texture_view),
+        },
+        BindGroupEntry {
+            binding: binding + 1,
+            resource: BindingResource::Sampler(&image.sampler),
+        },
+    ]
 }

@@ -7,6 +7,7 @@ use super::{
     deformed::Poses,
     displaced::CasterDisplacement,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
+    masked::CasterMask,
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
         Bounds, MAX_SPOT_MAP_ANGLE, ShadowLightView, beam_view, cascade_views, cube_views,
@@ -104,6 +105,8 @@ pub(crate) struct ShadowInstance {
     pub clip_from_local: Mat4,
     /// How its material's displacement map moves its vertices, if it has one.
     pub displacement: Option<CasterDisplacement>,
+    /// Where its material's alpha mask cuts holes, if it is masked.
+    pub mask: Option<CasterMask>,
 }
 
 /// The shadow maps of this frame, which the render world draws.
@@ -123,6 +126,7 @@ struct Caster {
     world_from_local: Mat4,
     bounds: Bounds,
     displacement: Option<CasterDisplacement>,
+    mask: Option<CasterMask>,
 }
 
 /// The shadow views of the current frame (one per shadow map, as the shader reads them),
@@ -207,9 +211,9 @@ pub(crate) fn gather_shadows(
             if !visibility.get() {
                 continue;
             }
-            let displacement = material
-                .and_then(|material| materials.get(&material.0))
-                .and_then(CasterDisplacement::of);
+            let material = material.and_then(|material| materials.get(&material.0));
+            let displacement = material.and_then(CasterDisplacement::of);
+            let mask = material.and_then(CasterMask::of);
             // Bounds grown by the farthest the displacement moves a vertex.
             let reach = displacement.as_ref().map_or(0.0, |displacement| {
                 displacement.reach() * largest_scale(transform)
@@ -226,6 +230,7 @@ pub(crate) fn gather_shadows(
                     world_from_local: transform.to_matrix(),
                     bounds,
                     displacement,
+                    mask,
                 });
                 continue;
             }
@@ -248,6 +253,7 @@ pub(crate) fn gather_shadows(
                             ..pose.bounds
                         },
                         displacement,
+                        mask,
                     });
                 }
                 // Still loading: it casts once its assets are loaded.
@@ -300,6 +306,7 @@ pub(crate) fn gather_shadows(
                             source: caster.source.clone(),
                             clip_from_local: view.clip_from_world * caster.world_from_local,
                             displacement: caster.displacement.clone(),
+                            mask: caster.mask.clone(),
                         }),
                 );
                 next.passes.push(ShadowPass {

@@ -48,6 +48,7 @@ mod deformed;
 mod displaced;
 mod gather;
 mod gpu_types;
+mod masked;
 mod posed;
 mod render;
 mod request;
@@ -142,6 +143,7 @@ pub(crate) fn add_shadow_rendering(app: &mut App) {
         .init_resource::<ShadowDraws>()
         .init_resource::<posed::PosedBindGroups>()
         .init_resource::<displaced::DisplacedBindGroups>()
+        .init_resource::<masked::MaskedBindGroups>()
         .init_resource::<SpecializedMeshPipelines<ShadowCasterPipeline>>()
         .add_systems(ExtractSchedule, extract_shadow_frame)
         .add_systems(
@@ -151,6 +153,7 @@ pub(crate) fn add_shadow_rendering(app: &mut App) {
                 prepare_shadow_draws.in_set(RenderSystems::PrepareResources),
                 posed::prepare_posed_bind_groups.in_set(RenderSystems::PrepareBindGroups),
                 displaced::prepare_displaced_bind_groups.in_set(RenderSystems::PrepareBindGroups),
+                masked::prepare_masked_bind_groups.in_set(RenderSystems::PrepareBindGroups),
             ),
         )
         .add_systems(

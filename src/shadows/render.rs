@@ -5,9 +5,11 @@
 use super::{
     displaced::{DisplacedBindGroups, displacement_layout},
     gather::{AtlasLayout, CasterSource, ShadowFrame},
+    masked::{MaskMaps, MaskedBindGroups, mask_layout},
     posed::{BevyDeformation, PosedBindGroups, PosedDraw, PosedLayouts},
 };
 use crate::displacement::can_displace;
+use crate::storage_buffer::needs_scene_texture;
 use bevy::{
     asset::{AssetId, AssetServer, Handle},
     ecs::{
@@ -27,13 +29,13 @@ use bevy::{
         render_phase::TrackedRenderPass,
         render_resource::{
             AddressMode, BufferUsages, CachedRenderPipelineId, CompareFunction, DepthBiasState,
-            DepthStencilState, Extent3d, FilterMode, LoadOp, Operations, PipelineCache,
-            PrimitiveState, RawBufferVec, RenderPassDepthStencilAttachment, RenderPassDescriptor,
-            RenderPipelineDescriptor, Sampler, SamplerDescriptor, SpecializedMeshPipeline,
-            SpecializedMeshPipelineError, SpecializedMeshPipelines, StoreOp, Texture,
-            TextureDescriptor, TextureDimension, TextureFormat, TextureUsages, TextureView,
-            TextureViewDescriptor, TextureViewDimension, VertexAttribute, VertexFormat,
-            VertexState, VertexStepMode,
+            DepthStencilState, Extent3d, FilterMode, FragmentState, LoadOp, Operations,
+            PipelineCache, PrimitiveState, RawBufferVec, RenderPassDepthStencilAttachment,
+            RenderPassDescriptor, RenderPipelineDescriptor, Sampler, SamplerDescriptor,
+            SpecializedMeshPipeline, SpecializedMeshPipelineError, SpecializedMeshPipelines,
+            StoreOp, Texture, TextureDescriptor, TextureDimension, TextureFormat, TextureUsages,
+            TextureView, TextureViewDescriptor, TextureViewDimension, VertexAttribute,
+            VertexFormat, VertexState, VertexStepMode,
         },
         renderer::{RenderContext, RenderDevice, RenderQueue},
         sync_world::MainEntity,
@@ -168,24 +170,59 @@ impl FromWorld for ShadowCasterPipeline {
 }
 
 /// A caster pipeline's variant: the mesh's topology, for a posed caster whether its joints
-/// and its morph targets pose it, and whether a displacement map moves its vertices.
+/// and its morph targets pose it, whether a displacement map moves its vertices, and for a
+/// masked caster what its alpha is made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct ShadowCasterKey {
     topology: PrimitiveTopology,
     posed: Option<(bool, bool)>,
     displaced: bool,
+    mask: Option<MaskKey>,
+}
+
+/// What a masked caster's alpha is made of besides its base color's: the base color map's
+/// alpha, the alpha map's green (both at the first UV set) and the vertex colors' alpha.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct MaskKey {
+    base_color_texture: bool,
+    alpha_map: bool,
+    vertex_colors: bool,
+}
+
+impl MaskKey {
+    /// Whether the mask reads a map (at the first UV set).
+    fn reads_maps(self) -> bool {
+        self.base_color_texture || self.alpha_map
+    }
+
+    /// The shader defs of the mask's variant.
+    fn shader_defs(self) -> Vec<ShaderDefVal> {
+        [
+            (true, "MASKED"),
+            (self.reads_maps(), "MASK_UVS"),
+            (self.base_color_texture, "MASK_BASE_COLOR_TEXTURE"),
+            (self.alpha_map, "MASK_ALPHA_MAP"),
+            (self.vertex_colors, "MASK_VERTEX_COLORS"),
+        ]
+        .into_iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, def)| def.into())
+        .collect()
+    }
 }
 
 /// One draw's instance data (`Caster` in `shadow_caster.wesl`): the matrix to the map's
 /// clip space by columns, then where a posed caster's deformation is (see
 /// [`PosedDraw::deform`]), then a displaced caster's UV transform, scale and bias (see
-/// [`super::displaced::CasterDisplacement::instance_data`]).
+/// [`super::displaced::CasterDisplacement::instance_data`]), then a masked caster's UV
+/// transform, base alpha and cutoff (see [`super::masked::CasterMask::instance_data`]).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct CasterInstance {
     clip_from_local: [f32; 16],
     deform: [u32; 4],
     displacement: [f32; 8],
+    mask: [f32; 8],
 }
 
 /// Bytes of a [`CasterInstance`].
@@ -207,7 +244,12 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
         }
         if key.displaced {
             attributes.push(Mesh::ATTRIBUTE_NORMAL.at_shader_location(8));
+        }
+        if key.displaced || key.mask.is_some_and(MaskKey::reads_maps) {
             attributes.push(Mesh::ATTRIBUTE_UV_0.at_shader_location(9));
+        }
+        if key.mask.is_some_and(|mask| mask.vertex_colors) {
+            attributes.push(Mesh::ATTRIBUTE_COLOR.at_shader_location(14));
         }
         let vertices = layout.0.get_layout(&attributes)?;
         let mut instance_attributes: Vec<VertexAttribute> = (0..4)
@@ -241,6 +283,26 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
             ));
             bind_group_layouts.push(displacement_layout());
         }
+        let fragment = key.mask.map(|mask| {
+            instance_attributes.extend([12, 13].map(|shader_location| VertexAttribute {
+                format: VertexFormat::Float32x4,
+                offset: 112 + 16 * (shader_location as u64 - 12),
+                shader_location,
+            }));
+            shader_defs.extend(mask.shader_defs());
+            shader_defs.push(ShaderDefVal::UInt(
+                "MASK_GROUP".into(),
+                bind_group_layouts.len() as u32,
+            ));
+            bind_group_layouts.push(mask_layout());
+            FragmentState {
+                shader: self.shader.clone(),
+                shader_defs: shader_defs.clone(),
+                entry_point: Some("masked".into()),
+                targets: Vec::new(),
+                ..default()
+            }
+        });
         let instance = VertexBufferLayout {
             array_stride: INSTANCE_SIZE,
             step_mode: VertexStepMode::Instance,
@@ -256,6 +318,8 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
                 buffers: vec![vertices, instance],
                 ..default()
             },
+            // Depth only: a masked caster's fragments are discarded where its mask is open.
+            fragment,
             primitive: PrimitiveState {
                 topology: key.topology,
                 // Both faces: open meshes (a plane) cast too.
@@ -289,6 +353,8 @@ pub(crate) struct ShadowDraws {
     posed: Vec<Option<PosedDraw>>,
     /// Each displaced caster's map, and the bind group it is bound at.
     displaced: Vec<Option<(AssetId<Image>, u32)>>,
+    /// Each masked caster's maps, and the bind group they are bound at.
+    masked: Vec<Option<(MaskMaps, u32)>>,
     instances: RawBufferVec<CasterInstance>,
 }
 
@@ -298,6 +364,7 @@ impl Default for ShadowDraws {
             pipelines: Vec::new(),
             posed: Vec::new(),
             displaced: Vec::new(),
+            masked: Vec::new(),
             instances: RawBufferVec::new(BufferUsages::VERTEX),
         }
     }
@@ -312,6 +379,11 @@ impl ShadowDraws {
     /// The displacement maps of this frame's displaced casters (repeated per caster).
     pub fn displacement_maps(&self) -> impl Iterator<Item = AssetId<Image>> + '_ {
         self.displaced.iter().flatten().map(|(map, _)| *map)
+    }
+
+    /// The maps of this frame's masked casters (repeated per caster).
+    pub fn mask_maps(&self) -> impl Iterator<Item = MaskMaps> + '_ {
+        self.masked.iter().flatten().map(|(maps, _)| *maps)
     }
 }
 
@@ -335,8 +407,11 @@ pub(crate) fn prepare_shadow_draws(
     draws.pipelines.clear();
     draws.posed.clear();
     draws.displaced.clear();
+    draws.masked.clear();
     draws.instances.clear();
     let Some(frame) = frame else { return };
+    // The alpha map is bound where the main pass binds it (not under WebGL2's limits).
+    let alpha_map_bound = !needs_scene_texture(&device);
     let mut specialize = |key, layout: &MeshVertexBufferLayoutRef| match pipelines
         .specialize(&cache, &pipeline, key, layout)
     {
@@ -381,10 +456,26 @@ pub(crate) fn prepare_shadow_draws(
             .displacement
             .as_ref()
             .filter(|_| mesh.is_some_and(|mesh| can_displace(&mesh.layout)));
+        // A mask's maps are read where the mesh has UVs, as the main pass reads them.
+        let mask = instance.mask.as_ref().zip(mesh).map(|(mask, mesh)| {
+            let has = |attribute| mesh.layout.0.contains(attribute);
+            let maps = if has(Mesh::ATTRIBUTE_UV_0) {
+                mask.maps(alpha_map_bound)
+            } else {
+                (None, None)
+            };
+            let key = MaskKey {
+                base_color_texture: maps.0.is_some(),
+                alpha_map: maps.1.is_some(),
+                vertex_colors: has(Mesh::ATTRIBUTE_COLOR),
+            };
+            (key, maps, mask.instance_data())
+        });
         let key = |posed| ShadowCasterKey {
             topology: mesh.map_or(PrimitiveTopology::TriangleList, |m| m.primitive_topology()),
             posed,
             displaced: displacement.is_some(),
+            mask: mask.map(|(key, ..)| key),
         };
         let pipeline_id = match (mesh, posed, posed_draw) {
             (Some(mesh), None, _) => specialize(key(None), &mesh.layout),
@@ -403,10 +494,15 @@ pub(crate) fn prepare_shadow_draws(
         draws
             .displaced
             .push(displacement.map(|displacement| (displacement.map, posed_groups)));
+        let mask_group = posed_groups + u32::from(displacement.is_some());
+        draws
+            .masked
+            .push(mask.map(|(_, maps, _)| (maps, mask_group)));
         draws.instances.push(CasterInstance {
             clip_from_local: instance.clip_from_local.to_cols_array(),
             deform: posed_draw.map_or([0; 4], |(draw, _)| draw.deform),
             displacement: displacement.map_or([0.0; 8], |d| d.instance_data()),
+            mask: mask.map_or([0.0; 8], |(.., data)| data),
         });
     }
     if !draws.instances.is_empty() {
@@ -440,6 +536,7 @@ pub(crate) fn render_shadow_maps(
     draws: Res<ShadowDraws>,
     posed_groups: Res<PosedBindGroups>,
     displaced_groups: Res<DisplacedBindGroups>,
+    masked_groups: Res<MaskedBindGroups>,
     pipeline_layouts: Res<ShadowCasterPipeline>,
     cache: Res<PipelineCache>,
     meshes: Res<RenderAssets<RenderMesh>>,
@@ -492,6 +589,13 @@ pub(crate) fn render_shadow_maps(
             if let Some((map, group)) = draws.displaced[index] {
                 // A map not on the GPU yet: the caster is drawn from the next frame on.
                 let Some(bind_group) = displaced_groups.0.get(&map) else {
+                    continue;
+                };
+                render_pass.set_bind_group(group as usize, bind_group, &[]);
+            }
+            if let Some((maps, group)) = draws.masked[index] {
+                // Maps not on the GPU yet: the caster is drawn from the next frame on.
+                let Some(bind_group) = masked_groups.0.get(&maps) else {
                     continue;
                 };
                 render_pass.set_bind_group(group as usize, bind_group, &[]);

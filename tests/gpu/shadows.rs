@@ -59,6 +59,14 @@ pub(crate) enum Shape {
     },
     /// The square `|x|, |z| ≤ half` in the plane `y = 0`.
     Floor { half: f64 },
+    /// The square `|x − cx|, |z − cz| ≤ half` in the plane `y = cy`, a checkerboard of
+    /// `cells × cells` squares of which only those with an even `column + row` are there
+    /// (an alpha mask; `cells` odd, so that the board reads the same mirrored).
+    Checkerboard {
+        center: DVec3,
+        half: f64,
+        cells: u32,
+    },
     /// Triangles, world space (a posed skinned or morphed mesh).
     Triangles(Vec<[DVec3; 3]>),
 }
@@ -112,6 +120,22 @@ impl Shape {
                 let t = -origin.y / direction.y;
                 let point = origin + t * direction;
                 (t > RAY_START && point.x.abs() <= half && point.z.abs() <= half).then_some(t)
+            }
+            Shape::Checkerboard {
+                center,
+                half,
+                cells,
+            } => {
+                if direction.y.abs() < 1e-300 {
+                    return None;
+                }
+                let t = (center.y - origin.y) / direction.y;
+                let local = origin + t * direction - center;
+                if !(t > RAY_START && local.x.abs() <= half && local.z.abs() <= half) {
+                    return None;
+                }
+                let cell = |c: f64| ((c + half) / (2.0 * half) * f64::from(cells)).floor() as i64;
+                ((cell(local.x) + cell(local.z)) % 2 == 0).then_some(t)
             }
         }
     }
@@ -326,7 +350,9 @@ impl Scene {
                         Transform::from_translation(center.as_vec3())
                             .with_rotation(Quat::from_rotation_y(yaw as f32)),
                     ),
-                    Shape::Triangles(_) => unreachable!("the scene has no posed mesh"),
+                    Shape::Triangles(_) | Shape::Checkerboard { .. } => {
+                        unreachable!("the scene has no posed mesh, no board")
+                    }
                 };
                 let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
                 let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
@@ -360,7 +386,9 @@ impl Scene {
             .expect("a shape of the scene");
         match shape {
             Shape::Sphere { center, .. } | Shape::Box { center, .. } => *center += offset,
-            Shape::Floor { .. } | Shape::Triangles(_) => panic!("the floor and posed meshes stay"),
+            Shape::Floor { .. } | Shape::Checkerboard { .. } | Shape::Triangles(_) => {
+                panic!("the floor, the board and posed meshes stay")
+            }
         }
         harness
             .world_mut()
@@ -535,7 +563,13 @@ fn judge_frame(
             .iter()
             .find(|(.., material)| material == handle)
             .expect("a shape's material");
-        let material = reference::Material::from(materials.get(handle).expect("material"));
+        let phong_material = materials.get(handle).expect("material");
+        // The captured inputs do not discard: where a masked surface's holes are, they hold
+        // the surface, the frame what is behind it.
+        if matches!(phong_material.alpha_mode, AlphaMode::Mask(_)) {
+            continue;
+        }
+        let material = reference::Material::from(phong_material);
         let surface = SurfacePoint {
             position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
             normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
@@ -869,6 +903,101 @@ fn a_displaced_caster_casts_the_shadow_of_its_displaced_shape() {
     harness.settle();
     let inputs = harness.capture_inputs();
     judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("displaced sphere");
+}
+
+/// A square whose base color map's alpha is a checkerboard, masked at 1/2, casts the board's
+/// squares and lets the light through its holes, from each kind of light: the crate's
+/// caster discards where the main pass does. The maps are fine (2048 texels) so that the
+/// band around each square's shadow (printed; about a tenth of a unit) leaves most of each
+/// square's shadow and each hole's light (0.6 units across) judged.
+#[test]
+fn an_alpha_masked_caster_lets_the_light_through_its_holes() {
+    let board = Shape::Checkerboard {
+        center: DVec3::new(0.6, 1.8, -0.2),
+        half: 0.9,
+        cells: 3,
+    };
+    fn fine() -> PhongShadows {
+        PhongShadows {
+            resolution: 2048,
+            ..on()
+        }
+    }
+    let cases: [(&str, &SpawnLights); 3] = [
+        ("masked board, directional", &|h| {
+            vec![directional(h, SUN, fine(), one_cascade())]
+        }),
+        ("masked board, spot", &|h| {
+            vec![spot(
+                h,
+                Vec3::new(1.2, 4.5, 0.8),
+                Vec3::new(0.4, 0.0, -0.4),
+                fine(),
+            )]
+        }),
+        ("masked board, point", &|h| {
+            vec![point(h, Vec3::new(0.9, 3.6, 0.6), fine())]
+        }),
+    ];
+    for (case, spawn_lights) in cases {
+        let (mut harness, mut scene) = harness();
+        let Shape::Checkerboard {
+            center,
+            half,
+            cells,
+        } = board
+        else {
+            unreachable!()
+        };
+        let world = harness.world_mut();
+        let texels: Vec<u8> = (0..cells * cells)
+            .flat_map(|index| {
+                let alpha = if (index % cells + index / cells) % 2 == 0 {
+                    255
+                } else {
+                    0
+                };
+                [200, 180, 60, alpha]
+            })
+            .collect();
+        let mut image = Image::new(
+            bevy::render::render_resource::Extent3d {
+                width: cells,
+                height: cells,
+                depth_or_array_layers: 1,
+            },
+            bevy::render::render_resource::TextureDimension::D2,
+            texels,
+            bevy::render::render_resource::TextureFormat::Rgba8Unorm,
+            bevy::asset::RenderAssetUsages::default(),
+        );
+        image.sampler = bevy::image::ImageSampler::nearest();
+        let image = world.resource_mut::<Assets<Image>>().add(image);
+        let material = world
+            .resource_mut::<Assets<PhongMaterial>>()
+            .add(PhongMaterial {
+                base_color_texture: Some(image),
+                alpha_mode: AlphaMode::Mask(0.5),
+                double_sided: true,
+                ..default()
+            });
+        let size = 2.0 * half as f32;
+        let mesh = world
+            .resource_mut::<Assets<Mesh>>()
+            .add(Plane3d::default().mesh().size(size, size));
+        let entity = world
+            .spawn((
+                Mesh3d(mesh),
+                MeshMaterial3d(material.clone()),
+                Transform::from_translation(center.as_vec3()),
+            ))
+            .id();
+        scene.shapes.push((entity, board.clone(), material));
+        let lights = spawn_lights(&mut harness);
+        harness.settle();
+        let inputs = harness.capture_inputs();
+        judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds(case);
+    }
 }
 
 #[test]

@@ -372,13 +372,30 @@ pub fn without_defs() -> Vec<Variant> {
 
 /// The shadow caster's variants (`ShadowCasterKey` in `src/shadows/render.rs`): a mesh as
 /// stored, and a posed one skinned, morphed or both, its deformation in storage buffers or
-/// (under WebGL2's limits) in uniform buffers and a texture.
+/// (under WebGL2's limits) in uniform buffers and a texture; displaced or not; opaque, or
+/// masked by its base color alone, with its base color map, or with every map and its
+/// vertex colors.
 pub fn shadow_caster() -> Vec<Variant> {
     let mut variants = without_defs();
     let poses: [&[&str]; 4] = [&[], &["SKINNED"], &["MORPHED"], &["SKINNED", "MORPHED"]];
+    let masks: [&[&str]; 4] = [
+        &[],
+        &["MASKED"],
+        &["MASKED", "MASK_UVS", "MASK_BASE_COLOR_TEXTURE"],
+        &[
+            "MASKED",
+            "MASK_UVS",
+            "MASK_BASE_COLOR_TEXTURE",
+            "MASK_ALPHA_MAP",
+            "MASK_VERTEX_COLORS",
+        ],
+    ];
     for pose in poses {
         for uniforms in [false, true] {
-            for displaced in [false, true] {
+            for (displaced, mask) in [false, true]
+                .into_iter()
+                .flat_map(|displaced| masks.map(|mask| (displaced, mask)))
+            {
                 let mut defs: Vec<ShaderDefVal> = Vec::new();
                 if !pose.is_empty() {
                     defs.push("POSED".into());
@@ -402,11 +419,23 @@ pub fn shadow_caster() -> Vec<Variant> {
                         group as u32,
                     ));
                 }
+                if !mask.is_empty() {
+                    // After the posed groups and the displacement's.
+                    let group = if pose.contains(&"MORPHED") {
+                        2
+                    } else {
+                        pose.len().min(1)
+                    } + usize::from(displaced);
+                    defs.extend(mask.iter().map(|&def| def.into()));
+                    defs.push(ShaderDefVal::UInt("MASK_GROUP".into(), group as u32));
+                }
                 if defs.is_empty() {
                     continue;
                 }
                 variants.push(Variant {
-                    name: format!("{pose:?}, uniforms {uniforms}, displaced {displaced}"),
+                    name: format!(
+                        "{pose:?}, uniforms {uniforms}, displaced {displaced}, mask {mask:?}"
+                    ),
                     defs,
                 });
             }
