@@ -39,11 +39,12 @@ if [[ $mode == test ]]; then
 fi
 
 # The page: the wasm module, its JavaScript bindings and index.html. The showcase needs no
-# glTF, so the crate's default `gltf` feature is left out of the browser build.
-cargo build --target wasm32-unknown-unknown --no-default-features --example showcase
+# glTF, so the crate's default `gltf` feature is left out of the browser build, which uses
+# the `web` profile (Cargo.toml: dependencies optimized at level 1).
+cargo build --profile web --target wasm32-unknown-unknown --no-default-features --example showcase
 rm -rf "$site"
 wasm-bindgen --target web --no-typescript --out-dir "$site" --out-name showcase \
-    target/wasm32-unknown-unknown/debug/examples/showcase.wasm
+    target/wasm32-unknown-unknown/web/examples/showcase.wasm
 cp examples/showcase/index.html "$site/"
 
 # Serve it on the loopback address: for a person on port 8080, for the test on a free port

@@ -16,8 +16,10 @@ export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
 part() { echo "== test.sh [${SECONDS} s] $*"; }
 
 part "every target's tests, on the device's own limits"
-cargo test --all-targets "$@"
-cargo test --doc "$@"
+# The unit, integration and doc tests, the benchmark once and the `bench` example's tests;
+# the other examples are built as `cargo run --example` below runs them (not twice, as test
+# harnesses too).
+cargo test "$@"
 # The glTF test asset is what its writer writes (a workspace crate without Bevy).
 cargo test -p phong_gltf_asset "$@"
 

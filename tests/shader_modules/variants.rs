@@ -1,6 +1,14 @@
 //! The shader defs each entry shader is specialized with: the crate's own (from
-//! `PhongMaterialKey::shader_defs`, for every key on every kind of mesh) and those Bevy's
-//! mesh and material pipelines add.
+//! `PhongMaterialKey::shader_defs`) and those Bevy's mesh and material pipelines add.
+//!
+//! Two sets of material keys: [`every_key`] (each of the ten map, shadow and side switches
+//! on and off in every combination, and each further feature over two of them) and
+//! [`covering_keys`] (each switch on alone and off alone, and each further feature over no
+//! map and over every map). Every key is composed where the most defs meet: on the mesh with
+//! every attribute, under the render tests' camera, on both devices. Every other mesh and
+//! camera is composed with the covering keys, so that each of its defs meets each of the
+//! crate's, on and off, without composing the whole product again (tens of thousands of
+//! compositions, each a few tens of milliseconds).
 
 use crate::library::device_defs;
 use bevy::{
@@ -22,6 +30,12 @@ pub struct Variant {
     pub defs: Vec<ShaderDefVal>,
 }
 
+/// The mesh with every attribute a material reads: [`every_key`] is composed on it.
+const RICHEST_MESH: &str = "positions, normals, UVs, tangents, colors";
+
+/// The camera the render tests use: [`every_key`] is composed under it, on both devices.
+const RENDER_TESTS_CAMERA: &str = "render tests' camera";
+
 /// The vertex attributes of the meshes a material may be drawn on: without UVs, with UVs
 /// (Bevy's primitive shapes), with UVs and tangents (`Mesh::with_generated_tangents`), with
 /// tangents but no UVs, and with a second UV set and vertex colors beside UVs and tangents
@@ -33,12 +47,7 @@ fn mesh_layouts() -> Vec<(&'static str, MeshVertexBufferLayoutRef)> {
         ("positions, normals, UVs", true, false, false),
         ("positions, normals, UVs, tangents", true, true, false),
         ("positions, normals, tangents", false, true, false),
-        (
-            "positions, normals, UVs, tangents, colors",
-            true,
-            true,
-            true,
-        ),
+        (RICHEST_MESH, true, true, true),
     ];
     kinds
         .into_iter()
@@ -168,49 +177,100 @@ fn cameras() -> Vec<(&'static str, Vec<ShaderDefVal>)> {
         "ENVIRONMENT_MAP".into(),
     ]);
     vec![
-        ("render tests' camera", common()),
+        (RENDER_TESTS_CAMERA, common()),
         ("default Camera3d", default_camera),
         ("HDR camera with fog, SSAO and prepasses", game_camera),
     ]
 }
 
-/// Every `PhongMaterialKey`: each of its switches on and off.
-fn material_keys() -> Vec<PhongMaterialKey> {
-    use MaterialFeatures as F;
-    let of = |features: &[(bool, MaterialFeatures)]| {
-        features
-            .iter()
-            .filter(|(on, _)| *on)
-            .fold(F::NONE, |all, &(_, feature)| all.with(feature))
-    };
-    let key = |bits: u32| {
-        let bit = |index: u32| bits & (1 << index) != 0;
-        PhongMaterialKey {
-            features: of(&[
-                (!bit(0), F::NO_SPECULAR),
-                (bit(1), F::BASE_COLOR_TEXTURE),
-                (bit(2), F::SPECULAR_TEXTURE),
-                (bit(3), F::EMISSIVE_TEXTURE),
-                (bit(4), F::NORMAL_MAP),
-                (bit(5), F::ALPHA_MASK),
-                (bit(6), F::SHADOWS),
-                // Soft shadows only where some light casts shadows.
-                (bit(6) && bit(7), F::SOFT_SHADOWS),
-                // No shader def: a pipeline setting.
-                (bit(8), F::DOUBLE_SIDED),
-                (bit(9), F::UV_TRANSFORM),
-            ]),
-            // Neither changes a shader def.
-            cull_mode: Some(bevy::render::render_resource::Face::Back),
-            depth_bias: 0,
+/// A further feature: the features it adds to a key, and those it takes out.
+type Extra = (MaterialFeatures, MaterialFeatures);
+
+/// Every `PhongMaterialKey`: its ten map, shadow and side switches in every combination, and
+/// each further feature ([`extra_features`]) with no map and with every map, under each
+/// kind of shadows.
+fn every_key() -> Vec<PhongMaterialKey> {
+    let mut keys: Vec<PhongMaterialKey> = (0..1u32 << SWITCHES).map(key_of_switches).collect();
+    let every_map = 0b11_0011_1111;
+    for maps in [0, every_map] {
+        for shadows in [0, 1 << 6, 3 << 6] {
+            keys.extend(
+                extra_features()
+                    .into_iter()
+                    .map(|extra| with_extra(key_of_switches(maps | shadows), extra)),
+            );
         }
-    };
-    let mut keys: Vec<PhongMaterialKey> = (0..1u32 << 10).map(key).collect();
-    // Each of the rest changes only a few steps: they are composed with no map and with
-    // every map, under each kind of shadows (`EXTRA_DEF_SETS`). Each adds its features and
-    // takes out the second (a highlight switched on).
+    }
+    keys
+}
+
+/// The keys that put each def of the crate on and off beside every other def: no switch on,
+/// every switch on, each switch alone on and each alone off; and each further feature over
+/// no switch and over every switch.
+fn covering_keys() -> Vec<PhongMaterialKey> {
+    let all = (1u32 << SWITCHES) - 1;
+    let mut keys: Vec<PhongMaterialKey> = [0, all]
+        .into_iter()
+        .chain((0..SWITCHES).flat_map(|switch| [1 << switch, all & !(1 << switch)]))
+        .map(key_of_switches)
+        .collect();
+    for switches in [0, all] {
+        keys.extend(
+            extra_features()
+                .into_iter()
+                .map(|extra| with_extra(key_of_switches(switches), extra)),
+        );
+    }
+    keys
+}
+
+/// How many switches [`key_of_switches`] reads.
+const SWITCHES: u32 = 10;
+
+/// `key` with the extra's features added and its second taken out.
+fn with_extra(mut key: PhongMaterialKey, (added, taken): Extra) -> PhongMaterialKey {
+    key.features = key.features.with(added).without(taken);
+    key
+}
+
+/// The key with the switches of `bits` on: a highlight (bit 0), the base color, specular
+/// and emissive maps, the normal map, an alpha mask, shadows, soft shadows (with shadows
+/// only), both sides, the UV transform.
+fn key_of_switches(bits: u32) -> PhongMaterialKey {
+    use MaterialFeatures as F;
+    let bit = |index: u32| bits & (1 << index) != 0;
+    let switches = [
+        (!bit(0), F::NO_SPECULAR),
+        (bit(1), F::BASE_COLOR_TEXTURE),
+        (bit(2), F::SPECULAR_TEXTURE),
+        (bit(3), F::EMISSIVE_TEXTURE),
+        (bit(4), F::NORMAL_MAP),
+        (bit(5), F::ALPHA_MASK),
+        (bit(6), F::SHADOWS),
+        // Soft shadows only where some light casts shadows.
+        (bit(6) && bit(7), F::SOFT_SHADOWS),
+        // No shader def: a pipeline setting.
+        (bit(8), F::DOUBLE_SIDED),
+        (bit(9), F::UV_TRANSFORM),
+    ];
+    PhongMaterialKey {
+        features: switches
+            .into_iter()
+            .filter(|(on, _)| *on)
+            .fold(F::NONE, |all, (_, feature)| all.with(feature)),
+        // Neither changes a shader def.
+        cull_mode: Some(bevy::render::render_resource::Face::Back),
+        depth_bias: 0,
+    }
+}
+
+/// The features beside the ten switches: each changes only a few steps, so each is
+/// composed over a few sets of switches. Each adds its features and takes out the second (a
+/// highlight switched on).
+fn extra_features() -> Vec<Extra> {
+    use MaterialFeatures as F;
     let environment = F::ENVIRONMENT_MAP;
-    let extras: Vec<(MaterialFeatures, MaterialFeatures)> = [
+    [
         F::UNLIT,
         F::NO_FOG,
         F::UNLIT.with(F::NO_FOG),
@@ -252,40 +312,35 @@ fn material_keys() -> Vec<PhongMaterialKey> {
         (F::SPECULAR_TOON, F::NO_SPECULAR),
         (F::DIFFUSE_TOON.with(F::SPECULAR_TOON), F::NO_SPECULAR),
     ])
-    .collect();
-    let every_map = 0b11_0011_1111;
-    for maps in [0, every_map] {
-        for shadows in [0, 1 << 6, 3 << 6] {
-            for &(added, taken) in &extras {
-                let mut key = key(maps | shadows);
-                key.features = key.features.with(added).without(taken);
-                keys.push(key);
-            }
-        }
-    }
-    keys
+    .collect()
 }
 
-/// How many distinct def sets the extra keys of [`material_keys`] give on a mesh with one
-/// UV set: unlit and fogless (3 combinations), a light map and an AO map on the first UV
-/// set (2; on the second they are left out there), an alpha map (1), an environment map
-/// (6: three combine modes, reflected or refracted), a bump map, flat shading and both (3),
-/// the camera's environment mixed in or refracted and added (2), the stylized modes (4: wrap,
-/// toon bands, a toon highlight alone and over toon bands), a rim everywhere or on the lit
-/// side (2), a toon ramp (1), a hemisphere light (1), light cookies (1), lighting per vertex
-/// alone and with a rim on the lit side (2), the Fresnel term per pixel and per vertex (2),
-/// each with no map and every map, under 3 kinds of shadows.
-pub const EXTRA_DEF_SETS: usize = (3 + 2 + 1 + 6 + 3 + 2 + 4 + 2 + 1 + 1 + 1 + 2 + 2) * 2 * 3;
-
-/// The fragment variants of a material that specializes as `PhongMaterial` does
-/// (`PhongMaterial` and the searchlight's extension of it): every distinct set of defs that
-/// some key gives on some mesh, under each camera.
+/// The fragment variants of a material that specializes as `PhongMaterial` does: every key
+/// on the mesh with every attribute under the render tests' camera on both devices, the
+/// covering keys on every other mesh and under every other camera.
 pub fn phong_material() -> Vec<Variant> {
+    material_variants(|mesh, view| {
+        if mesh == RICHEST_MESH && view.starts_with(RENDER_TESTS_CAMERA) {
+            every_key()
+        } else {
+            covering_keys()
+        }
+    })
+}
+
+/// The fragment variants of an extension of `PhongMaterial` (the searchlight example's), which
+/// adds its own code but no defs: the covering keys on every mesh, under every camera.
+pub fn phong_extension() -> Vec<Variant> {
+    material_variants(|_, _| covering_keys())
+}
+
+/// A Phong material's variant for each distinct set of defs that `keys(mesh, view)` gives, on
+/// every mesh under every camera.
+fn material_variants(keys: impl Fn(&str, &str) -> Vec<PhongMaterialKey>) -> Vec<Variant> {
     let mut variants = Vec::new();
     for (mesh, layout) in mesh_layouts() {
-        let phong_defs = distinct_phong_defs(&layout);
         for (view, view_defs) in view_setups() {
-            for phong in &phong_defs {
+            for phong in &distinct_phong_defs(&layout, &keys(mesh, &view)) {
                 variants.push(phong_variant(mesh, &layout, &view, &view_defs, phong));
             }
         }
@@ -293,11 +348,13 @@ pub fn phong_material() -> Vec<Variant> {
     variants
 }
 
-/// Every distinct set of the crate's own defs that some `PhongMaterialKey` gives on a mesh
-/// with `layout`, each sorted.
-fn distinct_phong_defs(layout: &MeshVertexBufferLayoutRef) -> BTreeSet<Vec<&'static str>> {
-    material_keys()
-        .iter()
+/// The distinct sets of the crate's own defs that `keys` give on a mesh with `layout`, each
+/// sorted.
+fn distinct_phong_defs(
+    layout: &MeshVertexBufferLayoutRef,
+    keys: &[PhongMaterialKey],
+) -> BTreeSet<Vec<&'static str>> {
+    keys.iter()
         .map(|key| {
             let mut defs = key.shader_defs(layout);
             defs.sort_unstable();
@@ -324,25 +381,47 @@ fn phong_variant(
     }
 }
 
-/// Every combination of the crate's own defs (all keys on a mesh with UVs and tangents, where
-/// none is left out), seen by the render tests' camera on both [`devices`]: for the crate's
-/// modules composed alone, whose other defs the entry shaders vary.
-pub fn phong_def_combinations() -> Vec<Variant> {
-    let (mesh, layout) = mesh_layouts()
-        .into_iter()
-        .find(|(mesh, _)| *mesh == "positions, normals, UVs, tangents")
-        .expect("a mesh with UVs and tangents");
-    let combinations = distinct_phong_defs(&layout);
+/// The crate's own defs in the combinations of the covering keys, on the mesh with every
+/// attribute, seen by the render tests' camera on both [`devices`]: for the crate's modules
+/// composed alone (all their functions, used or not), whose other defs the entry shaders
+/// vary.
+pub fn covering_def_sets() -> Vec<Variant> {
+    let layout = mesh_layout(RICHEST_MESH);
+    let combinations = distinct_phong_defs(&layout, &covering_keys());
     let mut variants = Vec::new();
     for (view, view_defs) in view_setups() {
-        if !view.starts_with("render tests' camera") {
+        if !view.starts_with(RENDER_TESTS_CAMERA) {
             continue;
         }
         for phong in &combinations {
-            variants.push(phong_variant(mesh, &layout, &view, &view_defs, phong));
+            variants.push(phong_variant(
+                RICHEST_MESH,
+                &layout,
+                &view,
+                &view_defs,
+                phong,
+            ));
         }
     }
     variants
+}
+
+/// Every def of the crate's own that some key gives on the mesh with every attribute.
+pub fn every_crate_def() -> BTreeSet<&'static str> {
+    let layout = mesh_layout(RICHEST_MESH);
+    distinct_phong_defs(&layout, &every_key())
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// The layout of the mesh named `mesh` in [`mesh_layouts`].
+fn mesh_layout(mesh: &str) -> MeshVertexBufferLayoutRef {
+    mesh_layouts()
+        .into_iter()
+        .find(|(name, _)| *name == mesh)
+        .map(|(_, layout)| layout)
+        .unwrap_or_else(|| panic!("no mesh {mesh}"))
 }
 
 /// The fragment variants of a material that adds no defs of its own (`SurfaceInputsMaterial`,
@@ -472,14 +551,20 @@ const PREPASS_SETUPS: [(&str, &[&str]); 4] = [
 ];
 
 /// The prepass fragment variants of a material that specializes as `PhongMaterial` does:
-/// every distinct set of the crate's defs on every mesh, in the prepasses Bevy runs a
+/// the defs of every key on the mesh with every attribute and of the covering keys on every
+/// other mesh, in the prepasses Bevy runs a
 /// fragment stage for (an alpha-masked depth prepass, the normal prepass, the normal and
 /// motion-vector prepasses, a shadow map of a directional light emulating unclipped depth),
 /// on both [`devices`] (Bevy's prepass pipeline, bevy_pbr 0.20.1 `prepass/mod.rs`).
 pub fn phong_prepass() -> Vec<Variant> {
     let mut variants = Vec::new();
     for (mesh, layout) in mesh_layouts() {
-        let phong_defs = distinct_phong_defs(&layout);
+        let keys = if mesh == RICHEST_MESH {
+            every_key()
+        } else {
+            covering_keys()
+        };
+        let phong_defs = distinct_phong_defs(&layout, &keys);
         for (setup, setup_defs) in PREPASS_SETUPS {
             let prepass = prepass_defs(&layout, setup_defs);
             for (device, device_defs) in devices() {
@@ -559,20 +644,13 @@ const POSES: [&[&str]; 4] = [
 /// distinct set of the crate's defs with that feature that some key gives on some mesh,
 /// under every camera and device, displaced too where the mesh can be.
 pub fn vertex_lit_vertex() -> Vec<Variant> {
-    let keys: Vec<PhongMaterialKey> = material_keys()
+    let keys: Vec<PhongMaterialKey> = every_key()
         .into_iter()
         .filter(|key| key.has(MaterialFeatures::VERTEX_LIGHTING))
         .collect();
     let mut variants = Vec::new();
     for (mesh, layout) in mesh_layouts() {
-        let phong_defs: BTreeSet<Vec<&'static str>> = keys
-            .iter()
-            .map(|key| {
-                let mut defs = key.shader_defs(&layout);
-                defs.sort_unstable();
-                defs
-            })
-            .collect();
+        let phong_defs = distinct_phong_defs(&layout, &keys);
         let displaced =
             layout.0.contains(Mesh::ATTRIBUTE_UV_0) && layout.0.contains(Mesh::ATTRIBUTE_NORMAL);
         for (view, view_defs) in view_setups() {
