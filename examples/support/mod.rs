@@ -136,9 +136,9 @@ pub fn switch_specular_model(materials: &mut Assets<bevy_phong::PhongMaterial>) 
     println!("specular model switched");
 }
 
-/// Shows `keys` as a line of help in the window's top-left corner (windowed runs only; the
-/// PNG of a headless run shows the scene alone) and prints it (in a browser, to the console:
-/// the browser build leaves Bevy's UI out).
+/// Shows `keys` in the window's title after the example's name (windowed runs only) and
+/// prints it (in a browser, to the console). The title rather than on-screen text: Bevy's UI
+/// and text would add some fifty crates to every build of the examples and tests.
 #[allow(dead_code, reason = "only the examples that take keys use it")]
 pub fn show_key_help<'a>(app: &'a mut App, keys: &'static str) -> &'a mut App {
     println!("keys: {keys}");
@@ -146,18 +146,14 @@ pub fn show_key_help<'a>(app: &'a mut App, keys: &'static str) -> &'a mut App {
     info!("keys: {keys}");
     #[cfg(not(target_arch = "wasm32"))]
     if matches!(app.world().resource::<RunMode>(), RunMode::Windowed) {
-        app.add_systems(Startup, move |mut commands: Commands| {
-            commands.spawn((
-                Text::new(keys),
-                TextFont::from_font_size(16.0),
-                Node {
-                    position_type: PositionType::Absolute,
-                    top: px(8.0),
-                    left: px(8.0),
-                    ..default()
-                },
-            ));
-        });
+        app.add_systems(
+            Startup,
+            move |mut windows: Query<&mut Window, With<bevy::window::PrimaryWindow>>| {
+                for mut window in &mut windows {
+                    window.title = format!("{} (keys: {keys})", window.title);
+                }
+            },
+        );
     }
     app
 }

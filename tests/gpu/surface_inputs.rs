@@ -3,7 +3,8 @@
 //! rendered on the render device and
 //! compared per pixel with the reference model given each pixel's captured inputs
 //! (`reference::Material::with_vertex_color`, `reference::transformed_uv`,
-//! `reference::Material::unlit_color`).
+//! `reference::Material::unlit_color`); and Bevy's `Lightmap` on a Phong mesh compared with
+//! `StandardMaterial`'s picture of it.
 //!
 //! The maps and the texel-edge rule are `texture_maps`'s: the UVs a pixel's maps were
 //! sampled at are computed in `f64` from its captured UV, and pixels within 1/100 texel of
@@ -18,12 +19,13 @@ use crate::texture_maps::{
     spawn_map_lights, texel_at, texels_at,
 };
 use bevy::{
+    camera::Exposure,
     math::Affine2,
     mesh::{UvChannel, VertexAttributeValues},
     pbr::Lightmap,
     prelude::*,
 };
-use bevy_phong::prelude::*;
+use bevy_phong::{BevyLightExposure, prelude::*};
 use bevy_phong_headless::Harness;
 
 /// A value in `[0, 1]` that varies smoothly along `x`.
@@ -289,6 +291,99 @@ fn bevys_lightmap_component_adds_its_light_as_a_light_map() {
     });
     comparison.assert_within("Bevy's Lightmap", TOLERANCE);
     comparison.assert_mostly_judged("Bevy's Lightmap");
+}
+
+/// Bevy's `Lightmap` shows as bright on a Phong mesh as on a `StandardMaterial` one when the
+/// Phong material's `light_map_intensity` carries Bevy's exposures
+/// (`BevyLightExposure::light_map_intensity`): Bevy weighs the lightmap's texel by the
+/// material's `lightmap_exposure` and the camera's exposure and multiplies it by the diffuse
+/// color, without π; the crate by the intensity alone. The two apps draw the same sphere
+/// with the same lightmap, no light and no ambient light, and agree pixel for pixel.
+/// Tolerance: the frame tests' ([`TOLERANCE`]); the two compute the same product of
+/// `f32`s in another order (a few units of rounding), and a conversion that left out a factor
+/// (the exposure's 1/1.2, say) would differ by a fifth.
+#[test]
+fn a_bevy_lightmap_shows_on_phong_as_on_standard_material_with_its_exposures_carried() {
+    /// Bevy's `lightmaps` example's `lightmap_exposure`.
+    const LIGHTMAP_EXPOSURE: f32 = 250.0;
+    /// The cameras' exposure value: not Bevy's default, so that it must be carried.
+    const EV100: f32 = 8.0;
+    let base_color = Color::srgb(0.8, 0.75, 0.9);
+    let (mut standard, mut phong) = Harness::side_by_side(SIZE, SIZE, |_| {}, |_| {});
+    let intensity = BevyLightExposure { ev100: EV100 }.light_map_intensity(LIGHTMAP_EXPOSURE);
+    for (harness, is_phong) in [(&mut standard, false), (&mut phong, true)] {
+        harness.camera_mut().insert(Exposure { ev100: EV100 });
+        let world = harness.world_mut();
+        world.insert_resource(GlobalAmbientLight {
+            brightness: 0.0,
+            ..default()
+        });
+        world.insert_resource(PhongAmbientLight {
+            color: Color::BLACK,
+        });
+        let baked = world.resource_mut::<Assets<Image>>().add(float_map(|x, y| {
+            let level = 0.15 + 0.2 * ((x + 3 * y) % 4) as f32;
+            [0.9 - level, level, 0.3, 1.0]
+        }));
+        let lightmap = Lightmap {
+            image: baked,
+            uv_rect: Rect::new(0.25, 0.1, 0.85, 0.7),
+            bicubic_sampling: false,
+        };
+        let mesh = world
+            .resource_mut::<Assets<Mesh>>()
+            .add(with_second_uvs(Sphere::new(1.2).mesh().uv(48, 32)));
+        if is_phong {
+            let material = world
+                .resource_mut::<Assets<PhongMaterial>>()
+                .add(PhongMaterial {
+                    base_color,
+                    light_map_intensity: intensity,
+                    ..default()
+                });
+            world.spawn((Mesh3d(mesh), MeshMaterial3d(material), lightmap));
+        } else {
+            let material = world
+                .resource_mut::<Assets<StandardMaterial>>()
+                .add(StandardMaterial {
+                    base_color,
+                    lightmap_exposure: LIGHTMAP_EXPOSURE,
+                    ..default()
+                });
+            world.spawn((Mesh3d(mesh), MeshMaterial3d(material), lightmap));
+        }
+        harness.settle();
+    }
+    let bevy = standard.render_next_frame();
+    let crate_render = phong.render_next_frame();
+    let mut largest: f64 = 0.0;
+    let mut lit = 0;
+    for (bevy, phong) in bevy.pixels.iter().zip(&crate_render.pixels) {
+        if bevy[3] <= 0.0 && phong[3] <= 0.0 {
+            continue;
+        }
+        if bevy[..3].iter().any(|&channel| channel > 0.01) {
+            lit += 1;
+        }
+        for channel in 0..3 {
+            largest = largest.max(f64::from((bevy[channel] - phong[channel]).abs()));
+        }
+    }
+    println!(
+        "Bevy's Lightmap on StandardMaterial and on PhongMaterial: {lit} lit pixels, largest \
+         difference {largest:.3e}"
+    );
+    // The sphere covers about 2,000 pixels of the frame, nearly all lit by the lightmap.
+    assert!(
+        lit > (SIZE * SIZE / 16) as usize,
+        "the sphere shows its lightmap on only {lit} pixels"
+    );
+    assert!(
+        largest <= TOLERANCE,
+        "PhongMaterial with light_map_intensity {intensity} differs from StandardMaterial with \
+         lightmap_exposure {LIGHTMAP_EXPOSURE} under EV100 {EV100} by up to {largest:.3e} \
+         (tolerance {TOLERANCE:e})"
+    );
 }
 
 /// An alpha map's green channel multiplies the output alpha, and with a mask cuts holes
