@@ -333,24 +333,27 @@ fn a_bevy_lightmap_shows_on_phong_as_on_standard_material_with_its_exposures_car
         let mesh = world
             .resource_mut::<Assets<Mesh>>()
             .add(with_second_uvs(Sphere::new(1.2).mesh().uv(48, 32)));
+        let object = (Mesh3d(mesh), lightmap);
         if is_phong {
-            let material = world
-                .resource_mut::<Assets<PhongMaterial>>()
-                .add(PhongMaterial {
+            spawn_with_material(
+                world,
+                object,
+                PhongMaterial {
                     base_color,
                     light_map_intensity: intensity,
                     ..default()
-                });
-            world.spawn((Mesh3d(mesh), MeshMaterial3d(material), lightmap));
+                },
+            );
         } else {
-            let material = world
-                .resource_mut::<Assets<StandardMaterial>>()
-                .add(StandardMaterial {
+            spawn_with_material(
+                world,
+                object,
+                StandardMaterial {
                     base_color,
                     lightmap_exposure: LIGHTMAP_EXPOSURE,
                     ..default()
-                });
-            world.spawn((Mesh3d(mesh), MeshMaterial3d(material), lightmap));
+                },
+            );
         }
         harness.settle();
     }
@@ -384,6 +387,12 @@ fn a_bevy_lightmap_shows_on_phong_as_on_standard_material_with_its_exposures_car
          lightmap_exposure {LIGHTMAP_EXPOSURE} under EV100 {EV100} by up to {largest:.3e} \
          (tolerance {TOLERANCE:e})"
     );
+}
+
+/// Spawns `object` drawn with `material` (added to its assets).
+fn spawn_with_material<M: Material>(world: &mut World, object: impl Bundle, material: M) {
+    let material = world.resource_mut::<Assets<M>>().add(material);
+    world.spawn((object, MeshMaterial3d(material)));
 }
 
 /// An alpha map's green channel multiplies the output alpha, and with a mask cuts holes
