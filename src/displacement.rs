@@ -8,7 +8,7 @@ use bevy::{
     asset::{Handle, uuid_handle},
     log::warn,
     math::Mat3,
-    mesh::{Mesh, MeshAttributeCompressionFlags, MeshVertexBufferLayoutRef},
+    mesh::{Mesh, MeshAttributeCompressionFlags, MeshVertexAttribute, MeshVertexBufferLayoutRef},
     reflect::Reflect,
     render::render_resource::{RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError},
     shader::Shader,
@@ -26,11 +26,16 @@ pub(crate) const PHONG_PREPASS_VERTEX_SHADER: Handle<Shader> =
 /// The shader def of a displaced material's vertex stage.
 pub(crate) const DISPLACEMENT_DEF: &str = "PHONG_DISPLACEMENT_MAP";
 
+/// The shader def of a displaced material's vertex stage that reads the map at the mesh's
+/// second UV set.
+pub(crate) const DISPLACEMENT_UV_B_DEF: &str = "PHONG_DISPLACEMENT_UV_B";
+
 /// A displacement as the vertex stage reads it (`PhongDisplacement` in
 /// `bevy_phong::shaders::displacement`, binding 26).
 #[derive(Clone, Copy, Debug, PartialEq, Reflect, ShaderType)]
 pub struct DisplacementUniform {
-    /// The UV transform applied to the first UV set before the map is read.
+    /// The UV transform applied before the map is read: the material's on the first UV set,
+    /// the identity on the second (read as it is).
     pub uv_transform: Mat3,
     /// How far a texel of 1 moves a vertex, local units.
     pub scale: f32,
@@ -49,10 +54,20 @@ impl Default for DisplacementUniform {
     }
 }
 
-/// Whether a mesh of `layout` can be displaced: the map is read at its first UV set and
-/// moves the vertex along its normal.
-pub(crate) fn can_displace(layout: &MeshVertexBufferLayoutRef) -> bool {
-    layout.0.contains(Mesh::ATTRIBUTE_UV_0) && layout.0.contains(Mesh::ATTRIBUTE_NORMAL)
+/// The UV set a displacement map is read at.
+pub(crate) fn uv_attribute(second_uvs: bool) -> MeshVertexAttribute {
+    if second_uvs {
+        Mesh::ATTRIBUTE_UV_1
+    } else {
+        Mesh::ATTRIBUTE_UV_0
+    }
+}
+
+/// Whether a mesh of `layout` can be displaced by a map read at its second UV set
+/// (`second_uvs`) or its first: the mesh has that set, and normals to move the vertices
+/// along.
+pub(crate) fn can_displace(layout: &MeshVertexBufferLayoutRef, second_uvs: bool) -> bool {
+    layout.0.contains(uv_attribute(second_uvs)) && layout.0.contains(Mesh::ATTRIBUTE_NORMAL)
 }
 
 /// Bevy's prepass pipelines are labelled so (`bevy_pbr::prepass`); its main pass ones are not.
@@ -62,17 +77,24 @@ pub(crate) fn is_prepass(descriptor: &RenderPipelineDescriptor) -> bool {
 
 /// Makes `descriptor` (a material's main pass or prepass pipeline on a mesh of `layout`)
 /// displace its vertices: the crate's vertex shader for that pass, with the mesh's normal
-/// among the prepass's vertex attributes. On a mesh without UVs or normals the displacement
-/// is left out, with a warning naming `material`.
+/// among the prepass's vertex attributes, the map read at the mesh's second UV set where
+/// `second_uvs` says so. On a mesh without that UV set or normals the displacement is left
+/// out, with a warning naming `material`.
 pub(crate) fn displace(
     descriptor: &mut RenderPipelineDescriptor,
     layout: &MeshVertexBufferLayoutRef,
     material: &str,
+    second_uvs: bool,
 ) -> Result<(), SpecializedMeshPipelineError> {
-    if !can_displace(layout) {
+    if !can_displace(layout, second_uvs) {
         warn!(
-            "{material}.displacement_map is ignored on a mesh without UVs and normals \
-             (Mesh::ATTRIBUTE_UV_0, Mesh::ATTRIBUTE_NORMAL)"
+            "{material}.displacement_map is ignored on a mesh without its UV set and normals \
+             ({}, Mesh::ATTRIBUTE_NORMAL)",
+            if second_uvs {
+                "Mesh::ATTRIBUTE_UV_1"
+            } else {
+                "Mesh::ATTRIBUTE_UV_0"
+            }
         );
         return Ok(());
     }
@@ -83,6 +105,12 @@ pub(crate) fn displace(
         PHONG_VERTEX_SHADER
     };
     descriptor.vertex.shader_defs.push(DISPLACEMENT_DEF.into());
+    if second_uvs {
+        descriptor
+            .vertex
+            .shader_defs
+            .push(DISPLACEMENT_UV_B_DEF.into());
+    }
     let Some(buffer) = descriptor.vertex.buffers.first_mut() else {
         return Ok(());
     };

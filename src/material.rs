@@ -147,16 +147,29 @@ pub enum EnvironmentCombine {
 ///
 /// # Texture maps
 ///
-/// Each map is optional and multiplies its color, sampled at the mesh's first UV set
-/// (`Mesh::ATTRIBUTE_UV_0`) moved by [`uv_transform`](Self::uv_transform): `k_d ⊙
+/// Each map is optional and multiplies its color, sampled at its UV set (below): `k_d ⊙
 /// base_color_texture` (alpha too), `k_s ⊙ specular_texture`, `emissive ⊙
 /// emissive_texture`, output alpha `⊙ alpha_map_texture.g`. The [`normal_map_texture`] replaces the
 /// interpolated normal by one in tangent space (it needs `Mesh::ATTRIBUTE_TANGENT`:
 /// `Mesh::with_generated_tangents`). Values are what the sampler returns: images Bevy loads
 /// as sRGB are decoded to linear first, so load specular and normal maps with
 /// `is_srgb: false` (`ImageLoaderSettings`). A material's shader variant samples only the
-/// maps it has; on a mesh without UVs (or, for the normal map, without tangents) a map is
-/// left out, with a warning.
+/// maps it has; on a mesh without the map's UV set (or, for the normal and bump maps,
+/// without tangents) a map is left out, with a warning.
+///
+/// # UV sets
+///
+/// Each map sampled at UVs has a channel field (`base_color_channel`, …,
+/// `light_map_channel`): [`UvChannel::Uv0`] reads the mesh's first UV set
+/// (`Mesh::ATTRIBUTE_UV_0`, glTF's `TEXCOORD_0`) moved by
+/// [`uv_transform`](Self::uv_transform); [`UvChannel::Uv1`] reads the second
+/// (`Mesh::ATTRIBUTE_UV_1`, `TEXCOORD_1`) as it is, where baked light and AO maps are laid
+/// out and a tiling transform of the first set should not move them. They are Bevy's
+/// `StandardMaterial::base_color_channel` and its kin, glTF's `texCoord` and three.js's
+/// `Texture.channel` (0 or 1). Bevy moves the second set by its `uv_transform` too, and
+/// three.js gives each map its own transform: SPEC.md, "Texture maps", says how to port
+/// them. The normal and bump maps keep the mesh's tangent frame on either set, as Bevy and
+/// three.js do.
 ///
 /// [`specular_model`]: Self::specular_model
 /// [`shininess`]: Self::shininess
@@ -220,23 +233,33 @@ pub struct PhongMaterial {
     /// Multiplies `base_color` (all four channels). Default none.
     #[dependency]
     pub base_color_texture: Option<Handle<Image>>,
+    /// The UV set [`base_color_texture`](Self::base_color_texture) is read at (see "UV sets" above). Default `Uv0`.
+    pub base_color_channel: UvChannel,
     /// Multiplies `specular_color`. Default none.
     #[dependency]
     pub specular_texture: Option<Handle<Image>>,
+    /// The UV set [`specular_texture`](Self::specular_texture) is read at (see "UV sets" above). Default `Uv0`.
+    pub specular_channel: UvChannel,
     /// Multiplies `emissive`. Default none.
     #[dependency]
     pub emissive_texture: Option<Handle<Image>>,
+    /// The UV set [`emissive_texture`](Self::emissive_texture) is read at (see "UV sets" above). Default `Uv0`.
+    pub emissive_channel: UvChannel,
     /// Multiplies the output alpha by its green channel (three.js's `alphaMap`): a
     /// grayscale cut-out or fade without touching the base color map. Load it as linear
     /// data (`is_srgb: false`). Left out under WebGL2 (`crate::render::binds_every_map`).
     /// Default none.
     #[dependency]
     pub alpha_map_texture: Option<Handle<Image>>,
+    /// The UV set [`alpha_map_texture`](Self::alpha_map_texture) is read at (see "UV sets" above). Default `Uv0`.
+    pub alpha_map_channel: UvChannel,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
     /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
     /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
     #[dependency]
     pub normal_map_texture: Option<Handle<Image>>,
+    /// The UV set [`normal_map_texture`](Self::normal_map_texture) is read at (see "UV sets" above). Default `Uv0`.
+    pub normal_map_channel: UvChannel,
     /// Negates the normal map's green channel, for maps made with the other convention
     /// (Direct3D's, green pointing down). Default `false`.
     pub flip_normal_map_y: bool,
@@ -253,21 +276,26 @@ pub struct PhongMaterial {
     /// WebGL2 (`crate::render::binds_every_map`). Default none.
     #[dependency]
     pub bump_map_texture: Option<Handle<Image>>,
+    /// The UV set [`bump_map_texture`](Self::bump_map_texture) is read at (see "UV sets" above). Default `Uv0`.
+    pub bump_map_channel: UvChannel,
     /// How far a height step of 1 between neighbouring texels tilts the normal: at 1 such
     /// a step tilts it by 45°. Negative values make the bumps dents. Default `1`.
     pub bump_scale: f32,
     /// A height map that moves the mesh's vertices (three.js's `displacementMap`): each
     /// vertex moves along its normal, in the mesh's local space, by
-    /// `red · displacement_scale + displacement_bias`, the map read at the vertex's first UV set (moved by
-    /// [`uv_transform`](Self::uv_transform)) at its largest mip, after the morph targets and
+    /// `red · displacement_scale + displacement_bias`, the map read at the vertex's UV set
+    /// ([`displacement_map_channel`](Self::displacement_map_channel)) at its largest mip, after the morph targets and
     /// before skinning (SPEC.md, "Displacement"). Every pass moves it alike: the main pass,
     /// the prepasses, Bevy's shadow maps and the crate's. The normals are not recomputed
     /// (pair it with a normal map of the same heights); the mesh's bounds are not grown, so
     /// a displacement beyond them can be culled early (add `NoFrustumCulling`, or a larger
-    /// `Aabb`). It needs UVs and normals. Load it as linear data (`is_srgb: false`). Default
+    /// `Aabb`). It needs its UV set and normals. Load it as linear data (`is_srgb: false`). Default
     /// none.
     #[dependency]
     pub displacement_map: Option<Handle<Image>>,
+    /// The UV set [`displacement_map`](Self::displacement_map) is read at (see "UV sets"
+    /// above). Default `Uv0`.
+    pub displacement_map_channel: UvChannel,
     /// How far a texel of 1 moves a vertex, in the mesh's local units. Default `1`.
     pub displacement_scale: f32,
     /// Added to every vertex's distance, local units. Default `0`.
@@ -292,8 +320,8 @@ pub struct PhongMaterial {
     /// back faces, before the normal map), as glTF's `doubleSided` and Bevy's
     /// `StandardMaterial::double_sided`. Default `false`: back faces are culled.
     pub double_sided: bool,
-    /// Moves the mesh's first UV set before every map is sampled: a map is read at
-    /// `uv_transform · uv` (glTF's `KHR_texture_transform`, Bevy's
+    /// Moves the mesh's first UV set before the maps on it are sampled: such a map is read
+    /// at `uv_transform · uv` (glTF's `KHR_texture_transform`, Bevy's
     /// `StandardMaterial::uv_transform`). The normal map's tangent frame stays the mesh's,
     /// as in Bevy and three.js. A transform that is not finite is replaced by the identity,
     /// with a warning. Default [`Affine2::IDENTITY`] (no shader work).
@@ -331,9 +359,8 @@ pub struct PhongMaterial {
     pub light_map_texture: Option<Handle<Image>>,
     /// Multiplies the light map and Bevy's `Lightmap`, `≥ 0`. Default `1`.
     pub light_map_intensity: f32,
-    /// The UV set the light map is read at: `Uv1` (`Mesh::ATTRIBUTE_UV_1`, where baked
-    /// light maps are laid out; as read, not moved by `uv_transform`) or `Uv0` (moved by it).
-    /// Default `Uv1`.
+    /// The UV set the light map is read at (see "UV sets" above). Default `Uv1`, where baked
+    /// light maps are laid out.
     pub light_map_channel: UvChannel,
     /// Ambient occlusion baked into a texture (three.js's `aoMap`, glTF's occlusion
     /// texture): its red channel `r` scales the ambient light and the light map's light by
@@ -343,8 +370,7 @@ pub struct PhongMaterial {
     pub ao_map_texture: Option<Handle<Image>>,
     /// How much the AO map occludes: 0 not at all, 1 fully, `≥ 0`. Default `1`.
     pub ao_map_intensity: f32,
-    /// The UV set the AO map is read at (as [`light_map_channel`](Self::light_map_channel)).
-    /// Default `Uv0`, glTF's.
+    /// The UV set the AO map is read at (see "UV sets" above). Default `Uv0`, glTF's.
     pub ao_map_channel: UvChannel,
     /// A cube map of what the surface reflects (three.js's `envMap`): an image of six
     /// square layers viewed as a cube (`TextureViewDimension::Cube`), in linear color.
@@ -399,15 +425,22 @@ impl Default for PhongMaterial {
             emissive: LinearRgba::BLACK,
             alpha_mode: AlphaMode::Opaque,
             base_color_texture: None,
+            base_color_channel: UvChannel::Uv0,
             specular_texture: None,
+            specular_channel: UvChannel::Uv0,
             emissive_texture: None,
+            emissive_channel: UvChannel::Uv0,
             alpha_map_texture: None,
+            alpha_map_channel: UvChannel::Uv0,
             normal_map_texture: None,
+            normal_map_channel: UvChannel::Uv0,
             flip_normal_map_y: false,
             normal_map_scale: Vec2::ONE,
             bump_map_texture: None,
+            bump_map_channel: UvChannel::Uv0,
             bump_scale: 1.0,
             displacement_map: None,
+            displacement_map_channel: UvChannel::Uv0,
             displacement_scale: 1.0,
             displacement_bias: 0.0,
             flat_shading: false,
@@ -595,7 +628,10 @@ impl From<&PhongMaterial> for DisplacementUniform {
     fn from(material: &PhongMaterial) -> Self {
         let material = material.in_range();
         Self {
-            uv_transform: Mat3::from(material.uv_transform),
+            uv_transform: match material.displacement_map_channel {
+                UvChannel::Uv0 => Mat3::from(material.uv_transform),
+                UvChannel::Uv1 => Mat3::IDENTITY,
+            },
             scale: material.displacement_scale,
             bias: material.displacement_bias,
         }
@@ -625,7 +661,8 @@ impl Material for PhongMaterial {
             depth_stencil.bias.constant = key.bind_group_data.depth_bias;
         }
         if key.bind_group_data.has(MaterialFeatures::DISPLACEMENT) {
-            crate::displacement::displace(descriptor, layout, "PhongMaterial")?;
+            let second_uvs = key.bind_group_data.has(MaterialFeatures::DISPLACEMENT_UV_B);
+            crate::displacement::displace(descriptor, layout, "PhongMaterial", second_uvs)?;
         }
         crate::scene_variants::add_scene_data_flag(descriptor);
         let defs = key.bind_group_data.shader_defs(layout);

@@ -5,7 +5,7 @@ use bevy::{
     app::{App, Plugin},
     asset::{Asset, Handle, embedded_asset},
     image::Image,
-    mesh::MeshVertexBufferLayoutRef,
+    mesh::{MeshVertexBufferLayoutRef, UvChannel},
     pbr::{Material, MaterialPipeline, MaterialPipelineKey, MaterialPlugin},
     reflect::Reflect,
     render::render_resource::{
@@ -85,6 +85,9 @@ pub struct SurfaceInputsMaterial {
     /// Its scale, bias and UV transform.
     #[uniform(26)]
     pub displacement: DisplacementUniform,
+    /// Whether the displacement map is read at the mesh's second UV set (else the first), as
+    /// `PhongMaterial::displacement_map_channel`. Default `false`.
+    pub displacement_second_uvs: bool,
 }
 
 impl Default for SurfaceInputsMaterial {
@@ -104,6 +107,7 @@ impl SurfaceInputsMaterial {
             cull_mode: Some(Face::Back),
             displacement_map: None,
             displacement: DisplacementUniform::default(),
+            displacement_second_uvs: false,
         }
     }
 
@@ -115,6 +119,7 @@ impl SurfaceInputsMaterial {
             cull_mode: material.cull_mode,
             displacement_map: material.displacement_map.clone(),
             displacement: material.into(),
+            displacement_second_uvs: material.displacement_map_channel == UvChannel::Uv1,
             ..Self::new(input, tag)
         }
     }
@@ -141,6 +146,8 @@ pub struct SurfaceInputsKey {
     pub culled: Option<Face>,
     /// Whether it has a displacement map.
     pub displaced: bool,
+    /// Whether the map is read at the second UV set.
+    pub displacement_second_uvs: bool,
 }
 
 impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
@@ -152,6 +159,7 @@ impl From<&SurfaceInputsMaterial> for SurfaceInputsKey {
                 material.cull_mode
             },
             displaced: material.displacement_map.is_some(),
+            displacement_second_uvs: material.displacement_second_uvs,
         }
     }
 }
@@ -199,7 +207,12 @@ impl Material for SurfaceInputsMaterial {
     ) -> Result<(), SpecializedMeshPipelineError> {
         descriptor.primitive.cull_mode = key.bind_group_data.culled;
         if key.bind_group_data.displaced {
-            crate::displacement::displace(descriptor, layout, "SurfaceInputsMaterial")?;
+            crate::displacement::displace(
+                descriptor,
+                layout,
+                "SurfaceInputsMaterial",
+                key.bind_group_data.displacement_second_uvs,
+            )?;
         }
         crate::scene_variants::add_scene_data_flag(descriptor);
         Ok(())

@@ -8,7 +8,6 @@ use bevy::{
     color::{Color, LinearRgba},
     gltf::GltfMaterial,
     log::warn,
-    mesh::UvChannel,
 };
 
 /// `metallicFactor`: `[0, 1]`, NaN → 0 (a dielectric, `GltfMaterial`'s default).
@@ -30,12 +29,13 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 ///
 /// | glTF ([`GltfMaterial`]) | `PhongMaterial` |
 /// |---|---|
-/// | `base_color` (baseColorFactor), `base_color_texture` | `base_color` = `base_color · (1 − metallic)` in linear RGB (alpha kept), `base_color_texture` |
-/// | `emissive` (emissiveFactor · `KHR_materials_emissive_strength`, as Bevy's loader gives it), `emissive_texture` | `emissive`, `emissive_texture` |
-/// | `normal_map_texture` (+Y up, OpenGL's convention) | `normal_map_texture`, `flip_normal_map_y: false` |
+/// | `base_color` (baseColorFactor), `base_color_texture`, `base_color_channel` | `base_color` = `base_color · (1 − metallic)` in linear RGB (alpha kept), `base_color_texture`, `base_color_channel` |
+/// | `emissive` (emissiveFactor · `KHR_materials_emissive_strength`, as Bevy's loader gives it), `emissive_texture`, `emissive_channel` | `emissive`, `emissive_texture`, `emissive_channel` |
+/// | `normal_map_texture` (+Y up, OpenGL's convention), `normal_map_channel` | `normal_map_texture`, `normal_map_channel`, `flip_normal_map_y: false` (`PhongGltfPlugin` then reads the file's `scale` as `normal_map_scale`) |
 /// | `alpha_mode` OPAQUE / MASK(alphaCutoff) / BLEND | `alpha_mode` unchanged |
 /// | `double_sided` (doubleSided) | `double_sided`: back faces drawn, their normal flipped |
-/// | `uv_transform` (`KHR_texture_transform`, as Bevy's loader reads it) | `uv_transform` |
+/// | `uv_transform` (`KHR_texture_transform`, as Bevy's loader reads it) | `uv_transform`, which moves the maps on the first UV set |
+/// | each texture's `texCoord` (the `*_channel` fields) | the map's `*_channel`; `PhongGltfPlugin` reads `KHR_texture_transform`'s `texCoord` from the file, which overrides it and which Bevy's loader drops |
 /// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
 /// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` (`PhongGltfPlugin` then reads the file's `strength`, which `GltfMaterial` drops) |
 /// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
@@ -55,8 +55,7 @@ pub const DIELECTRIC_F0: f32 = 0.04;
 /// become 0, alpha 1). The result never holds a NaN.
 ///
 /// What has no counterpart is left out (see `unmapped_gltf_features`): the
-/// metallic/roughness map, other UV sets than the first for the base color, emissive and
-/// normal maps, transmission, volume, clearcoat and anisotropy. When `label` is
+/// metallic/roughness map, transmission, volume, clearcoat and anisotropy. When `label` is
 /// `Some`, one warning naming it lists them.
 ///
 /// ```
@@ -106,9 +105,12 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         emissive: emissive_color(material.emissive),
         alpha_mode: material.alpha_mode,
         base_color_texture: material.base_color_texture.clone(),
+        base_color_channel: material.base_color_channel.clone(),
         specular_texture: None,
         emissive_texture: material.emissive_texture.clone(),
+        emissive_channel: material.emissive_channel.clone(),
         normal_map_texture: material.normal_map_texture.clone(),
+        normal_map_channel: material.normal_map_channel.clone(),
         flip_normal_map_y: false,
         double_sided: material.double_sided,
         uv_transform: material.uv_transform,
@@ -160,16 +162,6 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
         "metallicRoughnessTexture",
     );
     note(
-        [
-            &material.base_color_channel,
-            &material.emissive_channel,
-            &material.normal_map_channel,
-        ]
-        .into_iter()
-        .any(|channel| *channel != UvChannel::Uv0),
-        "texCoord 1 (PhongMaterial samples the first UV set)",
-    );
-    note(
         material.specular_transmission > 0.0,
         "KHR_materials_transmission",
     );
@@ -185,7 +177,9 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bevy::{asset::Handle, color::ColorToComponents, image::Image, prelude::AlphaMode};
+    use bevy::{
+        asset::Handle, color::ColorToComponents, image::Image, mesh::UvChannel, prelude::AlphaMode,
+    };
 
     fn linear(color: Color) -> [f32; 4] {
         color.to_linear().to_f32_array()
@@ -412,6 +406,25 @@ mod tests {
     }
 
     #[test]
+    fn each_map_keeps_the_uv_set_its_texture_reads() {
+        let map = Handle::<Image>::default();
+        let material = GltfMaterial {
+            base_color_texture: Some(map.clone()),
+            base_color_channel: UvChannel::Uv1,
+            emissive_texture: Some(map.clone()),
+            emissive_channel: UvChannel::Uv1,
+            normal_map_texture: Some(map),
+            normal_map_channel: UvChannel::Uv1,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert_eq!(phong.base_color_channel, UvChannel::Uv1);
+        assert_eq!(phong.emissive_channel, UvChannel::Uv1);
+        assert_eq!(phong.normal_map_channel, UvChannel::Uv1);
+        assert!(unmapped_gltf_features(&material).is_empty());
+    }
+
+    #[test]
     fn the_occlusion_texture_is_the_ao_map_on_its_uv_set() {
         let occlusion = Handle::<Image>::default();
         let material = GltfMaterial {
@@ -430,15 +443,12 @@ mod tests {
     fn maps_without_a_counterpart_are_listed() {
         let material = GltfMaterial {
             metallic_roughness_texture: Some(Handle::default()),
-            normal_map_channel: UvChannel::Uv1,
+            clearcoat: 0.5,
             ..Default::default()
         };
         assert_eq!(
             unmapped_gltf_features(&material),
-            [
-                "metallicRoughnessTexture",
-                "texCoord 1 (PhongMaterial samples the first UV set)",
-            ]
+            ["metallicRoughnessTexture", "KHR_materials_clearcoat"]
         );
         assert!(unmapped_gltf_features(&GltfMaterial::default()).is_empty());
     }

@@ -28,6 +28,8 @@ pub(crate) enum MeshNeeds {
     Uv1,
     /// UVs and tangents (`Mesh::ATTRIBUTE_UV_0`, `Mesh::ATTRIBUTE_TANGENT`).
     Uv0AndTangents,
+    /// A second UV set and tangents (`Mesh::ATTRIBUTE_UV_1`, `Mesh::ATTRIBUTE_TANGENT`).
+    Uv1AndTangents,
     /// Some other feature of the material sampling a map at the first UV set (what a UV
     /// transform moves).
     SampledUv0Map,
@@ -132,8 +134,9 @@ fn has_environment(material: &PhongMaterial) -> bool {
     material.environment_map.is_some() || material.camera_environment
 }
 
-/// Whether a baked map `texture` is present and read from `channel`.
-fn baked_map(texture: &Option<Handle<Image>>, channel: &UvChannel, second: bool) -> bool {
+/// Whether a map `texture` is present and read at the second UV set (`second`) or the
+/// first, as `channel` says.
+fn map_at(texture: &Option<Handle<Image>>, channel: &UvChannel, second: bool) -> bool {
     texture.is_some() && matches!(channel, UvChannel::Uv1) == second
 }
 
@@ -194,36 +197,60 @@ material_features! {
     /// Fragments below the alpha cutoff discarded (`PHONG_ALPHA_MASK`).
     ALPHA_MASK: "alpha_mode", ["PHONG_ALPHA_MASK"], Nothing,
         |m, u| matches!(m.alpha_mode, AlphaMode::Mask(_));
-    /// A base color map (`PHONG_BASE_COLOR_TEXTURE`).
+    /// A base color map on the first UV set (`PHONG_BASE_COLOR_TEXTURE`).
     BASE_COLOR_TEXTURE: "base_color_texture", ["PHONG_BASE_COLOR_TEXTURE"], Uv0,
-        |m, u| m.base_color_texture.is_some();
-    /// A specular map, with a specular term (`PHONG_SPECULAR_TEXTURE`).
+        |m, u| map_at(&m.base_color_texture, &m.base_color_channel, false);
+    /// A base color map on the second UV set (`PHONG_BASE_COLOR_TEXTURE`,
+    /// `PHONG_BASE_COLOR_UV_B`).
+    BASE_COLOR_TEXTURE_UV_B: "base_color_texture",
+        ["PHONG_BASE_COLOR_TEXTURE", "PHONG_BASE_COLOR_UV_B"], Uv1,
+        |m, u| map_at(&m.base_color_texture, &m.base_color_channel, true);
+    /// A specular map on the first UV set, with a specular term (`PHONG_SPECULAR_TEXTURE`).
     SPECULAR_TEXTURE: "specular_texture", ["PHONG_SPECULAR_TEXTURE"], Uv0,
-        |m, u| has_specular(m, u) && m.specular_texture.is_some();
-    /// An emissive map (`PHONG_EMISSIVE_TEXTURE`).
+        |m, u| has_specular(m, u) && map_at(&m.specular_texture, &m.specular_channel, false);
+    /// A specular map on the second UV set, with a specular term (`PHONG_SPECULAR_TEXTURE`,
+    /// `PHONG_SPECULAR_UV_B`).
+    SPECULAR_TEXTURE_UV_B: "specular_texture", ["PHONG_SPECULAR_TEXTURE", "PHONG_SPECULAR_UV_B"],
+        Uv1,
+        |m, u| has_specular(m, u) && map_at(&m.specular_texture, &m.specular_channel, true);
+    /// An emissive map on the first UV set (`PHONG_EMISSIVE_TEXTURE`).
     EMISSIVE_TEXTURE: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE"], Uv0,
-        |m, u| m.emissive_texture.is_some() && !m.unlit;
-    /// An alpha map (`PHONG_ALPHA_MAP`).
+        |m, u| !m.unlit && map_at(&m.emissive_texture, &m.emissive_channel, false);
+    /// An emissive map on the second UV set (`PHONG_EMISSIVE_TEXTURE`, `PHONG_EMISSIVE_UV_B`).
+    EMISSIVE_TEXTURE_UV_B: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE", "PHONG_EMISSIVE_UV_B"],
+        Uv1,
+        |m, u| !m.unlit && map_at(&m.emissive_texture, &m.emissive_channel, true);
+    /// An alpha map on the first UV set (`PHONG_ALPHA_MAP`).
     ALPHA_MAP: "alpha_map_texture", ["PHONG_ALPHA_MAP"], Uv0,
-        |m, u| m.alpha_map_texture.is_some();
+        |m, u| map_at(&m.alpha_map_texture, &m.alpha_map_channel, false);
+    /// An alpha map on the second UV set (`PHONG_ALPHA_MAP`, `PHONG_ALPHA_MAP_UV_B`).
+    ALPHA_MAP_UV_B: "alpha_map_texture", ["PHONG_ALPHA_MAP", "PHONG_ALPHA_MAP_UV_B"], Uv1,
+        |m, u| map_at(&m.alpha_map_texture, &m.alpha_map_channel, true);
     /// A light map on the first UV set (`PHONG_LIGHT_MAP`).
     LIGHT_MAP: "light_map_texture", ["PHONG_LIGHT_MAP"], Uv0,
-        |m, u| baked_map(&m.light_map_texture, &m.light_map_channel, false);
+        |m, u| map_at(&m.light_map_texture, &m.light_map_channel, false);
     /// A light map on the second UV set (`PHONG_LIGHT_MAP`, `PHONG_LIGHT_MAP_UV_B`).
     LIGHT_MAP_UV_B: "light_map_texture", ["PHONG_LIGHT_MAP", "PHONG_LIGHT_MAP_UV_B"], Uv1,
-        |m, u| baked_map(&m.light_map_texture, &m.light_map_channel, true);
+        |m, u| map_at(&m.light_map_texture, &m.light_map_channel, true);
     /// An AO map on the first UV set (`PHONG_AO_MAP`).
     AO_MAP: "ao_map_texture", ["PHONG_AO_MAP"], Uv0,
-        |m, u| baked_map(&m.ao_map_texture, &m.ao_map_channel, false);
+        |m, u| map_at(&m.ao_map_texture, &m.ao_map_channel, false);
     /// An AO map on the second UV set (`PHONG_AO_MAP`, `PHONG_AO_MAP_UV_B`).
     AO_MAP_UV_B: "ao_map_texture", ["PHONG_AO_MAP", "PHONG_AO_MAP_UV_B"], Uv1,
-        |m, u| baked_map(&m.ao_map_texture, &m.ao_map_channel, true);
-    /// A normal map (`PHONG_NORMAL_MAP`).
+        |m, u| map_at(&m.ao_map_texture, &m.ao_map_channel, true);
+    /// A normal map on the first UV set (`PHONG_NORMAL_MAP`).
     NORMAL_MAP: "normal_map_texture", ["PHONG_NORMAL_MAP"], Uv0AndTangents,
-        |m, u| m.normal_map_texture.is_some();
-    /// A bump map (`PHONG_BUMP_MAP`).
+        |m, u| map_at(&m.normal_map_texture, &m.normal_map_channel, false);
+    /// A normal map on the second UV set (`PHONG_NORMAL_MAP`, `PHONG_NORMAL_MAP_UV_B`).
+    NORMAL_MAP_UV_B: "normal_map_texture", ["PHONG_NORMAL_MAP", "PHONG_NORMAL_MAP_UV_B"],
+        Uv1AndTangents,
+        |m, u| map_at(&m.normal_map_texture, &m.normal_map_channel, true);
+    /// A bump map on the first UV set (`PHONG_BUMP_MAP`).
     BUMP_MAP: "bump_map_texture", ["PHONG_BUMP_MAP"], Uv0AndTangents,
-        |m, u| m.bump_map_texture.is_some();
+        |m, u| map_at(&m.bump_map_texture, &m.bump_map_channel, false);
+    /// A bump map on the second UV set (`PHONG_BUMP_MAP`, `PHONG_BUMP_MAP_UV_B`).
+    BUMP_MAP_UV_B: "bump_map_texture", ["PHONG_BUMP_MAP", "PHONG_BUMP_MAP_UV_B"], Uv1AndTangents,
+        |m, u| map_at(&m.bump_map_texture, &m.bump_map_channel, true);
     /// The maps sampled at moved UVs: a UV transform other than the identity, on a material
     /// that samples a map at the first UV set (`PHONG_UV_TRANSFORM`).
     UV_TRANSFORM: "uv_transform", ["PHONG_UV_TRANSFORM"], SampledUv0Map,
@@ -233,6 +260,10 @@ material_features! {
     /// Vertices displaced (the crate's vertex shaders, with their vertex def
     /// `PHONG_DISPLACEMENT_MAP`).
     DISPLACEMENT: "displacement_map", [], Nothing, |m, u| m.displacement_map.is_some();
+    /// The displacement map read at the second UV set (the vertex def
+    /// `PHONG_DISPLACEMENT_UV_B`).
+    DISPLACEMENT_UV_B: "displacement_map", [], Nothing,
+        |m, u| map_at(&m.displacement_map, &m.displacement_map_channel, true);
     /// Some light of the material's app casts shadows: only then is the shadow code
     /// compiled in (`PHONG_SHADOWS`). This and the next three are the app's scene, which the
     /// plugin copies into each of its materials.

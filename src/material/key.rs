@@ -62,7 +62,7 @@ impl PhongMaterialKey {
 
     /// The fragment shader defs of this variant on a mesh with `layout`, beside those Bevy's
     /// mesh pipeline adds: each feature's defs, where the mesh has what the feature needs
-    /// (maps need UVs, the normal and bump maps tangents too); where it does not, the feature
+    /// (maps need their UV set, the normal and bump maps tangents too); where it does not, the feature
     /// is left out, with a warning. A material extending [`PhongMaterial`] is specialized
     /// with the same defs.
     pub fn shader_defs(&self, layout: &MeshVertexBufferLayoutRef) -> Vec<&'static str> {
@@ -79,6 +79,7 @@ impl PhongMaterialKey {
             MeshNeeds::Uv0 => has_uvs,
             MeshNeeds::Uv1 => has_second_uvs,
             MeshNeeds::Uv0AndTangents => has_uvs && has_tangents,
+            MeshNeeds::Uv1AndTangents => has_second_uvs && has_tangents,
         };
         let samples_uv0 = features().any(|feature| {
             matches!(feature.needs, MeshNeeds::Uv0 | MeshNeeds::Uv0AndTangents)
@@ -115,6 +116,10 @@ fn missing_attributes(needs: MeshNeeds) -> Option<&'static str> {
         MeshNeeds::Uv1 => Some("its UV set (Mesh::ATTRIBUTE_UV_1)"),
         MeshNeeds::Uv0AndTangents => Some(
             "UVs and tangents (Mesh::ATTRIBUTE_UV_0, Mesh::ATTRIBUTE_TANGENT: \
+             Mesh::with_generated_tangents)",
+        ),
+        MeshNeeds::Uv1AndTangents => Some(
+            "its UV set and tangents (Mesh::ATTRIBUTE_UV_1, Mesh::ATTRIBUTE_TANGENT: \
              Mesh::with_generated_tangents)",
         ),
     }
@@ -197,6 +202,7 @@ mod tests {
         // The vertex stage's, set with the crate's vertex shaders (`displacement::displace`)
         // for `MaterialFeatures::DISPLACEMENT`.
         assert!(read.remove("PHONG_DISPLACEMENT_MAP"));
+        assert!(read.remove("PHONG_DISPLACEMENT_UV_B"));
         assert_eq!(declared, read);
     }
 
@@ -235,5 +241,44 @@ mod tests {
         let plain = PhongMaterialKey::from(&PhongMaterial::default());
         assert_eq!(plain.features, MaterialFeatures::NONE);
         assert!(plain.shader_defs(&layout(true)).is_empty());
+    }
+
+    #[test]
+    fn maps_on_the_second_uv_set_need_it_and_are_not_moved_by_the_uv_transform() {
+        let image = Handle::<Image>::default();
+        let material = PhongMaterial {
+            base_color_texture: Some(image.clone()),
+            base_color_channel: UvChannel::Uv1,
+            normal_map_texture: Some(image),
+            normal_map_channel: UvChannel::Uv1,
+            uv_transform: bevy::math::Affine2::from_scale(bevy::math::Vec2::splat(2.0)),
+            ..PhongMaterial::default()
+        };
+        let key = PhongMaterialKey::from(&material);
+        let mut with_second_uvs =
+            Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::all())
+                .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, vec![[0.0f32; 3]; 3])
+                .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 1.0, 0.0]; 3])
+                .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, vec![[0.0f32; 2]; 3])
+                .with_inserted_attribute(Mesh::ATTRIBUTE_UV_1, vec![[0.0f32; 2]; 3]);
+        with_second_uvs.insert_attribute(Mesh::ATTRIBUTE_TANGENT, vec![[1.0f32, 0.0, 0.0, 1.0]; 3]);
+        let layout_b =
+            with_second_uvs.get_mesh_vertex_buffer_layout(&mut MeshVertexBufferLayouts::default());
+        let mut defs = key.shader_defs(&layout_b);
+        defs.sort_unstable();
+        assert_eq!(
+            defs,
+            [
+                "PHONG_BASE_COLOR_TEXTURE",
+                "PHONG_BASE_COLOR_UV_B",
+                "PHONG_NORMAL_MAP",
+                "PHONG_NORMAL_MAP_UV_B",
+            ],
+            "both maps on the second set; the transform moves no map"
+        );
+        assert!(
+            key.shader_defs(&layout(true)).is_empty(),
+            "no second UV set: neither map"
+        );
     }
 }

@@ -30,7 +30,7 @@ macro_rules! surface_bindings {
     ($(
         $field:ident: texture($texture:literal $(, $($texture_option:tt)*)?)
             $(sampler($sampler:literal $(, $($sampler_option:tt)*)?))?,
-            $devices:ident, $file:ident, $what:literal;
+            $devices:ident, $file:ident, $(uv $channel:ident,)? $what:literal;
     )*) => {
         /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding
         /// 0 the uniform, 26 the displacement's uniform (read in the vertex stage), and each

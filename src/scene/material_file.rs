@@ -31,6 +31,13 @@ impl UvChannelDescription {
             Self::Uv1 => UvChannel::Uv1,
         }
     }
+
+    fn from_channel(channel: &UvChannel) -> Self {
+        match channel {
+            UvChannel::Uv0 => Self::Uv0,
+            UvChannel::Uv1 => Self::Uv1,
+        }
+    }
 }
 
 /// The faces a material culls, as a file names them.
@@ -108,7 +115,7 @@ pub enum AlphaModeDescription {
 macro_rules! material_description {
     ($(
         $field:ident: texture($($texture:tt)*) $(sampler($($sampler:tt)*))?,
-        $devices:ident, $file:ident, $what:literal;
+        $devices:ident, $file:ident, $(uv $channel:ident,)? $what:literal;
     )*) => {
         /// A [`PhongMaterial`] as written in a file; every field is optional and defaults to
         /// `PhongMaterial::default()`'s value.
@@ -186,12 +193,8 @@ macro_rules! material_description {
             pub depth_bias: f32,
             /// Multiplier on the light map. Default `1`.
             pub light_map_intensity: f32,
-            /// The light map's UV set: `Uv0` or `Uv1`. Default `Uv1`.
-            pub light_map_channel: UvChannelDescription,
             /// How much the AO map occludes. Default `1`.
             pub ao_map_intensity: f32,
-            /// The AO map's UV set: `Uv0` or `Uv1`. Default `Uv0`.
-            pub ao_map_channel: UvChannelDescription,
             /// Reflect the camera's Bevy `EnvironmentMapLight` where there is no
             /// `environment_map`. Default `false`.
             pub camera_environment: bool,
@@ -207,6 +210,13 @@ macro_rules! material_description {
         )]
                 pub $field: Option<String>,
             )*
+            $($(
+                #[doc = concat!(
+            "The UV set ", $what, " is read at: `Uv0` (moved by the UV transform) or `Uv1` \
+            (as it is). Default `PhongMaterial`'s."
+        )]
+                pub $channel: UvChannelDescription,
+            )?)*
         }
 
         impl Default for PhongMaterialDescription {
@@ -241,14 +251,13 @@ macro_rules! material_description {
                     cull_mode: CullModeDescription::Back,
                     depth_bias: material.depth_bias,
                     light_map_intensity: material.light_map_intensity,
-                    light_map_channel: UvChannelDescription::Uv1,
                     ao_map_intensity: material.ao_map_intensity,
-                    ao_map_channel: UvChannelDescription::Uv0,
                     camera_environment: material.camera_environment,
                     environment_combine: material.environment_combine,
                     reflectivity: material.reflectivity,
                     refraction_ratio: material.refraction_ratio,
                     $($field: None,)*
+                    $($($channel: UvChannelDescription::from_channel(&material.$channel),)?)*
                 }
             }
         }
@@ -305,15 +314,14 @@ macro_rules! material_description {
                     cull_mode: self.cull_mode.to_face(),
                     depth_bias: self.depth_bias,
                     light_map_intensity: self.light_map_intensity,
-                    light_map_channel: self.light_map_channel.to_channel(),
                     ao_map_intensity: self.ao_map_intensity,
-                    ao_map_channel: self.ao_map_channel.to_channel(),
                     camera_environment: self.camera_environment,
                     environment_combine: self.environment_combine,
                     reflectivity: self.reflectivity,
                     refraction_ratio: self.refraction_ratio,
                     // The app's, which the plugin sets.
                     scene_variants: Default::default(),
+                    $($($channel: self.$channel.to_channel(),)?)*
                     $($field: load_map(
                         load_context,
                         self.$field.as_deref(),

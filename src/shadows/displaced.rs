@@ -13,6 +13,7 @@ use bevy::{
         system::{Res, ResMut},
     },
     image::Image,
+    mesh::UvChannel,
     platform::collections::HashMap,
     render::{
         render_asset::RenderAssets,
@@ -31,6 +32,8 @@ use bevy::{
 pub(crate) struct CasterDisplacement {
     pub map: AssetId<Image>,
     pub uniform: DisplacementUniform,
+    /// Whether the map is read at the mesh's second UV set (else the first).
+    pub second_uvs: bool,
 }
 
 impl CasterDisplacement {
@@ -40,6 +43,7 @@ impl CasterDisplacement {
         Some(Self {
             map,
             uniform: material.into(),
+            second_uvs: material.displacement_map_channel == UvChannel::Uv1,
         })
     }
 

@@ -2,7 +2,8 @@
 //! the holes the main pass cuts in the shadow maps too (`shadow_caster.wesl`, MASKED). Its
 //! alpha is the product the prepass discards by (`phong_prepass.wesl`'s `discard_masked`):
 //! the base color's, the vertex color's, the base color map's and (where the device binds it)
-//! the alpha map's green, the maps read at the first UV set moved by the UV transform. The
+//! the alpha map's green, each map read at its UV set (the first moved by the UV transform,
+//! the second as it is). The
 //! main world notes each masked caster's maps and numbers ([`CasterMask`]); the render world
 //! binds the maps (group `MASK_GROUP`) and passes the numbers as instance data.
 
@@ -16,6 +17,7 @@ use bevy::{
     },
     image::Image,
     math::Mat3,
+    mesh::UvChannel,
     platform::collections::HashMap,
     prelude::AlphaMode,
     render::{
@@ -38,6 +40,10 @@ pub(crate) struct CasterMask {
     pub base_color_texture: Option<AssetId<Image>>,
     /// The alpha map, whose green multiplies.
     pub alpha_map: Option<AssetId<Image>>,
+    /// Whether the base color map is read at the second UV set (else the first).
+    pub base_color_second_uvs: bool,
+    /// Whether the alpha map is read at the second UV set (else the first).
+    pub alpha_map_second_uvs: bool,
     /// The UV transform of the first UV set.
     pub uv_transform: Mat3,
     /// The base color's alpha, in range.
@@ -57,6 +63,8 @@ impl CasterMask {
         Some(Self {
             base_color_texture: material.base_color_texture.as_ref().map(|image| image.id()),
             alpha_map: material.alpha_map_texture.as_ref().map(|image| image.id()),
+            base_color_second_uvs: material.base_color_channel == UvChannel::Uv1,
+            alpha_map_second_uvs: material.alpha_map_channel == UvChannel::Uv1,
             uv_transform: uniform.uv_transform,
             base_alpha: uniform.base_color.w,
             cutoff: uniform.alpha_cutoff,
@@ -79,13 +87,17 @@ impl CasterMask {
         ]
     }
 
-    /// The maps its bind group holds: `(base color map, alpha map)`, the alpha map only where
-    /// the device binds it (`alpha_map_bound`; not under WebGL2's limits, where the main pass
-    /// leaves it out too).
-    pub fn maps(&self, alpha_map_bound: bool) -> MaskMaps {
+    /// The maps its bind group holds on a mesh that has the UV sets `has_uvs` says (first,
+    /// second): `(base color map, alpha map)`, each only where the mesh has its set, as the
+    /// main pass reads them, and the alpha map only where the device binds it
+    /// (`alpha_map_bound`; not under WebGL2's limits, where the main pass leaves it out too).
+    pub fn maps(&self, alpha_map_bound: bool, has_uvs: (bool, bool)) -> MaskMaps {
+        let has_set = |second: bool| if second { has_uvs.1 } else { has_uvs.0 };
         (
-            self.base_color_texture,
-            self.alpha_map.filter(|_| alpha_map_bound),
+            self.base_color_texture
+                .filter(|_| has_set(self.base_color_second_uvs)),
+            self.alpha_map
+                .filter(|_| alpha_map_bound && has_set(self.alpha_map_second_uvs)),
         )
     }
 }

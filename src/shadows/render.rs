@@ -176,32 +176,40 @@ impl FromWorld for ShadowCasterPipeline {
 pub(crate) struct ShadowCasterKey {
     topology: PrimitiveTopology,
     posed: Option<(bool, bool)>,
-    displaced: bool,
+    /// A displaced caster's UV set: `Some(true)` the second.
+    displaced: Option<bool>,
     mask: Option<MaskKey>,
 }
 
 /// What a masked caster's alpha is made of besides its base color's: the base color map's
-/// alpha, the alpha map's green (both at the first UV set) and the vertex colors' alpha.
+/// alpha, the alpha map's green (each at the UV set it is read at: `Some(true)` the second)
+/// and the vertex colors' alpha.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct MaskKey {
-    base_color_texture: bool,
-    alpha_map: bool,
+    base_color_texture: Option<bool>,
+    alpha_map: Option<bool>,
     vertex_colors: bool,
 }
 
 impl MaskKey {
-    /// Whether the mask reads a map (at the first UV set).
-    fn reads_maps(self) -> bool {
-        self.base_color_texture || self.alpha_map
+    /// Whether the mask reads a map at the second UV set (`second`) or at the first.
+    fn reads_uvs(self, second: bool) -> bool {
+        [self.base_color_texture, self.alpha_map].contains(&Some(second))
     }
 
     /// The shader defs of the mask's variant.
     fn shader_defs(self) -> Vec<ShaderDefVal> {
         [
             (true, "MASKED"),
-            (self.reads_maps(), "MASK_UVS"),
-            (self.base_color_texture, "MASK_BASE_COLOR_TEXTURE"),
-            (self.alpha_map, "MASK_ALPHA_MAP"),
+            (self.reads_uvs(false), "MASK_UVS"),
+            (self.reads_uvs(true), "MASK_UVS_B"),
+            (self.base_color_texture.is_some(), "MASK_BASE_COLOR_TEXTURE"),
+            (
+                self.base_color_texture == Some(true),
+                "MASK_BASE_COLOR_UV_B",
+            ),
+            (self.alpha_map.is_some(), "MASK_ALPHA_MAP"),
+            (self.alpha_map == Some(true), "MASK_ALPHA_MAP_UV_B"),
             (self.vertex_colors, "MASK_VERTEX_COLORS"),
         ]
         .into_iter()
@@ -242,11 +250,17 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
             attributes.push(Mesh::ATTRIBUTE_JOINT_INDEX.at_shader_location(6));
             attributes.push(Mesh::ATTRIBUTE_JOINT_WEIGHT.at_shader_location(7));
         }
-        if key.displaced {
+        if key.displaced.is_some() {
             attributes.push(Mesh::ATTRIBUTE_NORMAL.at_shader_location(8));
         }
-        if key.displaced || key.mask.is_some_and(MaskKey::reads_maps) {
+        let reads_uvs = |second: bool| {
+            key.displaced == Some(second) || key.mask.is_some_and(|mask| mask.reads_uvs(second))
+        };
+        if reads_uvs(false) {
             attributes.push(Mesh::ATTRIBUTE_UV_0.at_shader_location(9));
+        }
+        if reads_uvs(true) {
+            attributes.push(Mesh::ATTRIBUTE_UV_1.at_shader_location(15));
         }
         if key.mask.is_some_and(|mask| mask.vertex_colors) {
             attributes.push(Mesh::ATTRIBUTE_COLOR.at_shader_location(14));
@@ -270,13 +284,16 @@ impl SpecializedMeshPipeline for ShadowCasterPipeline {
             }
             None => (Vec::new(), Vec::new()),
         };
-        if key.displaced {
+        if let Some(second_uvs) = key.displaced {
             instance_attributes.extend([10, 11].map(|shader_location| VertexAttribute {
                 format: VertexFormat::Float32x4,
                 offset: 80 + 16 * (shader_location as u64 - 10),
                 shader_location,
             }));
             shader_defs.push("DISPLACED".into());
+            if second_uvs {
+                shader_defs.push("DISPLACED_UV_B".into());
+            }
             shader_defs.push(ShaderDefVal::UInt(
                 "DISPLACEMENT_GROUP".into(),
                 bind_group_layouts.len() as u32,
@@ -451,22 +468,18 @@ pub(crate) fn prepare_shadow_draws(
                 )
                 .map(|draw| (draw, (skinned, morphed)))
         });
-        // A displacement moves the vertices of a mesh that has UVs and normals.
-        let displacement = instance
-            .displacement
-            .as_ref()
-            .filter(|_| mesh.is_some_and(|mesh| can_displace(&mesh.layout)));
-        // A mask's maps are read where the mesh has UVs, as the main pass reads them.
+        // A displacement moves the vertices of a mesh that has its UV set and normals.
+        let displacement = instance.displacement.as_ref().filter(|displacement| {
+            mesh.is_some_and(|mesh| can_displace(&mesh.layout, displacement.second_uvs))
+        });
+        // A mask's maps are read where the mesh has their UV sets, as the main pass reads them.
         let mask = instance.mask.as_ref().zip(mesh).map(|(mask, mesh)| {
             let has = |attribute| mesh.layout.0.contains(attribute);
-            let maps = if has(Mesh::ATTRIBUTE_UV_0) {
-                mask.maps(alpha_map_bound)
-            } else {
-                (None, None)
-            };
+            let has_uvs = (has(Mesh::ATTRIBUTE_UV_0), has(Mesh::ATTRIBUTE_UV_1));
+            let maps = mask.maps(alpha_map_bound, has_uvs);
             let key = MaskKey {
-                base_color_texture: maps.0.is_some(),
-                alpha_map: maps.1.is_some(),
+                base_color_texture: maps.0.map(|_| mask.base_color_second_uvs),
+                alpha_map: maps.1.map(|_| mask.alpha_map_second_uvs),
                 vertex_colors: has(Mesh::ATTRIBUTE_COLOR),
             };
             (key, maps, mask.instance_data())
@@ -474,7 +487,7 @@ pub(crate) fn prepare_shadow_draws(
         let key = |posed| ShadowCasterKey {
             topology: mesh.map_or(PrimitiveTopology::TriangleList, |m| m.primitive_topology()),
             posed,
-            displaced: displacement.is_some(),
+            displaced: displacement.map(|displacement| displacement.second_uvs),
             mask: mask.map(|(key, ..)| key),
         };
         let pipeline_id = match (mesh, posed, posed_draw) {

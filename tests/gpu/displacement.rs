@@ -12,7 +12,11 @@
 
 use crate::frames::{SIZE, TOLERANCE};
 use crate::texture_maps::{expected_color, float_map, loaded_images, spawn_map_lights};
-use bevy::{math::Affine2, prelude::*};
+use bevy::{
+    math::Affine2,
+    mesh::{UvChannel, VertexAttributeValues},
+    prelude::*,
+};
 use bevy_phong::prelude::*;
 use bevy_phong_headless::Harness;
 
@@ -47,25 +51,49 @@ fn displaced_vertices_move_along_their_normals_by_the_map() {
     let world = harness.world_mut();
     spawn_map_lights(world);
     let map = world.resource_mut::<Assets<Image>>().add(two_height_map());
-    // (center, radius, texel, scale, bias); the last one is not displaced.
+    // (center, radius, texel, scale, bias); the third is not displaced; the last reads the
+    // map at its second UV set, which holds its first squeezed into `texel` (its UV
+    // transform, which squeezes the first set into the other texel, moving nothing there).
     let spheres = [
         (Vec3::new(-1.6, 0.3, 0.0), 0.9, 0, 0.5, 0.1),
         (Vec3::new(1.4, 0.3, 0.0), 1.1, 1, -0.4, 0.05),
         (Vec3::new(0.0, -1.6, 0.5), 0.6, 0, 0.0, 0.0),
+        (Vec3::new(0.0, 1.9, -0.5), 0.6, 1, 0.4, 0.0),
     ];
+    let second_set = 3;
     for (index, &(center, radius, texel, scale, bias)) in spheres.iter().enumerate() {
-        let material = PhongMaterial {
-            base_color: Color::srgb(0.8, 0.6 - 0.2 * index as f32, 0.4),
-            displacement_map: (index < 2).then(|| map.clone()),
-            displacement_scale: scale,
-            displacement_bias: bias,
-            uv_transform: into_texel(texel),
-            shininess: 24.0,
-            ..default()
+        let mut mesh = Sphere::new(radius).mesh().uv(33, 16);
+        let material = if index == second_set {
+            let Some(VertexAttributeValues::Float32x2(uvs)) = mesh.attribute(Mesh::ATTRIBUTE_UV_0)
+            else {
+                panic!("a UV sphere has UVs");
+            };
+            let squeezed: Vec<[f32; 2]> = uvs
+                .iter()
+                .map(|&uv| into_texel(texel).transform_point2(Vec2::from(uv)).into())
+                .collect();
+            mesh.insert_attribute(Mesh::ATTRIBUTE_UV_1, squeezed);
+            PhongMaterial {
+                base_color: Color::srgb(0.3, 0.7, 0.5),
+                displacement_map: Some(map.clone()),
+                displacement_map_channel: UvChannel::Uv1,
+                displacement_scale: scale,
+                displacement_bias: bias,
+                uv_transform: into_texel(1 - texel),
+                ..default()
+            }
+        } else {
+            PhongMaterial {
+                base_color: Color::srgb(0.8, 0.6 - 0.2 * index as f32, 0.4),
+                displacement_map: (index < 2).then(|| map.clone()),
+                displacement_scale: scale,
+                displacement_bias: bias,
+                uv_transform: into_texel(texel),
+                shininess: 24.0,
+                ..default()
+            }
         };
-        let mesh = world
-            .resource_mut::<Assets<Mesh>>()
-            .add(Sphere::new(radius).mesh().uv(33, 16));
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
         let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
         world.spawn((
             Mesh3d(mesh),
@@ -87,7 +115,7 @@ fn displaced_vertices_move_along_their_normals_by_the_map() {
     let camera = harness.camera_position();
     let world = harness.world_mut();
     let materials = world.resource::<Assets<PhongMaterial>>();
-    let mut judged = [0usize; 3];
+    let mut judged = [0usize; 4];
     for pixel in 0..inputs.positions.pixels.len() {
         let Some((handle, surface)) = inputs.surface_at(pixel, camera) else {
             continue;
@@ -100,7 +128,7 @@ fn displaced_vertices_move_along_their_normals_by_the_map() {
                 let distance = |c: Vec3| (surface.position - c.as_dvec3()).length();
                 distance(a.1.0).total_cmp(&distance(b.1.0))
             })
-            .expect("three spheres");
+            .expect("four spheres");
         let moved = match material.displacement_map {
             Some(_) => f64::from(HEIGHTS[texel]) / 255.0 * f64::from(scale) + f64::from(bias),
             None => 0.0,

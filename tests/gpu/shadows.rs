@@ -27,6 +27,7 @@
 use crate::{clusters::spawn_second_camera, frames::TOLERANCE};
 use bevy::{
     light::{NotShadowCaster, NotShadowReceiver},
+    mesh::UvChannel,
     prelude::*,
 };
 use bevy_phong::{
@@ -865,51 +866,80 @@ fn not_shadow_caster_and_not_shadow_receiver_work_on_phong_meshes() {
 }
 
 /// A caster whose material has a displacement map casts the displaced shape: the scene's
-/// sphere, grown by a map of one texel (red 128/255, scale 0.3, bias 0.05: 0.6 becomes
-/// 0.80), is judged against the exact rays to a sphere of that radius, under a directional
-/// light (cascade maps) and a point light (cube maps). The sphere (`ico(5)`, 10,242
-/// vertices) lies within 10⁻⁴ of its vertices' sphere, far inside the band.
+/// sphere, grown by the map's left texel (red 1, scale 0.4, bias −0.2: 0.6 becomes 0.8), is
+/// judged against the exact rays to a sphere of that radius, under a directional light
+/// (cascade maps) and a point light (cube maps). Every vertex reads the left texel at the
+/// map's UV set, first the first set, then the second (`displacement_map_channel`); the
+/// other set reads the right texel (red 0), which would shrink the sphere to 0.4, farther
+/// than the widest band (0.34). The sphere (`ico(5)`, 10,242 vertices)
+/// lies within 10⁻⁴ of its vertices' sphere, far inside the band.
 #[test]
 fn a_displaced_caster_casts_the_shadow_of_its_displaced_shape() {
-    let (mut harness, mut scene) = harness();
-    let world = harness.world_mut();
-    let mut map = Image::new_fill(
-        bevy::render::render_resource::Extent3d::default(),
-        bevy::render::render_resource::TextureDimension::D2,
-        &[128, 0, 0, 255],
-        bevy::render::render_resource::TextureFormat::Rgba8Unorm,
-        bevy::asset::RenderAssetUsages::default(),
-    );
-    map.sampler = bevy::image::ImageSampler::nearest();
-    let map = world.resource_mut::<Assets<Image>>().add(map);
-    let (scale, bias) = (0.3, 0.05);
-    let (_, shape, material) = &mut scene.shapes[1];
-    let Shape::Sphere { radius, .. } = shape else {
-        panic!("the scene's second shape is its sphere");
-    };
-    *radius += 128.0 / 255.0 * scale + bias;
-    if let Some(mut sphere) = world
-        .resource_mut::<Assets<PhongMaterial>>()
-        .get_mut(&*material)
-    {
-        sphere.displacement_map = Some(map);
-        sphere.displacement_scale = scale as f32;
-        sphere.displacement_bias = bias as f32;
+    for channel in [UvChannel::Uv0, UvChannel::Uv1] {
+        let (mut harness, mut scene) = harness();
+        let sphere_entity = scene.sphere();
+        let world = harness.world_mut();
+        let mut map = Image::new(
+            bevy::render::render_resource::Extent3d {
+                width: 2,
+                height: 1,
+                depth_or_array_layers: 1,
+            },
+            bevy::render::render_resource::TextureDimension::D2,
+            vec![255, 0, 0, 255, 0, 0, 0, 255],
+            bevy::render::render_resource::TextureFormat::Rgba8Unorm,
+            bevy::asset::RenderAssetUsages::default(),
+        );
+        map.sampler = bevy::image::ImageSampler::nearest();
+        let map = world.resource_mut::<Assets<Image>>().add(map);
+        let mesh = world
+            .get::<Mesh3d>(sphere_entity)
+            .expect("the sphere's mesh")
+            .0
+            .clone();
+        let (left, right) = ([0.25f32, 0.5], [0.75f32, 0.5]);
+        let (first, second) = match channel {
+            UvChannel::Uv0 => (left, right),
+            UvChannel::Uv1 => (right, left),
+        };
+        if let Some(mut sphere_mesh) = world.resource_mut::<Assets<Mesh>>().get_mut(&mesh) {
+            let vertices = sphere_mesh.count_vertices();
+            sphere_mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, vec![first; vertices]);
+            sphere_mesh.insert_attribute(Mesh::ATTRIBUTE_UV_1, vec![second; vertices]);
+        }
+        let (scale, bias) = (0.4, -0.2);
+        let (_, shape, material) = &mut scene.shapes[1];
+        let Shape::Sphere { radius, .. } = shape else {
+            panic!("the scene's second shape is its sphere");
+        };
+        *radius += scale + bias;
+        if let Some(mut sphere) = world
+            .resource_mut::<Assets<PhongMaterial>>()
+            .get_mut(&*material)
+        {
+            sphere.displacement_map = Some(map);
+            sphere.displacement_map_channel = channel.clone();
+            sphere.displacement_scale = scale as f32;
+            sphere.displacement_bias = bias as f32;
+        }
+        let lights = vec![
+            directional(&mut harness, SUN, on(), one_cascade()),
+            point(&mut harness, Vec3::new(-1.5, 2.8, 1.8), on()),
+        ];
+        harness.settle();
+        let inputs = harness.capture_inputs();
+        judge(&mut harness, &scene, &lights, &EVERYONE, &inputs)
+            .assert_holds(&format!("displaced sphere, map at {channel:?}"));
     }
-    let lights = vec![
-        directional(&mut harness, SUN, on(), one_cascade()),
-        point(&mut harness, Vec3::new(-1.5, 2.8, 1.8), on()),
-    ];
-    harness.settle();
-    let inputs = harness.capture_inputs();
-    judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds("displaced sphere");
 }
 
 /// A square whose base color map's alpha is a checkerboard, masked at 1/2, casts the board's
 /// squares and lets the light through its holes, from each kind of light: the crate's
 /// caster discards where the main pass does. The maps are fine (2048 texels) so that the
 /// band around each square's shadow (printed; about a tenth of a unit) leaves most of each
-/// square's shadow and each hole's light (0.6 units across) judged.
+/// square's shadow and each hole's light (0.6 units across) judged. In the last case the
+/// board is read at the mesh's second UV set, the first set holding one UV at the middle
+/// square (opaque): a caster reading the first set casts the whole square.
 #[test]
 fn an_alpha_masked_caster_lets_the_light_through_its_holes() {
     let board = Shape::Checkerboard {
@@ -923,11 +953,11 @@ fn an_alpha_masked_caster_lets_the_light_through_its_holes() {
             ..on()
         }
     }
-    let cases: [(&str, &SpawnLights); 3] = [
-        ("masked board, directional", &|h| {
+    let cases: [(&str, UvChannel, &SpawnLights); 4] = [
+        ("masked board, directional", UvChannel::Uv0, &|h| {
             vec![directional(h, SUN, fine(), one_cascade())]
         }),
-        ("masked board, spot", &|h| {
+        ("masked board, spot", UvChannel::Uv0, &|h| {
             vec![spot(
                 h,
                 Vec3::new(1.2, 4.5, 0.8),
@@ -935,11 +965,23 @@ fn an_alpha_masked_caster_lets_the_light_through_its_holes() {
                 fine(),
             )]
         }),
-        ("masked board, point", &|h| {
+        ("masked board, point", UvChannel::Uv0, &|h| {
             vec![point(h, Vec3::new(0.9, 3.6, 0.6), fine())]
         }),
+        (
+            "masked board on the second UV set, spot",
+            UvChannel::Uv1,
+            &|h| {
+                vec![spot(
+                    h,
+                    Vec3::new(1.2, 4.5, 0.8),
+                    Vec3::new(0.4, 0.0, -0.4),
+                    fine(),
+                )]
+            },
+        ),
     ];
-    for (case, spawn_lights) in cases {
+    for (case, channel, spawn_lights) in cases {
         let (mut harness, mut scene) = harness();
         let Shape::Checkerboard {
             center,
@@ -977,14 +1019,23 @@ fn an_alpha_masked_caster_lets_the_light_through_its_holes() {
             .resource_mut::<Assets<PhongMaterial>>()
             .add(PhongMaterial {
                 base_color_texture: Some(image),
+                base_color_channel: channel.clone(),
                 alpha_mode: AlphaMode::Mask(0.5),
                 double_sided: true,
                 ..default()
             });
         let size = 2.0 * half as f32;
-        let mesh = world
-            .resource_mut::<Assets<Mesh>>()
-            .add(Plane3d::default().mesh().size(size, size));
+        let mut plane = Mesh::from(Plane3d::default().mesh().size(size, size));
+        if channel == UvChannel::Uv1 {
+            let uvs = plane
+                .attribute(Mesh::ATTRIBUTE_UV_0)
+                .expect("a plane has UVs")
+                .clone();
+            let corners = uvs.len();
+            plane.insert_attribute(Mesh::ATTRIBUTE_UV_1, uvs);
+            plane.insert_attribute(Mesh::ATTRIBUTE_UV_0, vec![[0.5f32, 0.5]; corners]);
+        }
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(plane);
         let entity = world
             .spawn((
                 Mesh3d(mesh),

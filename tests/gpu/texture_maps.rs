@@ -11,9 +11,11 @@
 
 use crate::frames::{SIZE, TOLERANCE};
 use crate::shading_normals::tangent_sphere;
+use crate::surface_inputs::with_second_uvs;
 use bevy::{
     asset::RenderAssetUsages,
     image::{Image, ImageSampler},
+    mesh::UvChannel,
     prelude::*,
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
@@ -234,4 +236,94 @@ fn texture_maps_follow_the_reference_model() {
         ),
     ];
     assert_follows_the_reference(harness, objects, "texture maps");
+}
+
+/// Every map read at the mesh's second UV set (`*_channel: UvChannel::Uv1`), as it is,
+/// beside maps on the first set moved by the UV transform: the second set is the first
+/// turned a quarter and shrunk (`with_second_uvs`), so a map read at the wrong set shows
+/// other texels. The bump and alpha maps only where the device binds them.
+#[test]
+fn maps_on_the_second_uv_set_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_map_lights(world);
+
+    let mut images = world.resource_mut::<Assets<Image>>();
+    let base_color = images.add(color_map(0.2, 1.0));
+    let specular = images.add(color_map(0.0, 1.0));
+    let emissive = images.add(color_map(0.0, 0.3));
+    let normals = images.add(normal_map());
+    let heights = images.add(color_map(0.0, 0.4));
+    let cutout = images.add(float_map(|x, y| {
+        [0.9, 0.6, 0.3, scatter(x, y, 3, 0.0, 1.0)]
+    }));
+    let holes = images.add(float_map(|x, y| {
+        [0.0, scatter(x, y, 1, 0.0, 1.0), 0.0, 1.0]
+    }));
+    // Moves the maps on the first set only.
+    let uv_transform =
+        bevy::math::Affine2::from_scale_angle_translation(Vec2::new(1.4, 0.8), 0.3, Vec2::ZERO);
+    let every_map_on_the_second_set = PhongMaterial {
+        base_color_texture: Some(base_color.clone()),
+        base_color_channel: UvChannel::Uv1,
+        specular_texture: Some(specular.clone()),
+        specular_channel: UvChannel::Uv1,
+        emissive_texture: Some(emissive.clone()),
+        emissive_channel: UvChannel::Uv1,
+        normal_map_texture: Some(normals.clone()),
+        normal_map_channel: UvChannel::Uv1,
+        bump_map_texture: Some(heights.clone()),
+        bump_map_channel: UvChannel::Uv1,
+        bump_scale: 0.8,
+        specular_strength: 2.0,
+        shininess: 40.0,
+        emissive: LinearRgba::WHITE,
+        uv_transform,
+        ..default()
+    };
+    let sets_mixed = PhongMaterial {
+        base_color_texture: Some(base_color),
+        specular_texture: Some(specular),
+        specular_channel: UvChannel::Uv1,
+        emissive_texture: Some(emissive),
+        emissive: LinearRgba::WHITE,
+        normal_map_texture: Some(normals),
+        bump_map_texture: Some(heights),
+        bump_map_channel: UvChannel::Uv1,
+        shininess: 20.0,
+        uv_transform,
+        ..default()
+    };
+    let masked_on_the_second_set = PhongMaterial {
+        base_color_texture: Some(cutout),
+        base_color_channel: UvChannel::Uv1,
+        alpha_map_texture: Some(holes),
+        alpha_map_channel: UvChannel::Uv1,
+        alpha_mode: AlphaMode::Mask(0.3),
+        emissive: LinearRgba::rgb(0.1, 0.1, 0.1),
+        uv_transform,
+        ..default()
+    };
+    let objects = [
+        (
+            with_second_uvs(tangent_sphere(1.2)),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            every_map_on_the_second_set,
+        ),
+        (
+            with_second_uvs(
+                Mesh::from(Cuboid::new(1.2, 1.2, 1.2))
+                    .with_generated_tangents()
+                    .expect("a cuboid has UVs and normals"),
+            ),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            sets_mixed,
+        ),
+        (
+            with_second_uvs(Cuboid::new(1.2, 1.2, 1.2).into()),
+            Transform::from_xyz(2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(-0.6)),
+            masked_on_the_second_set,
+        ),
+    ];
+    assert_follows_the_reference(harness, objects, "maps on the second UV set");
 }

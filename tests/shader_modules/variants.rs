@@ -305,6 +305,20 @@ fn extra_features() -> Vec<Extra> {
         F::VERTEX_LIGHTING.with(F::RIM_LIT),
         F::FRESNEL,
         F::VERTEX_LIGHTING.with(F::FRESNEL),
+        F::BASE_COLOR_TEXTURE_UV_B,
+        F::SPECULAR_TEXTURE_UV_B,
+        F::EMISSIVE_TEXTURE_UV_B,
+        F::ALPHA_MAP_UV_B,
+        F::NORMAL_MAP_UV_B,
+        F::BUMP_MAP_UV_B,
+        F::BASE_COLOR_TEXTURE_UV_B
+            .with(F::SPECULAR_TEXTURE_UV_B)
+            .with(F::EMISSIVE_TEXTURE_UV_B)
+            .with(F::ALPHA_MAP_UV_B)
+            .with(F::NORMAL_MAP_UV_B)
+            .with(F::BUMP_MAP_UV_B)
+            .with(F::LIGHT_MAP_UV_B)
+            .with(F::AO_MAP_UV_B),
     ]
     .into_iter()
     .map(|features| (features, F::NONE))
@@ -457,7 +471,7 @@ pub fn without_defs() -> Vec<Variant> {
 pub fn shadow_caster() -> Vec<Variant> {
     let mut variants = without_defs();
     let poses: [&[&str]; 4] = [&[], &["SKINNED"], &["MORPHED"], &["SKINNED", "MORPHED"]];
-    let masks: [&[&str]; 4] = [
+    let masks: [&[&str]; 6] = [
         &[],
         &["MASKED"],
         &["MASKED", "MASK_UVS", "MASK_BASE_COLOR_TEXTURE"],
@@ -468,13 +482,33 @@ pub fn shadow_caster() -> Vec<Variant> {
             "MASK_ALPHA_MAP",
             "MASK_VERTEX_COLORS",
         ],
+        &[
+            "MASKED",
+            "MASK_UVS",
+            "MASK_UVS_B",
+            "MASK_BASE_COLOR_TEXTURE",
+            "MASK_ALPHA_MAP",
+            "MASK_ALPHA_MAP_UV_B",
+        ],
+        &[
+            "MASKED",
+            "MASK_UVS_B",
+            "MASK_BASE_COLOR_TEXTURE",
+            "MASK_BASE_COLOR_UV_B",
+            "MASK_ALPHA_MAP",
+            "MASK_ALPHA_MAP_UV_B",
+            "MASK_VERTEX_COLORS",
+        ],
     ];
     for pose in poses {
         for uniforms in [false, true] {
-            for (displaced, mask) in [false, true]
+            // Not displaced, displaced at the first UV set, at the second.
+            for (displaced, mask) in [None, Some(false), Some(true)]
                 .into_iter()
                 .flat_map(|displaced| masks.map(|mask| (displaced, mask)))
             {
+                let second_uvs = displaced == Some(true);
+                let displaced = displaced.is_some();
                 let mut defs: Vec<ShaderDefVal> = Vec::new();
                 if !pose.is_empty() {
                     defs.push("POSED".into());
@@ -493,6 +527,9 @@ pub fn shadow_caster() -> Vec<Variant> {
                         pose.len().min(1)
                     };
                     defs.push("DISPLACED".into());
+                    if second_uvs {
+                        defs.push("DISPLACED_UV_B".into());
+                    }
                     defs.push(ShaderDefVal::UInt(
                         "DISPLACEMENT_GROUP".into(),
                         group as u32,
@@ -513,7 +550,8 @@ pub fn shadow_caster() -> Vec<Variant> {
                 }
                 variants.push(Variant {
                     name: format!(
-                        "{pose:?}, uniforms {uniforms}, displaced {displaced}, mask {mask:?}"
+                        "{pose:?}, uniforms {uniforms}, displaced {displaced} \
+                         (second UVs {second_uvs}), mask {mask:?}"
                     ),
                     defs,
                 });
@@ -696,15 +734,26 @@ pub fn displaced_vertex(prepass: bool) -> Vec<Variant> {
                 })
                 .collect()
         };
+        // The map at the second UV set, on the mesh that has one.
+        let uv_sets: &[bool] = if layout.0.contains(Mesh::ATTRIBUTE_UV_1) {
+            &[false, true]
+        } else {
+            &[false]
+        };
         for (setup, setup_defs) in &setups {
             for pose in POSES {
-                let mut defs = setup_defs.clone();
-                defs.push("PHONG_DISPLACEMENT_MAP".into());
-                defs.extend(pose.iter().map(|&def| def.into()));
-                variants.push(Variant {
-                    name: format!("mesh of {mesh}, {setup}, {pose:?}"),
-                    defs,
-                });
+                for &second_uvs in uv_sets {
+                    let mut defs = setup_defs.clone();
+                    defs.push("PHONG_DISPLACEMENT_MAP".into());
+                    if second_uvs {
+                        defs.push("PHONG_DISPLACEMENT_UV_B".into());
+                    }
+                    defs.extend(pose.iter().map(|&def| def.into()));
+                    variants.push(Variant {
+                        name: format!("mesh of {mesh}, {setup}, {pose:?}, second UVs {second_uvs}"),
+                        defs,
+                    });
+                }
             }
         }
     }

@@ -182,13 +182,13 @@ pub fn lit_normal<M: Material>(
     if tangent.w == 0.0 {
         return Some(surface.normal);
     }
-    let uv = sampled_uv(material, inputs, pixel)?;
     // Normal and bump maps are linear: nothing to decode.
     let texel = |handle: &Handle<Image>, uv: [f64; 2]| {
         texel_at(images.get(&handle.id())?, uv, SrgbDecoding::Exact)
     };
     let mut normal = surface.normal;
     if let Some(handle) = &material.normal_map_texture {
+        let uv = map_uv(material, &material.normal_map_channel, inputs, pixel)?;
         let texel = texel(handle, uv)?.truncate();
         let scale = bevy_phong::testing::limits::NORMAL_MAP_SCALE;
         let scale = DVec2::new(
@@ -204,6 +204,7 @@ pub fn lit_normal<M: Material>(
         .filter(|_| inputs.every_map_bound)
     {
         let image = images.get(&handle.id())?;
+        let uv = map_uv(material, &material.bump_map_channel, inputs, pixel)?;
         let step = [
             1.0 / f64::from(image.width()),
             1.0 / f64::from(image.height()),
@@ -218,8 +219,8 @@ pub fn lit_normal<M: Material>(
     Some(normal)
 }
 
-/// The texels each of `material`'s maps gives in pixel `pixel` (at the UVs of
-/// [`sampled_uv`], or the second set for a light or AO map on it), sRGB maps decoded as
+/// The texels each of `material`'s maps gives in pixel `pixel` (each at its UV set: the
+/// first as [`sampled_uv`] gives it, the second as captured), sRGB maps decoded as
 /// `decoding` says; `None` on a texel edge.
 pub fn texels_at<M: Material>(
     material: &PhongMaterial,
@@ -241,16 +242,15 @@ pub fn texels_at<M: Material>(
                 }
             }
         };
-    let sample = |map: &Option<Handle<Image>>| sample_at(map, &UvChannel::Uv0);
     Some(reference::Texels {
-        base_color: sample(&material.base_color_texture).ok()?,
-        specular: sample(&material.specular_texture)
+        base_color: sample_at(&material.base_color_texture, &material.base_color_channel).ok()?,
+        specular: sample_at(&material.specular_texture, &material.specular_channel)
             .ok()?
             .map(DVec4::truncate),
-        emissive: sample(&material.emissive_texture)
+        emissive: sample_at(&material.emissive_texture, &material.emissive_channel)
             .ok()?
             .map(DVec4::truncate),
-        normal: sample(&material.normal_map_texture)
+        normal: sample_at(&material.normal_map_texture, &material.normal_map_channel)
             .ok()?
             .map(DVec4::truncate),
         light_map: sample_at(&material.light_map_texture, &material.light_map_channel)
@@ -260,7 +260,7 @@ pub fn texels_at<M: Material>(
             .ok()?
             .map(|texel| texel.x),
         // Left out where the device does not bind every map (WebGL2).
-        alpha_map: sample(&material.alpha_map_texture)
+        alpha_map: sample_at(&material.alpha_map_texture, &material.alpha_map_channel)
             .ok()?
             .map(|texel| texel.y)
             .filter(|_| inputs.every_map_bound),
