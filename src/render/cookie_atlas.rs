@@ -94,6 +94,48 @@ mod tests {
         assert_eq!(cookie_layer_texels(&compressed), None);
     }
 
+    /// A black texel beside a white one (linear 8-bit) resampled to a layer: along `x` the
+    /// layer's texel centers `(x + ½)/side` fall at `u · 2 − ½` in the image, so the linear
+    /// value is that position clamped to `[0, 1]` (black up to the first texel's center,
+    /// white from the second's), the same in every row; stored as 8-bit sRGB. Worked by
+    /// hand: `x` 127 and 128 are linear 0.496 and 0.504, sRGB 187 and 188.
+    #[test]
+    fn an_image_is_resampled_bilinearly_between_its_texel_centers() {
+        let side = COOKIE_RESOLUTION;
+        let mut black_white = image(2, 1, TextureFormat::Rgba8Unorm, [0, 0, 0, 255]);
+        black_white
+            .set_color_at(1, 0, bevy::color::Color::WHITE)
+            .expect("a writable texel");
+        let layer = cookie_layer_texels(&black_white).expect("a readable image");
+        let srgb = |linear: f64| {
+            let encoded = if linear <= 0.003_130_8 {
+                12.92 * linear
+            } else {
+                1.055 * linear.powf(1.0 / 2.4) - 0.055
+            };
+            encoded * 255.0
+        };
+        for y in [0, side / 2, side - 1] {
+            for x in 0..side {
+                let position = (f64::from(x) + 0.5) / f64::from(side) * 2.0 - 0.5;
+                let expected = srgb(position.clamp(0.0, 1.0));
+                let texel = layer[(y * side + x) as usize];
+                // Half a byte of rounding, and a little for the f32 interpolation.
+                assert!(
+                    (f64::from(texel[0]) - expected).abs() <= 0.51,
+                    "texel ({x}, {y}): {texel:?}, expected red {expected:.2}"
+                );
+                assert_eq!(texel[0], texel[1], "gray");
+                assert_eq!(texel[3], 255, "opaque");
+            }
+            let row = |x: u32| layer[(y * side + x) as usize][0];
+            assert_eq!(
+                (row(0), row(63), row(127), row(128), row(192), row(255)),
+                (0, 0, 187, 188, 255, 255)
+            );
+        }
+    }
+
     #[test]
     fn the_atlas_has_a_white_layer_when_no_light_has_a_cookie() {
         let atlas = atlas_image(&[]);

@@ -2,10 +2,11 @@
 //! lit color by each combine mode, compared per pixel with the reference model
 //! (`reference::environment_direction`, `environment_lod`, `with_environment`).
 //!
-//! The cube has 8 texels a side and two mip levels, nearest-sampled, so the texel each
+//! The cube has 8 texels a side and three mip levels, nearest-sampled, so the texel each
 //! pixel reads is known from the direction (Vulkan's cube face rules) and the level from
-//! the material's shininess; pixels within 1/100 texel of a texel's or a face's edge are
-//! left out. Tolerance: the frame tests' (`TOLERANCE`); the lookup adds a blend in `f32`.
+//! the material's shininess (the objects read levels 0, 1 and 2: a level formula off by a
+//! constant or a factor reads another level's texels); pixels within 1/100 texel of a
+//! texel's or a face's edge are left out. Tolerance: the frame tests' (`TOLERANCE`); the lookup adds a blend in `f32`.
 //! Under WebGL2's limits the environment map is left out (`render::binds_every_map`): there
 //! the test checks that the surfaces are drawn as without it.
 //!
@@ -36,6 +37,9 @@ use std::collections::HashMap;
 /// Texels a side of the cube's first level.
 const CUBE_SIZE: u32 = 8;
 
+/// The mip levels of the test cubes.
+const CUBE_LEVELS: u32 = 3;
+
 /// The texel of face `face` at `(x, y)` of level `level`, RGBA in `[0, 1]`.
 fn cube_texel(face: u32, level: u32, x: u32, y: u32) -> [f32; 4] {
     let hash = (x * 5 + y * 3 + face * 7 + level * 11) % 9;
@@ -48,13 +52,13 @@ fn cube_texel(face: u32, level: u32, x: u32, y: u32) -> [f32; 4] {
     ]
 }
 
-/// A cube map of `cube_size` texels a side with two levels whose texel `(x, y)` of face
+/// A cube map of `cube_size` texels a side with [`CUBE_LEVELS`] levels whose texel `(x, y)` of face
 /// `face` at level `level` is `texel(face, level, x, y)`, stored layer by layer (each face's
 /// levels together, as Bevy's images order them), nearest-sampled.
 fn cube_map(cube_size: u32, texel: impl Fn(u32, u32, u32, u32) -> [f32; 4]) -> Image {
     let mut data = Vec::new();
     for face in 0..6 {
-        for level in 0..2 {
+        for level in 0..CUBE_LEVELS {
             let size = cube_size >> level;
             for y in 0..size {
                 for x in 0..size {
@@ -73,7 +77,7 @@ fn cube_map(cube_size: u32, texel: impl Fn(u32, u32, u32, u32) -> [f32; 4]) -> I
                 height: cube_size,
                 depth_or_array_layers: 6,
             },
-            mip_level_count: 2,
+            mip_level_count: CUBE_LEVELS,
             sample_count: 1,
             dimension: TextureDimension::D2,
             format: TextureFormat::Rgba8Unorm,
@@ -154,7 +158,7 @@ fn spawn_lights(world: &mut World) {
 
 /// Three reflective objects, each given its environment by `environment`: a mirror-like
 /// sphere (Multiply, level 0), a dull cube masked by a specular map (Mix, level 1 of a cube
-/// `cube_size` texels a side) and a refracting sphere (Add).
+/// `cube_size` texels a side) and a duller refracting sphere (Add, level 2).
 fn reflective_objects(
     world: &mut World,
     cube_size: u32,
@@ -163,8 +167,10 @@ fn reflective_objects(
     let specular_map = world.resource_mut::<Assets<Image>>().add(float_map(|x, y| {
         [0.2 + 0.25 * ((x + y) % 4) as f32, 0.5, 0.5, 1.0]
     }));
-    // A lobe one level-1 texel wide (see `reference::environment_lod`).
-    let level_one = (cube_size as f32 / core::f32::consts::PI).powi(2) - 1.0;
+    // A lobe one texel of level `m` wide: `environment_lod` (`log2(size / (π/2 · √(n + 1)))`)
+    // is `m` at `n = (2 · size / (π · 2^m))² − 1`.
+    let at_level =
+        |m: i32| (2.0 * cube_size as f32 / (core::f32::consts::PI * 2f32.powi(m))).powi(2) - 1.0;
     [
         (
             Sphere::new(1.0).mesh().uv(48, 32),
@@ -189,7 +195,7 @@ fn reflective_objects(
                 specular_texture: Some(specular_map),
                 environment_combine: EnvironmentCombine::Mix,
                 reflectivity: 0.7,
-                shininess: level_one,
+                shininess: at_level(1),
                 ..default()
             }),
         ),
@@ -201,7 +207,7 @@ fn reflective_objects(
                 environment_combine: EnvironmentCombine::Add,
                 reflectivity: 0.5,
                 refraction_ratio: Some(0.66),
-                shininess: 1e4,
+                shininess: at_level(2),
                 ..default()
             }),
         ),
@@ -234,8 +240,8 @@ fn reflected_color(
     let ratio = material.refraction_ratio.map(f64::from);
     let direction = reference::environment_direction(&lit_surface, ratio);
     let lod = reference::environment_lod(f64::from(material.shininess), cube_size.into());
-    // The nearer level, of the two there are.
-    let level = (lod + 0.5).floor().min(1.0) as u32;
+    // The nearer level, of those there are.
+    let level = (lod + 0.5).floor().min(f64::from(CUBE_LEVELS - 1)) as u32;
     assert!(
         (lod - lod.round()).abs() < 1e-3,
         "a level, not between two: {lod}"
@@ -299,7 +305,7 @@ const CAMERA_CUBE_SIZE: u32 = 32;
 fn face_color(face: u32, level: u32) -> [f32; 4] {
     [
         (face as f32 + 1.0) / 7.0,
-        0.9 - 0.5 * level as f32,
+        0.9 - 0.3 * level as f32,
         1.0 - (face as f32) / 8.0,
         1.0,
     ]

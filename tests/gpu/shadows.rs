@@ -666,9 +666,20 @@ type SpawnLights = dyn Fn(&mut Harness) -> Vec<CaseLight>;
 
 const SUN: Vec3 = Vec3::new(-0.5, -1.0, -0.35);
 
+/// Shadows with a share of the light left in them (`diffuse_in_shadow`, `specular_in_shadow`):
+/// each light its own pair, so that a pair swapped, or one light's pair read for another's,
+/// changes the shadowed pixels by at least a tenth of the blocked light.
+fn dimmed(diffuse_in_shadow: f32, specular_in_shadow: f32) -> PhongShadows {
+    PhongShadows {
+        diffuse_in_shadow,
+        specular_in_shadow,
+        ..on()
+    }
+}
+
 #[test]
 fn each_light_kind_alone_and_all_together_shadow_where_the_exact_rays_are_blocked() {
-    let cases: [(&str, &SpawnLights); 4] = [
+    let cases: [(&str, &SpawnLights); 5] = [
         ("directional", &|h| {
             vec![directional(h, SUN, on(), one_cascade())]
         }),
@@ -688,6 +699,13 @@ fn each_light_kind_alone_and_all_together_shadow_where_the_exact_rays_are_blocke
                 directional(h, SUN, on(), one_cascade()),
                 spot(h, Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, on()),
                 point(h, Vec3::new(-1.5, 2.8, 1.8), on()),
+            ]
+        }),
+        ("all together, light left in the shadows", &|h| {
+            vec![
+                directional(h, SUN, dimmed(0.3, 0.8), one_cascade()),
+                spot(h, Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, dimmed(0.6, 0.1)),
+                point(h, Vec3::new(-1.5, 2.8, 1.8), dimmed(0.0, 0.5)),
             ]
         }),
     ];
@@ -1178,33 +1196,51 @@ fn from_0_to_100_to_0_shadow_casting_lights_every_frame_is_right() {
     }
 }
 
+/// Each kind of light's penumbra widens with its softness: a spot and a point light's
+/// size (world units) and a directional light's angle (degrees), each over no softness
+/// and two growing ones; the verdict holds at each.
 #[test]
 fn the_penumbra_widens_with_softness() {
-    let mut widths = Vec::new();
-    for softness in [0.0, 0.1, 0.3] {
-        let (mut harness, scene) = harness();
-        let shadows = PhongShadows { softness, ..on() };
-        let lights = vec![spot(
-            &mut harness,
-            Vec3::new(0.3, 4.5, 0.8),
-            Vec3::ZERO,
-            shadows,
-        )];
-        harness.settle();
-        let inputs = harness.capture_inputs();
-        harness.settle();
-        let rendered = harness.render_next_frame();
-        // The verdict still holds: the widest filter is within the band.
-        judge_frame(&mut harness, &scene, &lights, &EVERYONE, &inputs, &rendered)
-            .assert_holds(&format!("softness {softness}"));
-        let (partial, _) = floor_shadow_pixels(&mut harness, &scene, &inputs, &rendered);
-        println!("softness {softness}: {partial} floor pixels in the penumbra");
-        widths.push(partial);
-    }
-    assert!(
-        widths[0] < widths[1] && widths[1] < widths[2],
-        "the penumbra widens with softness: {widths:?}"
+    type Kind = (
+        &'static str,
+        [f32; 3],
+        &'static dyn Fn(&mut Harness, PhongShadows) -> CaseLight,
     );
+    let kinds: [Kind; 3] = [
+        ("spot", [0.0, 0.1, 0.3], &|h, shadows| {
+            spot(h, Vec3::new(0.3, 4.5, 0.8), Vec3::ZERO, shadows)
+        }),
+        ("point", [0.0, 0.1, 0.3], &|h, shadows| {
+            point(h, Vec3::new(0.3, 3.6, 0.8), shadows)
+        }),
+        // Angles whose penumbra behind the sphere spans texels of the one cascade (about
+        // 0.05 units): the filter's radius is at least a texel, so a softer sun draws the
+        // smallest filter.
+        ("directional", [0.0, 10.0, 25.0], &|h, shadows| {
+            directional(h, SUN, shadows, one_cascade())
+        }),
+    ];
+    for (kind, softnesses, spawn) in kinds {
+        let mut widths = Vec::new();
+        for softness in softnesses {
+            let (mut harness, scene) = harness();
+            let lights = vec![spawn(&mut harness, PhongShadows { softness, ..on() })];
+            harness.settle();
+            let inputs = harness.capture_inputs();
+            harness.settle();
+            let rendered = harness.render_next_frame();
+            // The verdict still holds: the widest filter is within the band.
+            judge_frame(&mut harness, &scene, &lights, &EVERYONE, &inputs, &rendered)
+                .assert_holds(&format!("{kind}, softness {softness}"));
+            let (partial, _) = floor_shadow_pixels(&mut harness, &scene, &inputs, &rendered);
+            println!("{kind}, softness {softness}: {partial} floor pixels in the penumbra");
+            widths.push(partial);
+        }
+        assert!(
+            widths[0] < widths[1] && widths[1] < widths[2],
+            "{kind}: the penumbra widens with softness: {widths:?}"
+        );
+    }
 }
 
 /// Floor pixels in the penumbra and in full shadow: the rendered green channel strictly

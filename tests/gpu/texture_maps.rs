@@ -175,26 +175,44 @@ pub(crate) fn assert_follows_the_reference(
     assert_pixels_follow(harness, objects, name, &expected_color);
 }
 
+/// The maps the texture map tests draw with.
+struct TestMaps {
+    base_color: Handle<Image>,
+    specular: Handle<Image>,
+    emissive: Handle<Image>,
+    normals: Handle<Image>,
+    /// A base color map whose alpha varies from 0 to 1 (for an alpha mask).
+    cutout: Handle<Image>,
+}
+
+impl TestMaps {
+    /// The maps, added to the app's images.
+    fn add(world: &mut World) -> Self {
+        let mut images = world.resource_mut::<Assets<Image>>();
+        Self {
+            base_color: images.add(color_map(0.2, 1.0)),
+            specular: images.add(color_map(0.0, 1.0)),
+            emissive: images.add(color_map(0.0, 0.3)),
+            normals: images.add(normal_map()),
+            cutout: images.add(float_map(|x, y| {
+                [0.9, 0.6, 0.3, scatter(x, y, 3, 0.0, 1.0)]
+            })),
+        }
+    }
+}
+
 #[test]
 fn texture_maps_follow_the_reference_model() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     spawn_map_lights(world);
-
-    let mut images = world.resource_mut::<Assets<Image>>();
-    let base_color = images.add(color_map(0.2, 1.0));
-    let specular = images.add(color_map(0.0, 1.0));
-    let emissive = images.add(color_map(0.0, 0.3));
-    let normals = images.add(normal_map());
-    let cutout = images.add(float_map(|x, y| {
-        [0.9, 0.6, 0.3, scatter(x, y, 3, 0.0, 1.0)]
-    }));
+    let maps = TestMaps::add(world);
 
     let every_map = PhongMaterial {
-        base_color_texture: Some(base_color.clone()),
-        specular_texture: Some(specular),
-        emissive_texture: Some(emissive),
-        normal_map_texture: Some(normals.clone()),
+        base_color_texture: Some(maps.base_color.clone()),
+        specular_texture: Some(maps.specular.clone()),
+        emissive_texture: Some(maps.emissive.clone()),
+        normal_map_texture: Some(maps.normals.clone()),
         flip_normal_map_y: true,
         // Deeper across, shallower and turned back along (three.js's `normalScale`).
         normal_map_scale: Vec2::new(1.8, -0.6),
@@ -204,13 +222,13 @@ fn texture_maps_follow_the_reference_model() {
         ..default()
     };
     let base_color_and_normals = PhongMaterial {
-        base_color_texture: Some(base_color),
-        normal_map_texture: Some(normals),
+        base_color_texture: Some(maps.base_color.clone()),
+        normal_map_texture: Some(maps.normals.clone()),
         shininess: 20.0,
         ..default()
     };
     let masked = PhongMaterial {
-        base_color_texture: Some(cutout),
+        base_color_texture: Some(maps.cutout.clone()),
         alpha_mode: AlphaMode::Mask(0.5),
         emissive: LinearRgba::rgb(0.1, 0.1, 0.1),
         ..default()
@@ -247,16 +265,9 @@ fn maps_on_the_second_uv_set_follow_the_reference_model() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     spawn_map_lights(world);
-
+    let maps = TestMaps::add(world);
     let mut images = world.resource_mut::<Assets<Image>>();
-    let base_color = images.add(color_map(0.2, 1.0));
-    let specular = images.add(color_map(0.0, 1.0));
-    let emissive = images.add(color_map(0.0, 0.3));
-    let normals = images.add(normal_map());
     let heights = images.add(color_map(0.0, 0.4));
-    let cutout = images.add(float_map(|x, y| {
-        [0.9, 0.6, 0.3, scatter(x, y, 3, 0.0, 1.0)]
-    }));
     let holes = images.add(float_map(|x, y| {
         [0.0, scatter(x, y, 1, 0.0, 1.0), 0.0, 1.0]
     }));
@@ -264,13 +275,13 @@ fn maps_on_the_second_uv_set_follow_the_reference_model() {
     let uv_transform =
         bevy::math::Affine2::from_scale_angle_translation(Vec2::new(1.4, 0.8), 0.3, Vec2::ZERO);
     let every_map_on_the_second_set = PhongMaterial {
-        base_color_texture: Some(base_color.clone()),
+        base_color_texture: Some(maps.base_color.clone()),
         base_color_channel: UvChannel::Uv1,
-        specular_texture: Some(specular.clone()),
+        specular_texture: Some(maps.specular.clone()),
         specular_channel: UvChannel::Uv1,
-        emissive_texture: Some(emissive.clone()),
+        emissive_texture: Some(maps.emissive.clone()),
         emissive_channel: UvChannel::Uv1,
-        normal_map_texture: Some(normals.clone()),
+        normal_map_texture: Some(maps.normals.clone()),
         normal_map_channel: UvChannel::Uv1,
         bump_map_texture: Some(heights.clone()),
         bump_map_channel: UvChannel::Uv1,
@@ -282,12 +293,12 @@ fn maps_on_the_second_uv_set_follow_the_reference_model() {
         ..default()
     };
     let sets_mixed = PhongMaterial {
-        base_color_texture: Some(base_color),
-        specular_texture: Some(specular),
+        base_color_texture: Some(maps.base_color.clone()),
+        specular_texture: Some(maps.specular.clone()),
         specular_channel: UvChannel::Uv1,
-        emissive_texture: Some(emissive),
+        emissive_texture: Some(maps.emissive.clone()),
         emissive: LinearRgba::WHITE,
-        normal_map_texture: Some(normals),
+        normal_map_texture: Some(maps.normals.clone()),
         bump_map_texture: Some(heights),
         bump_map_channel: UvChannel::Uv1,
         shininess: 20.0,
@@ -295,7 +306,7 @@ fn maps_on_the_second_uv_set_follow_the_reference_model() {
         ..default()
     };
     let masked_on_the_second_set = PhongMaterial {
-        base_color_texture: Some(cutout),
+        base_color_texture: Some(maps.cutout.clone()),
         base_color_channel: UvChannel::Uv1,
         alpha_map_texture: Some(holes),
         alpha_map_channel: UvChannel::Uv1,
