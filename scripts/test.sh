@@ -32,7 +32,7 @@ done
 cargo run --quiet --example showcase -- --check target/examples/showcase.png
 # A scene file rendered to PNG and OpenEXR, as the README shows.
 cargo run --quiet --example render_scene -- assets/scenes/shapes.phong_scene.ron \
-    --out target/examples/render_scene --size 480x270
+    --out target/examples/render_scene --size 480x270 --check
 cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \
     --out target/examples/render_scene_shadows --size 480x270
 cargo run --quiet --example render_scene -- --help >/dev/null
@@ -50,4 +50,6 @@ done
 cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png
 cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \
     --out target/examples/webgl2/render_scene_shadows --size 480x270
+cargo run --quiet --example render_scene -- assets/scenes/shapes.phong_scene.ron \
+    --out target/examples/webgl2/render_scene --size 480x270 --check
 part "done"

@@ -12,13 +12,16 @@
 //! shadows: the reference is not given the visibility of a scene file's lights), and how many
 //! pixels it could not judge (texel edges, maps sampled with filtering, environment maps).
 //!
-//! `cargo run --example render_scene -- assets/scenes/showcase.phong_scene.ron --out DIR`;
+//! With `--check` it fails where that difference exceeds the render tests' tolerance
+//! (`bevy_phong_headless::TOLERANCE`, 4e-4), or where no pixel could be judged.
+//!
+//! `cargo run --example render_scene -- assets/scenes/shapes.phong_scene.ron --out DIR`;
 //! `--help` lists the options.
 
 mod output;
 
 use bevy_phong::prelude::*;
-use bevy_phong_headless::Harness;
+use bevy_phong_headless::{Harness, TOLERANCE};
 use std::{path::PathBuf, process::ExitCode};
 
 const HELP: &str = "\
@@ -34,6 +37,9 @@ OPTIONS:
     --out DIR          where to write color.png, color.exr, position.exr, normal.exr
                        [default: target/render_scene]
     --size WxH         image size in pixels [default: 512x512]
+    --check            fail where a pixel differs from the reference model by more than
+                       the render tests' tolerance (4e-4 of max(1, |expected|)), or where
+                       no pixel is judged; not for a scene that casts shadows
     --assets DIR       the asset folder: files the scene names (material files, textures)
                        must be inside it [default: the nearest folder named `assets`
                        that holds the scene file, else the scene file's folder]
@@ -49,6 +55,7 @@ struct Options {
     width: u32,
     height: u32,
     assets: Option<PathBuf>,
+    check: bool,
 }
 
 fn parse_options() -> Result<Option<Options>, String> {
@@ -57,11 +64,13 @@ fn parse_options() -> Result<Option<Options>, String> {
     let mut out = PathBuf::from("target/render_scene");
     let (mut width, mut height) = (512, 512);
     let mut assets = None;
+    let mut check = false;
     while let Some(arg) = args.next() {
         let mut value = |name: &str| args.next().ok_or(format!("{name} needs a value"));
         match arg.as_str() {
             "-h" | "--help" => return Ok(None),
             "--out" => out = value("--out")?.into(),
+            "--check" => check = true,
             "--assets" => assets = Some(value("--assets")?.into()),
             "--size" => {
                 let size = value("--size")?;
@@ -86,6 +95,7 @@ fn parse_options() -> Result<Option<Options>, String> {
         width,
         height,
         assets,
+        check,
     }))
 }
 
@@ -152,6 +162,9 @@ fn render(options: &Options) -> Result<(), String> {
         // The reference model is given each light's visibility by the render tests, which
         // know the scene's shapes; a scene file's are not modelled here.
         println!("the scene casts shadows: no comparison with the reference model");
+        if options.check {
+            return Err("--check: the scene casts shadows, which the check cannot model".into());
+        }
     } else {
         let comparison = harness.compare_with_reference(&rendered);
         println!(
@@ -159,6 +172,12 @@ fn render(options: &Options) -> Result<(), String> {
              {:.2e} (relative to max(1, |expected|))",
             comparison.lit_pixels, comparison.skipped_pixels, comparison.max_error
         );
+        if options.check && (comparison.lit_pixels == 0 || comparison.max_error > TOLERANCE) {
+            return Err(format!(
+                "--check: {} pixels judged, largest difference {:.2e} (tolerance {TOLERANCE:.0e})",
+                comparison.lit_pixels, comparison.max_error
+            ));
+        }
     }
     std::fs::create_dir_all(&options.out)
         .map_err(|error| format!("{}: {error}", options.out.display()))?;

@@ -17,7 +17,7 @@ use bevy_phong::prelude::*;
 use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 
 /// See the module docs: a tenth of an 8-bit step (1/255).
-pub const TOLERANCE: f64 = 4e-4;
+pub use bevy_phong_headless::TOLERANCE;
 /// Render size: small enough for a software rasterizer, large enough for smooth gradients.
 pub const SIZE: u32 = 128;
 

@@ -5,6 +5,13 @@ use std::path::PathBuf;
 
 use crate::float_image::{FloatImage, render_tests_directory, save_srgb_png};
 
+/// The largest difference of a pixel from the reference model the render tests allow, per
+/// channel, relative to `max(1, |expected|)`: a tenth of an 8-bit step, invisible on screen,
+/// ten times above what the shader's `f32` roundings give on the reference's own inputs
+/// (about 1e-6, up to 1e-5 under a sharp highlight), yet far below what a wrong term (a
+/// missing attenuation, a wrong reflection) produces.
+pub const TOLERANCE: f64 = 4e-4;
+
 /// What a pixel should show, for [`Comparison::of`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Expected {

@@ -40,7 +40,7 @@ mod readback;
 #[cfg(not(target_arch = "wasm32"))]
 pub use app::{headless_app, headless_app_with_assets, headless_plugins};
 #[cfg(not(target_arch = "wasm32"))]
-pub use comparison::{Comparison, Expected};
+pub use comparison::{Comparison, Expected, TOLERANCE};
 #[cfg(not(target_arch = "wasm32"))]
 pub use float_image::{FloatImage, save_srgb_png};
 #[cfg(not(target_arch = "wasm32"))]
