@@ -335,3 +335,27 @@ fn the_self_check_knows_every_material_feature_and_light() {
         comparison.assert_mostly_judged(name);
     }
 }
+
+/// A comparison that judged most of the frame but next to nothing of one object fails: a
+/// small object wholly on texel edges (2 pixels judged, 10 not) beside a large one (100
+/// judged) passes the frame's fifth but not the object's half.
+#[test]
+fn an_object_left_mostly_unjudged_fails_the_comparison() {
+    let image = bevy_phong_headless::FloatImage {
+        width: 1,
+        height: 1,
+        pixels: vec![[0.0; 4]],
+    };
+    let mut comparison =
+        bevy_phong_headless::Comparison::of(&image, |_| bevy_phong_headless::Expected::Clear);
+    comparison.lit_pixels = 102;
+    comparison.skipped_pixels = 10;
+    comparison.objects.insert(1, (100, 0));
+    comparison.assert_mostly_judged("the large object alone");
+    comparison.objects.insert(2, (2, 10));
+    let failed = std::panic::catch_unwind(|| comparison.assert_mostly_judged("both objects"));
+    assert!(
+        failed.is_err(),
+        "the small object's pixels went unjudged unnoticed"
+    );
+}

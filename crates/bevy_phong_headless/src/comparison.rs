@@ -1,7 +1,7 @@
 //! [`Comparison`]: a rendered frame against the reference model, pixel by pixel.
 
 use bevy::math::DVec3;
-use std::path::PathBuf;
+use std::{collections::BTreeMap, path::PathBuf};
 
 use crate::float_image::{FloatImage, render_tests_directory, save_srgb_png};
 
@@ -41,6 +41,11 @@ pub struct Comparison {
     pub stray_pixels: usize,
     /// Covered pixels the reference could not judge (on a discontinuity).
     pub skipped_pixels: usize,
+    /// For each object (its material's tag in the captured inputs), its judged and its
+    /// unjudged pixels, where the comparison knows the objects ([`Harness::compare_pixels`]).
+    ///
+    /// [`Harness::compare_pixels`]: crate::Harness::compare_pixels
+    pub objects: BTreeMap<u32, (usize, usize)>,
     actual: Vec<[f32; 3]>,
     expected: Vec<[f32; 3]>,
     /// Each lit pixel's error, as `max_error` measures it.
@@ -58,6 +63,7 @@ impl Comparison {
             worst_pixel: None,
             stray_pixels: 0,
             skipped_pixels: 0,
+            objects: BTreeMap::new(),
             actual: vec![[0.0; 3]; count],
             expected: vec![[0.0; 3]; count],
             errors: Vec::new(),
@@ -153,8 +159,11 @@ impl Comparison {
     }
 
     /// Asserts that fewer than a fifth of the lit pixels went unjudged (texel edges, the
-    /// alpha mask's cutoff, cube edges: see [`crate::pixel_model`]), so that a comparison
-    /// cannot pass by judging next to nothing.
+    /// alpha mask's cutoff, cube edges: see [`crate::pixel_model`]), and, where the
+    /// comparison knows the objects, that each object has more pixels judged than not, so
+    /// that a comparison cannot pass by judging next to nothing, nor by leaving one object
+    /// of several out. Texel and face edges leave out a few hundredths of an object's
+    /// pixels (1/100 of a texel each side, per axis), an alpha cutoff its rim.
     pub fn assert_mostly_judged(&self, case: &str) {
         assert!(
             self.skipped_pixels < self.lit_pixels / 5,
@@ -162,6 +171,22 @@ impl Comparison {
             self.lit_pixels,
             self.skipped_pixels
         );
+        for (object, &(judged, unjudged)) in &self.objects {
+            assert!(
+                judged > unjudged,
+                "{case}: object {object} has {judged} pixels judged and {unjudged} not"
+            );
+        }
+    }
+
+    /// Counts a covered pixel of `object` as judged or not.
+    pub(crate) fn count_object_pixel(&mut self, object: u32, judged: bool) {
+        let (judged_pixels, unjudged_pixels) = self.objects.entry(object).or_default();
+        if judged {
+            *judged_pixels += 1;
+        } else {
+            *unjudged_pixels += 1;
+        }
     }
 
     fn write_pngs(&self, case: &str) -> PathBuf {

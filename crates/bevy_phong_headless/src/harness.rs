@@ -666,7 +666,10 @@ impl Harness {
                 continue;
             };
             let material = assets.get(material).expect("material exists");
-            match expected(material, &surface, index) {
+            let object = inputs.positions.pixels[index][3] as u32;
+            let judged = expected(material, &surface, index);
+            comparison.count_object_pixel(object, judged.is_some());
+            match judged {
                 Some(expected) => comparison.record(index, *color, expected),
                 None => comparison.skipped_pixels += 1,
             }
