@@ -185,6 +185,22 @@ pub(crate) fn exact_visibility(position: DVec3, toward: Toward, casters: &[Shape
     if blocked { 0.0 } else { 1.0 }
 }
 
+/// How far from a shadow edge, in world units, a light with `settings` may put it on a map
+/// of `texel`-sized texels, on a surface whose cosine to the light is `cosine`: the map's
+/// own texel and a few more for its filter (4), the normal bias (in texels), the depth bias
+/// stretched along the surface (the cosine taken at least 0.2), and for a light with a
+/// size the widest filter PCSS may use (32 texels).
+fn band_width(settings: &PhongShadows, texel: f64, cosine: f64) -> f64 {
+    let penumbra = if settings.softness > 0.0 {
+        32.0 * texel
+    } else {
+        0.0
+    };
+    (4.0 + f64::from(settings.normal_bias)) * texel
+        + f64::from(settings.depth_bias) / cosine.max(0.2)
+        + penumbra
+}
+
 /// Whether the exact `V` of the light changes within `radius` of `position` on the surface
 /// with `normal`.
 fn near_edge(
@@ -608,15 +624,8 @@ fn judge_frame(
                     Toward::Direction(direction) => -direction.normalize(),
                     Toward::Point(light) => (light - surface.position).normalize(),
                 };
-                let cosine = surface.normal.normalize().dot(to_light).max(0.2);
-                let penumbra = if case.settings.softness > 0.0 {
-                    32.0 * texel
-                } else {
-                    0.0
-                };
-                let band = (4.0 + f64::from(case.settings.normal_bias)) * texel
-                    + f64::from(case.settings.depth_bias) / cosine
-                    + penumbra;
+                let cosine = surface.normal.normalize().dot(to_light);
+                let band = band_width(&case.settings, texel, cosine);
                 verdict.widest_band = verdict.widest_band.max(band);
                 near_edge(
                     surface.position,
@@ -1344,5 +1353,138 @@ fn the_penumbra_widens_with_the_distance_between_blocker_and_receiver() {
     assert!(
         shares[1] > shares[0],
         "the penumbra's share grows as the blocker nears the light: {shares:?}"
+    );
+}
+
+/// Lighting per vertex takes each light's shadow at the vertices (SPEC.md, "Per-vertex
+/// lighting"): a floor of 0.25-unit cells lit per vertex under the sphere's shadow from the
+/// sun is, at each pixel, the reference's sums at its triangle's corners, each corner's sum
+/// without the sun where the exact ray from it is blocked, interpolated. Triangles with a
+/// corner within the band of a shadow edge (see [`judge_frame`]) are not judged: the map may
+/// put such a corner either side. Many floor pixels must lie between corners all in shadow.
+#[test]
+fn lighting_per_vertex_takes_the_shadow_at_each_vertex() {
+    let (mut harness, scene) = harness();
+    let floor = scene.floor();
+    let floor_material = scene.shapes[0].2.clone();
+    let Shape::Floor { half } = scene.shapes[0].1 else {
+        panic!("the scene's first shape is its floor");
+    };
+    let world = harness.world_mut();
+    let cells = world.resource_mut::<Assets<Mesh>>().add(
+        Plane3d::default()
+            .mesh()
+            .size(2.0 * half as f32, 2.0 * half as f32)
+            .subdivisions(31),
+    );
+    world.entity_mut(floor).insert(Mesh3d(cells));
+    if let Some(mut material) = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .get_mut(&floor_material)
+    {
+        material.vertex_lighting = true;
+    }
+    // A fine map: a band (about 0.1 units) narrower than a cell.
+    let fine = PhongShadows {
+        resolution: 2048,
+        ..on()
+    };
+    let lights = [directional(&mut harness, SUN, fine, one_cascade())];
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    harness.settle();
+    let rendered = harness.render_next_frame();
+
+    let views = harness
+        .world_mut()
+        .resource::<PhongShadowViews>()
+        .views()
+        .to_vec();
+    let casters: Vec<Shape> = scene.shapes[1..]
+        .iter()
+        .map(|(_, shape, _)| shape.clone())
+        .collect();
+    let case = &lights[0];
+    let reference_lights = harness.reference_lights();
+    let camera = harness.camera_position();
+    let world = harness.world_mut();
+    let (mesh, transform) = world
+        .query::<(&Mesh3d, &GlobalTransform)>()
+        .get(world, floor)
+        .map(|(mesh, transform)| (mesh.0.clone(), *transform))
+        .expect("the floor");
+    let mesh = world
+        .resource::<Assets<Mesh>>()
+        .get(&mesh)
+        .expect("the floor's mesh")
+        .clone();
+    let material = world
+        .resource::<Assets<PhongMaterial>>()
+        .get(&floor_material)
+        .expect("the floor's material")
+        .clone();
+    let shadowed_corner = std::cell::Cell::new(0usize);
+    let mut triangles = bevy_phong_headless::pixel_model::VertexLitTriangles::default();
+    triangles.add(
+        &mesh,
+        &transform,
+        &reference::Material::from(&material),
+        camera,
+        |corner| {
+            let up = DVec3::Y;
+            let band = band_width(&case.settings, texel_at(corner, &views), 0.0);
+            if near_edge(corner, up, band, case.toward, &casters) {
+                return None;
+            }
+            let mut lights = reference_lights.clone();
+            if exact_visibility(corner, case.toward, &casters) == 0.0 {
+                lights.lights.clear();
+                shadowed_corner.set(shadowed_corner.get() + 1);
+            }
+            Some(lights)
+        },
+    );
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, _| {
+        if !material.vertex_lighting {
+            return None;
+        }
+        let light = triangles.light_at(surface.position)?;
+        let model = reference::Material::from(material);
+        let mut lights = reference_lights.clone();
+        lights.lights.clear();
+        lights.others.0.push(std::sync::Arc::new(light));
+        Some(reference::shade(surface, &model, &lights))
+    });
+    comparison.assert_within("per-vertex floor under a shadow", TOLERANCE);
+    // Judged floor pixels the shadow darkens: the sun's sums, interpolated, less than nine
+    // tenths of what they are without shadows.
+    let mut unshadowed = bevy_phong_headless::pixel_model::VertexLitTriangles::default();
+    unshadowed.add(
+        &mesh,
+        &transform,
+        &reference::Material::from(&material),
+        camera,
+        |_| Some(reference_lights.clone()),
+    );
+    let darkened: usize = (0..inputs.positions.pixels.len())
+        .filter_map(|pixel| inputs.surface_at(pixel, camera))
+        .filter_map(|(_, surface)| {
+            let shadowed = triangles.light_at(surface.position)?;
+            let lit = unshadowed.light_at(surface.position)?;
+            Some(shadowed.diffuse.x < 0.9 * lit.diffuse.x)
+        })
+        .filter(|&darkened| darkened)
+        .count();
+    println!(
+        "per-vertex floor: {} corners in shadow, {darkened} judged pixels darkened by it",
+        shadowed_corner.get()
+    );
+    // Seen at a slant, the sphere's and the cube's shadows cover a few hundred floor
+    // pixels, and the triangles with a corner in them and none in the band about 60 (59
+    // measured): at least 30 says the judged pixels hold the shadow, so that a vertex stage
+    // without shadows fails.
+    assert!(
+        darkened >= 30,
+        "only {darkened} judged pixels darkened by the shadow"
     );
 }
