@@ -6,8 +6,11 @@
 //! - `posed`: the scene posed at a fixed animation time: each primitive, skinned and
 //!   morphed ones included, covers the pixels `StandardMaterial` covers, and every pixel is
 //!   lit as the reference model says on the deformed inputs;
-//! - `shadows`: the skinned and morphed meshes cast the shadow of their pose.
+//! - `shadows`: the skinned and morphed meshes cast the shadow of their pose;
+//! - `baked_room`: the baked room's vertex colors, second UV set, occlusion texture and
+//!   texture transform, loaded from its file.
 
+mod baked_room;
 mod load;
 mod posed;
 mod shadows;
