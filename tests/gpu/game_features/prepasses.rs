@@ -9,8 +9,15 @@ use bevy::{
     render::render_resource::AsBindGroup,
     shader::ShaderRef,
 };
-use bevy_phong::{prelude::*, reference::normalize_or_zero};
-use bevy_phong_headless::{Comparison, Expected, Harness};
+use bevy_phong::{
+    prelude::*,
+    reference::{self, normalize_or_zero},
+};
+use bevy_phong_headless::{
+    Comparison, Expected, Harness,
+    pixel_model::{face_normal_at, world_triangles},
+};
+use glam::DVec3;
 
 use super::{assert_same_frame, bright_scene};
 use crate::{
@@ -24,9 +31,10 @@ use crate::{
 const SAME_FRAME: f64 = 1e-6;
 
 /// The scene of the frames with a square in front of the sphere, cut out by an alpha mask
-/// (a checkerboard of alpha 0 and 1, cutoff 0.5), a normal- and bump-mapped cube and a
+/// (a checkerboard of alpha 0 and 1, cutoff 0.5), a normal- and bump-mapped cube, a
 /// sphere displaced inward (a prepass that did not move its vertices would hide it behind
-/// their undisplaced depth): what the prepasses must get right.
+/// their undisplaced depth), a flat-shaded icosphere and a double-sided square showing its
+/// back face: what the prepasses must get right.
 fn masked_and_mapped_scene(harness: &mut Harness) {
     bright_scene(harness);
     let world = harness.world_mut();
@@ -45,7 +53,21 @@ fn masked_and_mapped_scene(harness: &mut Harness) {
             .with_generated_tangents()
             .expect("a cuboid has UVs and normals"),
     );
+    let faceted = meshes.add(Sphere::new(0.5).mesh().ico(1).expect("a small icosphere"));
+    let back = meshes.add(Plane3d::new(Vec3::Z, Vec2::splat(0.45)));
     let mut materials = world.resource_mut::<Assets<PhongMaterial>>();
+    let flat = materials.add(PhongMaterial {
+        base_color: Color::srgb(0.8, 0.7, 0.5),
+        flat_shading: true,
+        shininess: 12.0,
+        ..default()
+    });
+    let two_sided = materials.add(PhongMaterial {
+        base_color: Color::srgb(0.5, 0.8, 0.7),
+        double_sided: true,
+        cull_mode: None,
+        ..default()
+    });
     let masked = materials.add(PhongMaterial {
         base_color: Color::srgb(0.9, 0.5, 0.2),
         base_color_texture: Some(checker),
@@ -71,6 +93,23 @@ fn masked_and_mapped_scene(harness: &mut Harness) {
         Mesh3d(sphere),
         MeshMaterial3d(displaced),
         Transform::from_xyz(-1.5, 1.4, 1.0),
+    ));
+    world.spawn((
+        Mesh3d(faceted),
+        MeshMaterial3d(flat),
+        Transform::from_xyz(-2.3, 0.6, 2.2),
+    ));
+    // Its front faces away from the camera, turned a little so that its normal is not
+    // the view direction.
+    world.spawn((
+        Mesh3d(back),
+        MeshMaterial3d(two_sided),
+        Transform::from_xyz(2.3, 0.7, 2.2).with_rotation(Quat::from_euler(
+            EulerRot::YXZ,
+            std::f32::consts::PI + 0.5,
+            0.3,
+            0.0,
+        )),
     ));
     world.spawn((
         Mesh3d(square),
@@ -136,7 +175,9 @@ fn prepasses_and_the_deferred_renderer_leave_the_phong_frame_unchanged() {
 }
 
 /// The normal prepass holds, at each Phong pixel, the unit normal the main pass lights it
-/// with: the normal and bump maps' on the mapped cube. Read back through a translucent full-view
+/// with: the normal and bump maps' on the mapped cube, each face's own on the flat-shaded
+/// icosphere, and on the double-sided square's back face its normal turned toward the
+/// viewer. Read back through a translucent full-view
 /// square (translucent meshes are not in the prepass) that shows the prepass normal.
 /// Tolerance: the prepass stores `n/2 + 1/2` in 10 bits per channel (`Rgb10a2Unorm`), so
 /// each decoded component is within one step of 2/1023, doubled for the normalization of
@@ -176,9 +217,28 @@ fn the_normal_prepass_holds_the_normal_mapped_normal() {
     harness.settle();
     let rendered = harness.render_next_frame();
 
-    let materials = harness.world_mut().resource::<Assets<PhongMaterial>>();
+    let world = harness.world_mut();
+    let flat_triangles: Vec<[DVec3; 3]> = {
+        let placed: Vec<(Handle<Mesh>, GlobalTransform)> = world
+            .query::<(&Mesh3d, &MeshMaterial3d<PhongMaterial>, &GlobalTransform)>()
+            .iter(world)
+            .filter(|(_, material, _)| {
+                world
+                    .resource::<Assets<PhongMaterial>>()
+                    .get(&material.0)
+                    .is_some_and(|material| material.flat_shading)
+            })
+            .map(|(mesh, _, transform)| (mesh.0.clone(), *transform))
+            .collect();
+        let meshes = world.resource::<Assets<Mesh>>();
+        placed
+            .iter()
+            .flat_map(|(mesh, transform)| world_triangles(meshes.get(mesh).unwrap(), transform))
+            .collect()
+    };
+    let materials = world.resource::<Assets<PhongMaterial>>();
     let comparison = Comparison::of(&rendered, |index| {
-        let Some((material, surface)) = inputs.surface_at(index, camera) else {
+        let Some((material, mut surface)) = inputs.surface_at(index, camera) else {
             return Expected::Unjudged;
         };
         let material = materials.get(material).unwrap();
@@ -186,12 +246,41 @@ fn the_normal_prepass_holds_the_normal_mapped_normal() {
         if material.alpha_mode != AlphaMode::Opaque {
             return Expected::Unjudged;
         }
+        // A flat-shaded pixel's frame normal is its face's, on the side of the interpolated
+        // one (which the capture negates on a double-sided back face).
+        if material.flat_shading {
+            let Some(face) = face_normal_at(&flat_triangles, surface.position) else {
+                return Expected::Unjudged;
+            };
+            surface.normal = reference::face_normal(face, surface.normal);
+        }
         match lit_normal(material, &surface, index, &inputs, &images) {
             Some(normal) => Expected::Lit(normalize_or_zero(normal)),
             None => Expected::Unjudged,
         }
     });
     comparison.assert_within("normal_prepass", 2.0 * 2.0 / 1023.0);
+    // The flat-shaded icosphere and the double-sided square's back are in view and judged.
+    let judged_with = |wanted: &dyn Fn(&PhongMaterial) -> bool| {
+        (0..inputs.positions.pixels.len())
+            .filter_map(|index| inputs.surface_at(index, camera))
+            .filter(|(material, surface)| {
+                let material = materials.get(*material).unwrap();
+                wanted(material)
+                    && (!material.flat_shading
+                        || face_normal_at(&flat_triangles, surface.position).is_some())
+            })
+            .count()
+    };
+    let flat = judged_with(&|material| material.flat_shading);
+    let back = judged_with(&|material| material.double_sided);
+    println!("normal_prepass: {flat} flat-shaded pixels, {back} on the double-sided back face");
+    // About 200 and 120 pixels at this size (206 and 119 measured): at least 50 says each
+    // is in view.
+    assert!(
+        flat >= 50 && back >= 50,
+        "{flat} flat, {back} back-face pixels"
+    );
 }
 
 const SHOW_NORMAL_PREPASS_SHADER: Handle<Shader> =
