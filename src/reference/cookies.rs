@@ -231,4 +231,50 @@ mod tests {
             );
         }
     }
+
+    #[test]
+    fn each_face_of_the_other_layouts_lands_in_its_cell() {
+        // Bevy's `cubemap_uv` again: the horizontal cross has +y on top, -x +z +x -z across
+        // the middle row and -y below; the sequences run +x -x +y -y -z +z (its face order).
+        let faces = [
+            DVec3::X,
+            -DVec3::X,
+            DVec3::Y,
+            -DVec3::Y,
+            -DVec3::Z,
+            DVec3::Z,
+        ];
+        let horizontal_cross = [
+            (2.0, 1.0),
+            (0.0, 1.0),
+            (1.0, 0.0),
+            (1.0, 2.0),
+            (3.0, 1.0),
+            (1.0, 1.0),
+        ];
+        for (index, direction) in faces.into_iter().enumerate() {
+            let (column, row) = horizontal_cross[index];
+            let cells = [
+                (
+                    CubemapLayout::CrossHorizontal,
+                    DVec2::new((column + 0.5) / 4.0, (row + 0.5) / 3.0),
+                ),
+                (
+                    CubemapLayout::SequenceVertical,
+                    DVec2::new(0.5, (index as f64 + 0.5) / 6.0),
+                ),
+                (
+                    CubemapLayout::SequenceHorizontal,
+                    DVec2::new((index as f64 + 0.5) / 6.0, 0.5),
+                ),
+            ];
+            for (layout, expected) in cells {
+                let uv = cube_face_uv(direction, layout);
+                assert!(
+                    (uv - expected).length() < 1e-12,
+                    "{layout:?}, {direction}: {uv} vs {expected}"
+                );
+            }
+        }
+    }
 }

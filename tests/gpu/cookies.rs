@@ -160,8 +160,23 @@ fn assert_cookies_follow(
     );
 }
 
+/// Each kind of light tinted by its cookie as the reference says, the point light's cube in
+/// each of Bevy's four layouts (`CubemapLayout`).
 #[test]
 fn cookies_tint_each_light_kind_as_the_reference_model_says() {
+    for layout in [
+        CubemapLayout::CrossVertical,
+        CubemapLayout::CrossHorizontal,
+        CubemapLayout::SequenceVertical,
+        CubemapLayout::SequenceHorizontal,
+    ] {
+        cookies_tint_each_light_kind(layout);
+    }
+}
+
+/// The scene of [`cookies_tint_each_light_kind_as_the_reference_model_says`], the point
+/// light's cube packed by `layout`.
+fn cookies_tint_each_light_kind(layout: CubemapLayout) {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     world.insert_resource(PhongAmbientLight {
@@ -206,7 +221,7 @@ fn cookies_tint_each_light_kind_as_the_reference_model_says() {
     };
     let cube_cookie = PhongLightCookie {
         image: cube_image,
-        cubemap_layout: CubemapLayout::CrossVertical,
+        cubemap_layout: layout,
         ..default()
     };
     let tile_cookie = PhongLightCookie {
@@ -230,7 +245,13 @@ fn cookies_tint_each_light_kind_as_the_reference_model_says() {
         ),
     ];
     let objects = floor_and_sphere(8.0, 1.2);
-    assert_cookies_follow(harness, objects, "light cookies", &lights, 1);
+    assert_cookies_follow(
+        harness,
+        objects,
+        &format!("light cookies, cube {layout:?}"),
+        &lights,
+        1,
+    );
 }
 
 #[test]
