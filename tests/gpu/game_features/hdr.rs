@@ -1,10 +1,14 @@
 //! HDR cameras, tonemapping (in the shader and as Bevy's post-process) and bloom.
 
 use bevy::{
-    camera::Hdr, core_pipeline::tonemapping::Tonemapping, post_process::bloom::Bloom, prelude::*,
+    camera::Hdr,
+    core_pipeline::tonemapping::{DebandDither, Tonemapping},
+    post_process::bloom::Bloom,
+    prelude::*,
 };
 use bevy_phong::{prelude::*, reference};
-use bevy_phong_headless::Harness;
+use bevy_phong_headless::{Comparison, Expected, Harness};
+use glam::DVec3;
 
 use super::{HDR_TOLERANCE, bright_scene, brightest};
 use crate::frames::{SIZE, TOLERANCE};
@@ -167,4 +171,56 @@ fn ring_mean(
         }
     }
     if count == 0 { 0.0 } else { sum / count as f32 }
+}
+
+/// Bevy's `screen_space_dither` (bevy_core_pipeline 0.20.1, `tonemapping.wesl`) at the
+/// pixel whose center is `frag`, in `f64`: `(fract(dot((171, 231), frag) / m) − ½) / 255`
+/// for `m` = 103, 71, 97. `None` where a fraction lies within 10⁻⁴ of a whole number, where
+/// the shader's `f32` may round across it (a jump of a whole 1/255): the dot product is a
+/// whole number at pixel centers, so that is where it is a multiple of `m`, about one pixel
+/// in thirty.
+fn screen_space_dither(frag: [f64; 2]) -> Option<DVec3> {
+    let d = 171.0 * frag[0] + 231.0 * frag[1];
+    let fraction = [103.0, 71.0, 97.0].map(|m: f64| (d / m).fract());
+    if fraction.iter().any(|f| *f < 1e-4 || *f > 1.0 - 1e-4) {
+        return None;
+    }
+    Some(DVec3::from_array(fraction.map(|f| (f - 0.5) / 255.0)))
+}
+
+/// `DebandDither` on a camera that tone maps in the shader: each Phong pixel is the
+/// undithered one moved by Bevy's dither in a 2.2 gamma, `((c^(1/2.2) + dither)^2.2)` per
+/// channel, as `StandardMaterial` dithers. The dither is about 1/255 in gamma, so a frame
+/// left undithered differs by up to about 4e-3, ten times the tolerance.
+#[test]
+fn deband_dither_moves_each_pixel_by_bevys_dither_pattern() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    bright_scene(&mut harness);
+    harness.camera_mut().insert(Tonemapping::Reinhard);
+    harness.settle();
+    let plain = harness.render_next_frame();
+    harness.camera_mut().insert(DebandDither::Enabled);
+    harness.settle();
+    let dithered = harness.render_next_frame();
+    let width = plain.width;
+    let comparison = Comparison::of(&dithered, |index| {
+        let undithered = plain.pixels[index];
+        if undithered[3] == 0.0 {
+            return Expected::Clear;
+        }
+        let frag = [
+            f64::from(index as u32 % width) + 0.5,
+            f64::from(index as u32 / width) + 0.5,
+        ];
+        let Some(dither) = screen_space_dither(frag) else {
+            return Expected::Unjudged;
+        };
+        let powsafe = |value: f64, power: f64| value.signum() * value.abs().powf(power);
+        let expected = DVec3::from_array([0, 1, 2].map(|channel| {
+            let value = f64::from(undithered[channel]);
+            powsafe(powsafe(value, 1.0 / 2.2) + dither[channel], 2.2)
+        }));
+        Expected::Lit(expected)
+    });
+    comparison.assert_within("deband_dither", TOLERANCE);
 }
