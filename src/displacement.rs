@@ -55,7 +55,7 @@ impl Default for DisplacementUniform {
 }
 
 /// The UV set a displacement map is read at.
-pub(crate) fn uv_attribute(second_uvs: bool) -> MeshVertexAttribute {
+fn uv_attribute(second_uvs: bool) -> MeshVertexAttribute {
     if second_uvs {
         Mesh::ATTRIBUTE_UV_1
     } else {
