@@ -413,88 +413,16 @@ pub fn validate_materials(
 }
 
 #[cfg(test)]
-mod range_tests;
-
-#[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{
-        PhongDirectionalLight, PhongPointLight,
-        render::PhongLightBuffer,
-        test_app::{test_app, uploads_in_next_frame},
-    };
-    use bevy::{
-        color::ColorToComponents,
-        ecs::message::Messages,
-        prelude::{Transform, Vec3},
-    };
+    use crate::{PhongDirectionalLight, test_app::test_app};
+    use bevy::ecs::message::Messages;
 
     fn invalid_inputs(app: &mut bevy::app::App) -> Vec<InvalidInput> {
         app.world_mut()
             .resource_mut::<Messages<InvalidInput>>()
             .drain()
             .collect()
-    }
-
-    #[test]
-    fn an_invalid_light_is_sanitised_once_with_a_warning_naming_entity_and_field() {
-        let mut app = test_app(|_| {});
-        let good = app
-            .world_mut()
-            .spawn((
-                PhongPointLight::default(),
-                Transform::from_xyz(0.0, 2.0, 0.0),
-            ))
-            .id();
-        let bad = app
-            .world_mut()
-            .spawn((
-                PhongPointLight {
-                    color: Color::linear_rgb(f32::NAN, 0.5, -1.0),
-                    range: Some(-3.0),
-                    decay: Decay::new(1.0, -0.5, 0.1),
-                    ..Default::default()
-                },
-                Transform::from_xyz(1.0, 2.0, 0.0),
-            ))
-            .id();
-        app.update();
-        let warnings = invalid_inputs(&mut app);
-        let fields: Vec<_> = warnings
-            .iter()
-            .map(|w| (w.owner.clone(), w.field))
-            .collect();
-        assert_eq!(
-            fields,
-            [
-                (Owner::Entity(bad), "color"),
-                (Owner::Entity(bad), "decay.linear"),
-                (Owner::Entity(bad), "range"),
-            ]
-        );
-        let text = warnings[2].to_string();
-        assert!(
-            text.contains(&format!("entity {bad}")) && text.contains("PhongPointLight.range = -3")
-        );
-
-        let light = app.world().get::<PhongPointLight>(bad).unwrap();
-        assert_eq!(light.color.to_linear().to_vec3(), Vec3::new(0.0, 0.5, 0.0));
-        assert_eq!((light.range, light.decay.linear), (None, 0.0));
-
-        // Both lights are in the buffer, with finite values.
-        let state = app.world().resource::<PhongLightBuffer>();
-        assert_eq!(state.header().light_count(), 2);
-        assert!(
-            state
-                .records()
-                .iter()
-                .all(|r| r.color.iter().all(|c| c.is_finite()))
-        );
-
-        // Once: no new warning and no new upload while nothing changes.
-        assert_eq!(uploads_in_next_frame(&mut app), 0);
-        assert!(invalid_inputs(&mut app).is_empty());
-        let _ = good;
     }
 
     #[test]
@@ -560,33 +488,6 @@ mod tests {
         assert_eq!(
             (light.inner_angle, light.outer_angle, light.exponent),
             (0.4, 0.4, 0.0)
-        );
-    }
-
-    #[test]
-    fn a_light_with_a_nan_position_is_skipped_and_others_stay() {
-        let mut app = test_app(|_| {});
-        app.world_mut().spawn(PhongPointLight::default());
-        let bad = app
-            .world_mut()
-            .spawn((
-                PhongPointLight::default(),
-                Transform::from_xyz(f32::NAN, 0.0, 0.0),
-            ))
-            .id();
-        app.update();
-        let warnings = invalid_inputs(&mut app);
-        assert_eq!(warnings.len(), 1);
-        assert_eq!(
-            (warnings[0].owner.clone(), warnings[0].field),
-            (Owner::Entity(bad), "GlobalTransform")
-        );
-        assert_eq!(
-            app.world()
-                .resource::<PhongLightBuffer>()
-                .header()
-                .point_count,
-            1
         );
     }
 

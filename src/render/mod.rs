@@ -60,6 +60,10 @@ mod material_upkeep;
 // The render world's part: binding the uploaded buffers to each material.
 mod material_bindings;
 
+// That every validated input reaches the light buffer and the material uniform in range.
+#[cfg(test)]
+mod validated_inputs_tests;
+
 pub use crate::light_kind::GpuLight;
 pub(crate) use cluster_views::ExtensionClusterSlots;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};

@@ -2,13 +2,18 @@
 //! range ([`crate::limits`]), with a warning naming the field; the light buffer and the
 //! material uniform never hold a non-finite value or one above the bound.
 
-use super::*;
+use super::PhongLightBuffer;
 use crate::{
-    PhongDirectionalLight, PhongPointLight, material::PhongMaterialUniform, reference,
-    render::PhongLightBuffer, test_app::test_app,
+    Decay, PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongMaterial,
+    PhongPointLight, PhongSpotLight, limits,
+    material::PhongMaterialUniform,
+    reference,
+    test_app::{test_app, uploads_in_next_frame},
+    validation::{InvalidInput, Owner},
 };
 use bevy::{
-    color::{Alpha, ColorToComponents},
+    asset::Assets,
+    color::{Alpha, Color, ColorToComponents},
     ecs::message::Messages,
     math::{Quat, Vec3},
     prelude::Transform,
@@ -349,4 +354,90 @@ fn validated(
         .expect("the validated material")
         .clone();
     ((app, handle), fields, sanitised)
+}
+
+#[test]
+fn an_invalid_light_is_sanitised_once_with_a_warning_naming_entity_and_field() {
+    let mut app = test_app(|_| {});
+    let good = app
+        .world_mut()
+        .spawn((
+            PhongPointLight::default(),
+            Transform::from_xyz(0.0, 2.0, 0.0),
+        ))
+        .id();
+    let bad = app
+        .world_mut()
+        .spawn((
+            PhongPointLight {
+                color: Color::linear_rgb(f32::NAN, 0.5, -1.0),
+                range: Some(-3.0),
+                decay: Decay::new(1.0, -0.5, 0.1),
+                ..Default::default()
+            },
+            Transform::from_xyz(1.0, 2.0, 0.0),
+        ))
+        .id();
+    app.update();
+    let warnings = invalid_inputs(&mut app);
+    let fields: Vec<_> = warnings
+        .iter()
+        .map(|w| (w.owner.clone(), w.field))
+        .collect();
+    assert_eq!(
+        fields,
+        [
+            (Owner::Entity(bad), "color"),
+            (Owner::Entity(bad), "decay.linear"),
+            (Owner::Entity(bad), "range"),
+        ]
+    );
+    let text = warnings[2].to_string();
+    assert!(text.contains(&format!("entity {bad}")) && text.contains("PhongPointLight.range = -3"));
+
+    let light = app.world().get::<PhongPointLight>(bad).unwrap();
+    assert_eq!(light.color.to_linear().to_vec3(), Vec3::new(0.0, 0.5, 0.0));
+    assert_eq!((light.range, light.decay.linear), (None, 0.0));
+
+    // Both lights are in the buffer, with finite values.
+    let state = app.world().resource::<PhongLightBuffer>();
+    assert_eq!(state.header().light_count(), 2);
+    assert!(
+        state
+            .records()
+            .iter()
+            .all(|r| r.color.iter().all(|c| c.is_finite()))
+    );
+
+    // Once: no new warning and no new upload while nothing changes.
+    assert_eq!(uploads_in_next_frame(&mut app), 0);
+    assert!(invalid_inputs(&mut app).is_empty());
+    let _ = good;
+}
+
+#[test]
+fn a_light_with_a_nan_position_is_skipped_and_others_stay() {
+    let mut app = test_app(|_| {});
+    app.world_mut().spawn(PhongPointLight::default());
+    let bad = app
+        .world_mut()
+        .spawn((
+            PhongPointLight::default(),
+            Transform::from_xyz(f32::NAN, 0.0, 0.0),
+        ))
+        .id();
+    app.update();
+    let warnings = invalid_inputs(&mut app);
+    assert_eq!(warnings.len(), 1);
+    assert_eq!(
+        (warnings[0].owner.clone(), warnings[0].field),
+        (Owner::Entity(bad), "GlobalTransform")
+    );
+    assert_eq!(
+        app.world()
+            .resource::<PhongLightBuffer>()
+            .header()
+            .point_count,
+        1
+    );
 }
