@@ -77,6 +77,7 @@ mod searchlight;
 mod searchlight_clusters;
 mod self_check;
 mod shading_normals;
+mod shadow_band;
 mod shadows;
 #[path = "../fuzz/shapes.rs"]
 mod shapes;

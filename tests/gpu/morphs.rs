@@ -20,6 +20,7 @@
 //! - Shadow maps: the floor receives both cubes' shadows from a directional light.
 
 use crate::{
+    shadow_band::MapCover,
     shadows::{CaseLight, EVERYONE, Scene, Shape, Toward, judge},
     texture_maps::float_map,
 };
@@ -106,6 +107,7 @@ fn two_morphed_meshes_are_drawn_prepassed_and_cast_shadows_with_their_own_weight
         let lights = [CaseLight {
             toward: Toward::Direction(direction.as_dvec3()),
             settings: shadows,
+            cover: MapCover::Cascades(PhongCascades::default()),
         }];
         let flat = world
             .resource_mut::<Assets<Image>>()

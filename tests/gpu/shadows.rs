@@ -6,25 +6,14 @@
 //! Shadow maps only estimate `V`: near the true shadow's edge the two may disagree. A pixel
 //! whose color differs from the expected one by more than the render tests' budget
 //! ([`TOLERANCE`], see `frames.rs`) must lie within the band of the edge: the exact `V` of
-//! some light changes within distance `b` of `P`, with
-//!
-//! ```text
-//! b = (4 + normal_bias) · t + depth_bias / max(N·L, 0.2) + penumbra
-//! ```
-//!
-//! where `t` is the world size of a shadow-map texel at `P` (the largest over the maps that
-//! cover `P`): the bilinear comparison reads one texel at each side and the caster's
-//! rasterized edge is off by up to one more; the casters' slope-scaled depth offset (their
-//! depth change across 2 texels) moves an edge by up to 2 texels; the normal bias moves the
-//! compared point
-//! `normal_bias` texels; the depth bias moves it `depth_bias` toward the light, which shifts
-//! the edge on the receiver by up to `depth_bias / cos` (cosines under 0.2 are on the unlit
-//! side of curved shapes, where the light gives nothing anyway); `penumbra` is, for a soft
-//! light, the widest filter (16 texels at each side) plus the lift off the surface that
-//! comes with it (as many texels along the normal): 32 texels; 0 for hard shadows. Outside the band
-//! every pixel is within [`TOLERANCE`].
+//! some light changes within the band's half-width `b` of `P`, bounded from the light's
+//! settings (`shadow_band.rs`). Outside the band every pixel is within [`TOLERANCE`].
 
-use crate::{clusters::spawn_second_camera, frames::TOLERANCE};
+use crate::{
+    clusters::spawn_second_camera,
+    frames::TOLERANCE,
+    shadow_band::{MapCover, ViewerCamera, band_width, texel_bound},
+};
 use bevy::{
     light::{NotShadowCaster, NotShadowReceiver},
     mesh::UvChannel,
@@ -33,7 +22,7 @@ use bevy::{
 use bevy_phong::{
     prelude::*,
     reference::{self, Shadowing, SurfacePoint},
-    testing::{GpuShadowView, PhongShadowViews},
+    testing::PhongShadowViews,
 };
 use bevy_phong_headless::{CAMERA_POSITION, FloatImage, Harness, HarnessCamera, SurfaceInputs};
 use glam::{DMat3, DVec3};
@@ -185,22 +174,6 @@ pub(crate) fn exact_visibility(position: DVec3, toward: Toward, casters: &[Shape
     if blocked { 0.0 } else { 1.0 }
 }
 
-/// How far from a shadow edge, in world units, a light with `settings` may put it on a map
-/// of `texel`-sized texels, on a surface whose cosine to the light is `cosine`: the map's
-/// own texel and a few more for its filter (4), the normal bias (in texels), the depth bias
-/// stretched along the surface (the cosine taken at least 0.2), and for a light with a
-/// size the widest filter PCSS may use (32 texels).
-fn band_width(settings: &PhongShadows, texel: f64, cosine: f64) -> f64 {
-    let penumbra = if settings.softness > 0.0 {
-        32.0 * texel
-    } else {
-        0.0
-    };
-    (4.0 + f64::from(settings.normal_bias)) * texel
-        + f64::from(settings.depth_bias) / cosine.max(0.2)
-        + penumbra
-}
-
 /// Whether the exact `V` of the light changes within `radius` of `position` on the surface
 /// with `normal`.
 fn near_edge(
@@ -223,56 +196,20 @@ fn near_edge(
     })
 }
 
-/// The world size of a shadow-map texel at `position`: the largest over the maps that cover
-/// it (for cascades, the ones its view depth selects).
-fn texel_at(position: DVec3, views: &[GpuShadowView]) -> f64 {
-    let point = position.as_vec3();
-    let mut largest: f64 = 0.0;
-    let mut first = 0;
-    while first < views.len() {
-        let count = views[first].view_count.max(1) as usize;
-        let light_views = &views[first..(first + count).min(views.len())];
-        for (index, view) in light_views.iter().enumerate() {
-            let clip_from_world = Mat4::from_cols_array_2d(&view.clip_from_world);
-            let clip = clip_from_world * point.extend(1.0);
-            let ndc = clip.truncate() / clip.w;
-            let inside = clip.w > 0.0 && ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0;
-            let plane = Vec4::from_array(view.view_plane);
-            let selected = if plane == Vec4::ZERO {
-                true
-            } else {
-                let depth = plane.truncate().dot(point) + plane.w;
-                let start = if index == 0 {
-                    f32::NEG_INFINITY
-                } else {
-                    light_views[index - 1].cascade_blend_start
-                };
-                depth >= start && depth < view.cascade_far
-            };
-            if inside && selected {
-                let texel = if view.projection == GpuShadowView::PERSPECTIVE {
-                    view.texel_size * clip.w
-                } else {
-                    view.texel_size
-                };
-                largest = largest.max(f64::from(texel));
-            }
-        }
-        first += count;
-    }
-    largest
-}
-
 /// A light of a case, with what the reference needs of it.
 pub(crate) struct CaseLight {
     pub toward: Toward,
     pub settings: PhongShadows,
+    /// What its maps cover, for the band's texel bound.
+    pub cover: MapCover,
 }
 
 /// The result of one case.
 pub(crate) struct Verdict {
     /// Pixels on a mesh.
     covered: usize,
+    /// Of those, the ones within the band of a light that reaches them.
+    in_band: usize,
     /// Pixels whose color differs from the exact-visibility reference beyond the budget.
     disagreeing: usize,
     /// Of those, the ones outside the band (must be 0).
@@ -287,16 +224,25 @@ pub(crate) struct Verdict {
 impl Verdict {
     pub fn assert_holds(&self, case: &str) {
         println!(
-            "{case}: {} covered pixels, {} disagree with the exact visibility, all within the \
-             band (widest {:.4} world units) but {}; largest error outside the band {:.3e} \
-             (budget {TOLERANCE:.0e})",
+            "{case}: {} covered pixels, {} within the band, {} disagree with the exact \
+             visibility, all within the band (widest {:.4} world units) but {}; largest error \
+             outside the band {:.3e} (budget {TOLERANCE:.0e})",
             self.covered,
+            self.in_band,
             self.disagreeing,
             self.widest_band,
             self.outside_band,
             self.max_error_outside
         );
         assert!(self.covered > 0, "{case}: nothing rendered");
+        // Every pixel that disagrees lies within the band, whose width is bounded from the
+        // lights' settings: their count is bounded by the pixels within it.
+        assert!(
+            self.disagreeing <= self.in_band,
+            "{case}: {} pixels disagree, more than the {} within the band",
+            self.disagreeing,
+            self.in_band
+        );
         assert_eq!(
             self.outside_band, 0,
             "{case}: {} pixels disagree with the exact visibility outside the band",
@@ -431,9 +377,14 @@ fn spawn_light(
     light: impl Bundle,
     toward: Toward,
     settings: PhongShadows,
+    cover: MapCover,
 ) -> CaseLight {
     harness.world_mut().spawn(light);
-    CaseLight { toward, settings }
+    CaseLight {
+        toward,
+        settings,
+        cover,
+    }
 }
 
 fn directional(
@@ -455,16 +406,18 @@ fn directional(
         ),
         Toward::Direction(direction.as_dvec3()),
         shadows,
+        MapCover::Cascades(cascades),
     )
 }
 
 fn spot(harness: &mut Harness, position: Vec3, target: Vec3, shadows: PhongShadows) -> CaseLight {
+    let outer_angle = 40f32.to_radians();
     spawn_light(
         harness,
         (
             PhongSpotLight {
                 color: Color::linear_rgb(0.9, 0.8, 0.7),
-                outer_angle: 40f32.to_radians(),
+                outer_angle,
                 inner_angle: 30f32.to_radians(),
                 shadows,
                 ..default()
@@ -473,6 +426,7 @@ fn spot(harness: &mut Harness, position: Vec3, target: Vec3, shadows: PhongShado
         ),
         Toward::Point(position.as_dvec3()),
         shadows,
+        MapCover::spot(target - position, outer_angle),
     )
 }
 
@@ -489,6 +443,7 @@ fn point(harness: &mut Harness, position: Vec3, shadows: PhongShadows) -> CaseLi
         ),
         Toward::Point(position.as_dvec3()),
         shadows,
+        MapCover::Cube,
     )
 }
 
@@ -533,11 +488,7 @@ fn judge_frame(
             .map(|(_, shape, _)| shape.clone())
             .collect()
     };
-    let views = harness
-        .world_mut()
-        .resource::<PhongShadowViews>()
-        .views()
-        .to_vec();
+    let viewer = ViewerCamera::of(harness);
     let reference_lights = harness.reference_lights();
     // Each reference light with the case light it came from, matched by where its rays
     // come from.
@@ -564,6 +515,7 @@ fn judge_frame(
     let materials = harness.world_mut().resource::<Assets<PhongMaterial>>();
     let mut verdict = Verdict {
         covered: 0,
+        in_band: 0,
         disagreeing: 0,
         outside_band: 0,
         widest_band: 0.0,
@@ -612,19 +564,25 @@ fn judge_frame(
             .map(|c| (f64::from(color[c]) - expected[c]).abs() / expected[c].abs().max(1.0))
             .fold(0.0, f64::max);
         verdict.covered += 1;
-        if error <= TOLERANCE {
-            verdict.max_error_outside = verdict.max_error_outside.max(error);
-            continue;
-        }
-        verdict.disagreeing += 1;
-        let texel = texel_at(surface.position, &views);
+        // Within the band of a light that reaches the pixel: one facing away gives nothing
+        // whatever its `V`.
         let in_band = receives
             && matched.iter().any(|case| {
-                let to_light = match case.toward {
-                    Toward::Direction(direction) => -direction.normalize(),
-                    Toward::Point(light) => (light - surface.position).normalize(),
+                let (to_light, light) = match case.toward {
+                    Toward::Direction(direction) => (-direction.normalize(), DVec3::ZERO),
+                    Toward::Point(light) => ((light - surface.position).normalize(), light),
                 };
                 let cosine = surface.normal.normalize().dot(to_light);
+                if cosine <= 0.0 {
+                    return false;
+                }
+                let texel = texel_bound(
+                    &case.cover,
+                    case.settings.resolution,
+                    light,
+                    surface.position,
+                    &viewer,
+                );
                 let band = band_width(&case.settings, texel, cosine);
                 verdict.widest_band = verdict.widest_band.max(band);
                 near_edge(
@@ -635,6 +593,12 @@ fn judge_frame(
                     &casters,
                 )
             });
+        verdict.in_band += usize::from(in_band);
+        if error <= TOLERANCE {
+            verdict.max_error_outside = verdict.max_error_outside.max(error);
+            continue;
+        }
+        verdict.disagreeing += 1;
         if !in_band {
             verdict.outside_band += 1;
             verdict.max_error_outside = verdict.max_error_outside.max(error);
@@ -751,6 +715,7 @@ fn a_shadow_casting_light_just_outside_the_frustum_is_clustered_and_shadows_exac
         ),
         Toward::Point(position.as_dvec3()),
         on(),
+        MapCover::Cube,
     );
     harness.settle();
     assert_eq!(
@@ -1177,6 +1142,7 @@ fn from_0_to_100_to_0_shadow_casting_lights_every_frame_is_right() {
                 let light = CaseLight {
                     toward: Toward::Point(position.as_dvec3()),
                     settings: shadows,
+                    cover: MapCover::spot(-position, 35f32.to_radians()),
                 };
                 (entity, light)
             })
@@ -1395,11 +1361,7 @@ fn lighting_per_vertex_takes_the_shadow_at_each_vertex() {
     harness.settle();
     let rendered = harness.render_next_frame();
 
-    let views = harness
-        .world_mut()
-        .resource::<PhongShadowViews>()
-        .views()
-        .to_vec();
+    let viewer = ViewerCamera::of(&mut harness);
     let casters: Vec<Shape> = scene.shapes[1..]
         .iter()
         .map(|(_, shape, _)| shape.clone())
@@ -1432,7 +1394,14 @@ fn lighting_per_vertex_takes_the_shadow_at_each_vertex() {
         camera,
         |corner| {
             let up = DVec3::Y;
-            let band = band_width(&case.settings, texel_at(corner, &views), 0.0);
+            let texel = texel_bound(
+                &case.cover,
+                case.settings.resolution,
+                DVec3::ZERO,
+                corner,
+                &viewer,
+            );
+            let band = band_width(&case.settings, texel, 0.0);
             if near_edge(corner, up, band, case.toward, &casters) {
                 return None;
             }

@@ -4,7 +4,10 @@
 //! around the exact shadow's edge, every pixel within the budget).
 
 use super::{PHONG_TEST_GLTF, phong_only_gltf_harness, pose_at, spawn_gltf_scene};
-use crate::shadows::{CaseLight, EVERYONE, Roles, Scene, Shape, Toward, exact_visibility, judge};
+use crate::{
+    shadow_band::MapCover,
+    shadows::{CaseLight, EVERYONE, Roles, Scene, Shape, Toward, exact_visibility, judge},
+};
 use bevy::{
     gltf::GltfMaterialName,
     light::NotShadowReceiver,
@@ -191,6 +194,7 @@ fn skinned_and_morphed_meshes_cast_the_shadow_of_their_pose() {
     let lights = [CaseLight {
         toward: Toward::Direction(transform.forward().as_dvec3()),
         settings: sun.shadows,
+        cover: MapCover::Cascades(sun.cascades),
     }];
     let scene = Scene { shapes };
 
