@@ -46,7 +46,7 @@ const BAKED: [&str; 4] = ["Floor", "BackWall", "LeftWall", "Pedestal"];
 #[derive(Resource)]
 struct BakedLight(Handle<Image>);
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app_with("baked_room", |plugins| {
         // The file's materials become Phong materials only.
         plugins.set(PbrPlugin {
@@ -62,8 +62,8 @@ fn main() {
         })
         .add_systems(Startup, setup)
         .add_systems(Update, (cast_shadows, keys))
-        .add_observer(bake_in)
-        .run();
+        .add_observer(bake_in);
+    support::run(app)
 }
 
 fn setup(mut commands: Commands, server: Res<AssetServer>, mut images: ResMut<Assets<Image>>) {

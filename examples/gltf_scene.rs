@@ -41,7 +41,7 @@ const FOG_COLOR: Color = Color::srgb(0.42, 0.5, 0.62);
 #[derive(Resource)]
 struct Loading(Handle<Gltf>);
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app_with("gltf_scene", |plugins| {
         // The file's materials become Phong materials only: without this, Bevy also gives
         // each primitive a StandardMaterial and draws it twice.
@@ -55,8 +55,8 @@ fn main() {
         .insert_resource(support::StillLoading)
         .add_systems(Startup, setup)
         .add_systems(Update, (cast_shadows, keys))
-        .add_observer(start_animations)
-        .run();
+        .add_observer(start_animations);
+    support::run(app)
 }
 
 fn setup(mut commands: Commands, server: Res<AssetServer>) {

@@ -32,7 +32,7 @@ struct Orbit {
 #[derive(Resource, Default)]
 struct Paused(bool);
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app("many_lights");
     support::show_key_help(
         &mut app,
@@ -44,8 +44,8 @@ fn main() {
     })
     .init_resource::<Paused>()
     .add_systems(Startup, setup)
-    .add_systems(Update, (move_lights, keys, report_frame_time))
-    .run();
+    .add_systems(Update, (move_lights, keys, report_frame_time));
+    support::run(app)
 }
 
 fn setup(

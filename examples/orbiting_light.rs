@@ -34,15 +34,15 @@ struct Orbiting;
 #[derive(Resource, Default)]
 struct Paused(bool);
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app("orbiting_light");
     support::show_key_help(&mut app, "B highlight model, S shadows, Space pause")
         .add_plugins(PhongPlugin)
         .insert_resource(PhongAmbientLight::NONE)
         .init_resource::<Paused>()
         .add_systems(Startup, setup)
-        .add_systems(Update, (orbit, keys))
-        .run();
+        .add_systems(Update, (orbit, keys));
+    support::run(app)
 }
 
 /// Seed 003's material for an object of `color`.

@@ -49,7 +49,7 @@ struct WindowCookie(PhongLightCookie);
 #[derive(Component)]
 struct Lamp;
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app("toon");
     support::show_key_help(
         &mut app,
@@ -61,8 +61,8 @@ fn main() {
     })
     .insert_resource(HEMISPHERE)
     .add_systems(Startup, setup)
-    .add_systems(Update, keys)
-    .run();
+    .add_systems(Update, keys);
+    support::run(app)
 }
 
 /// A `width`×1 image of linear red values (the ramp).

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: unit tests, the headless render tests (on the Vulkan device; Mesa's
-# lavapipe where there is no GPU), the doc tests, and each example rendered headless; then
+# lavapipe where there is no GPU), the doc tests, and each example rendered headless and
+# compared with the reference model; then
 # the render tests and the examples again under WebGL2's limits. Installs a Vulkan driver first if
 # there is none. The render tests compare against the reference model with tolerances set
 # on lavapipe, so they always run on it.
@@ -28,6 +29,11 @@ part "the examples"
 for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
     cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
 done
+# Each example's scene against the reference model, pixel by pixel (what the comparison
+# leaves out and why: examples/support/compare.rs).
+for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
+    cargo run --quiet --example "$example" -- --compare
+done
 # The showcase's sphere shows its three highlights where the lighting model puts them.
 cargo run --quiet --example showcase -- --check target/examples/showcase.png
 # A scene file rendered to PNG and OpenEXR, as the README shows.
@@ -46,6 +52,9 @@ part "the render tests and the examples under WebGL2's limits"
 cargo test --test gpu --test soak "$@"
 for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
     cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
+done
+for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
+    cargo run --quiet --example "$example" -- --compare
 done
 cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png
 cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \

@@ -23,7 +23,7 @@ use light::{BeamShape, Searchlight, SearchlightExtension, SearchlightPlugin, Sea
 /// Edge widths `E` cycles through, world units.
 const EDGE_WIDTHS: [f32; 3] = [0.0, 0.25, 0.8];
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app("searchlight");
     support::show_key_help(
         &mut app,
@@ -35,8 +35,8 @@ fn main() {
     })
     .init_resource::<Controls>()
     .add_systems(Startup, setup)
-    .add_systems(Update, (handle_keys, sweep).chain())
-    .run();
+    .add_systems(Update, (handle_keys, sweep).chain());
+    support::run_comparing::<SearchlitMaterial>(app)
 }
 
 /// Which searchlight the keys change, and whether the beams move.

@@ -88,7 +88,7 @@ fn seed_material(hex: &str) -> PhongMaterial {
     }
 }
 
-fn main() {
+fn main() -> AppExit {
     #[cfg(not(target_arch = "wasm32"))]
     if let Some(path) = check::path_from_args() {
         std::process::exit(check::run(&path));
@@ -101,8 +101,8 @@ fn main() {
             color: Color::linear_rgb(0.5, 0.5, 0.5),
         })
         .add_systems(Startup, setup)
-        .add_systems(Update, toggle_shadows)
-        .run();
+        .add_systems(Update, toggle_shadows);
+    support::run(app)
 }
 
 /// Shadows of the two point lights, at a resolution that keeps their edges crisp on the floor.

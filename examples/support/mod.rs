@@ -1,6 +1,9 @@
 //! What every example shares: a window where a display exists, else (or with
-//! `--headless PATH`) a render to a PNG file and exit; in a browser (wasm32), a canvas.
+//! `--headless PATH`) a render to a PNG file and exit; with `--compare`, the scene compared
+//! with the reference model; in a browser (wasm32), a canvas.
 
+#[cfg(not(target_arch = "wasm32"))]
+mod compare;
 #[cfg(not(target_arch = "wasm32"))]
 mod headless;
 mod ready;
@@ -26,6 +29,10 @@ pub enum RunMode {
     /// Render one frame into a PNG at this path, then exit.
     #[cfg(not(target_arch = "wasm32"))]
     Headless(PathBuf),
+    /// Render the scene into a float image, compare it with the reference model, then exit
+    /// (with an error where they differ).
+    #[cfg(not(target_arch = "wasm32"))]
+    Compare,
     /// In a browser, on the page's `<canvas id="bevy">`.
     #[cfg(target_arch = "wasm32")]
     Canvas,
@@ -38,11 +45,15 @@ impl RunMode {
         RunMode::Canvas
     }
 
-    /// `--headless PATH` renders to PATH; without a display (no `DISPLAY` or
-    /// `WAYLAND_DISPLAY`) it renders to `target/NAME.png`; otherwise it opens a window.
+    /// `--headless PATH` renders to PATH; `--compare` compares with the reference model;
+    /// without a display (no `DISPLAY` or `WAYLAND_DISPLAY`) it renders to
+    /// `target/NAME.png`; otherwise it opens a window.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn from_args(name: &str) -> Self {
         let args: Vec<String> = std::env::args().skip(1).collect();
+        if args.iter().any(|arg| arg == "--compare") {
+            return RunMode::Compare;
+        }
         if let Some(index) = args.iter().position(|arg| arg == "--headless") {
             let path = args
                 .get(index + 1)
@@ -99,11 +110,33 @@ pub fn example_app_with(
         }
         #[cfg(not(target_arch = "wasm32"))]
         RunMode::Headless(_) => headless::add_plugins(&mut app, configure),
+        #[cfg(not(target_arch = "wasm32"))]
+        RunMode::Compare => compare::add_plugins(&mut app, configure),
         #[cfg(target_arch = "wasm32")]
         RunMode::Canvas => web::add_plugins(&mut app, name, configure),
     }
     app.insert_resource(mode);
     app
+}
+
+/// Runs `app` as its mode says: in a window, headless or in a browser, or, with
+/// `--compare`, its `PhongMaterial` meshes compared with the reference model.
+#[allow(
+    dead_code,
+    reason = "the searchlight example compares its own material"
+)]
+pub fn run(app: App) -> AppExit {
+    run_comparing::<bevy_phong::PhongMaterial>(app)
+}
+
+/// [`run`], with `--compare` comparing the meshes drawn with `M` (a material made of a
+/// `PhongMaterial`).
+pub fn run_comparing<M: bevy_phong::PhongSceneMaterial>(mut app: App) -> AppExit {
+    #[cfg(not(target_arch = "wasm32"))]
+    if matches!(app.world().resource::<RunMode>(), RunMode::Compare) {
+        return compare::run::<M>(app);
+    }
+    app.run()
 }
 
 /// While this resource exists, a headless run does not save its picture and a browser run

@@ -36,7 +36,7 @@ const EYE: Vec3 = Vec3::new(0.0, 0.0, 3.0);
 #[derive(Resource)]
 struct NormalMap(Handle<Image>);
 
-fn main() {
+fn main() -> AppExit {
     let mut app = support::example_app("textured_cubes");
     support::show_key_help(
         &mut app,
@@ -47,8 +47,8 @@ fn main() {
         color: Color::linear_rgb(0.2, 0.2, 0.2),
     })
     .add_systems(Startup, setup)
-    .add_systems(Update, keys)
-    .run();
+    .add_systems(Update, keys);
+    support::run(app)
 }
 
 fn setup(

@@ -67,7 +67,8 @@ fn image(format: TextureFormat, texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
         TextureDimension::D2,
         data,
         format,
-        RenderAssetUsages::RENDER_WORLD,
+        // Kept in the main world too, where `--compare` reads the texels.
+        RenderAssetUsages::default(),
     )
 }
 

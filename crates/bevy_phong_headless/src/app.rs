@@ -38,17 +38,34 @@ pub fn headless_app(add_plugins: impl FnOnce(&mut App)) -> App {
 /// absolute).
 pub fn headless_app_with_assets(asset_root: String, add_plugins: impl FnOnce(&mut App)) -> App {
     let mut app = App::new();
-    app.add_plugins(
-        headless_plugins()
-            .set(AssetPlugin {
-                file_path: asset_root,
-                ..default()
-            })
-            .disable::<LogPlugin>()
-            .disable::<PipelinedRenderingPlugin>(),
-    )
-    .add_plugins(PhongPlugin);
+    app.add_plugins(frame_driven_plugins(asset_root))
+        .add_plugins(PhongPlugin);
     add_plugins(&mut app);
+    finish_frame_driven_app(&mut app);
+    app
+}
+
+/// [`headless_plugins`] as a frame-driven app has them: assets from `asset_root`, no log
+/// and no pipelined rendering (each `update` renders its frame). An app built from them
+/// and finished with [`finish_frame_driven_app`] is what [`headless_app`] builds, less
+/// `PhongPlugin`.
+pub fn frame_driven_plugins(asset_root: String) -> PluginGroupBuilder {
+    headless_plugins()
+        .set(AssetPlugin {
+            file_path: asset_root,
+            ..default()
+        })
+        .disable::<LogPlugin>()
+        .disable::<PipelinedRenderingPlugin>()
+}
+
+/// Builds the plugins of `app` (made from [`frame_driven_plugins`]) so that it is ready to
+/// `update`.
+///
+/// # Panics
+///
+/// Without a render device (no Vulkan driver), with a message that says what to install.
+pub fn finish_frame_driven_app(app: &mut App) {
     while app.plugins_state() == PluginsState::Adding {
         bevy::tasks::tick_global_task_pools_on_main_thread();
     }
@@ -59,5 +76,4 @@ pub fn headless_app_with_assets(asset_root: String, add_plugins: impl FnOnce(&mu
         "no render app: is a Vulkan driver installed? On Debian: \
          apt-get install mesa-vulkan-drivers, then WGPU_ADAPTER_NAME=llvmpipe"
     );
-    app
 }

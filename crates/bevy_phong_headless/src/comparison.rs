@@ -74,16 +74,21 @@ impl Comparison {
     pub fn of(rendered: &FloatImage, expected: impl Fn(usize) -> Expected) -> Self {
         let mut comparison = Self::new(rendered.width, rendered.height);
         for (index, color) in rendered.pixels.iter().enumerate() {
-            match expected(index) {
-                Expected::Lit(expected) => comparison.record(index, *color, expected),
-                Expected::Between(low, high) => {
-                    comparison.record_between(index, *color, low.min(high), low.max(high));
-                }
-                Expected::Clear => comparison.record_background(index, *color),
-                Expected::Unjudged => comparison.skipped_pixels += 1,
-            }
+            comparison.record_expected(index, *color, expected(index));
         }
         comparison
+    }
+
+    /// Records pixel `index`, which shows `color` and should show `expected`.
+    pub(crate) fn record_expected(&mut self, index: usize, color: [f32; 4], expected: Expected) {
+        match expected {
+            Expected::Lit(expected) => self.record(index, color, expected),
+            Expected::Between(low, high) => {
+                self.record_between(index, color, low.min(high), low.max(high));
+            }
+            Expected::Clear => self.record_background(index, color),
+            Expected::Unjudged => self.skipped_pixels += 1,
+        }
     }
 
     pub(crate) fn record_background(&mut self, index: usize, color: [f32; 4]) {
@@ -165,18 +170,28 @@ impl Comparison {
     /// of several out. Texel and face edges leave out a few hundredths of an object's
     /// pixels (1/100 of a texel each side, per axis), an alpha cutoff its rim.
     pub fn assert_mostly_judged(&self, case: &str) {
-        assert!(
-            self.skipped_pixels < self.lit_pixels / 5,
-            "{case}: too few pixels judged: {} lit, {} unjudged",
-            self.lit_pixels,
-            self.skipped_pixels
-        );
-        for (object, &(judged, unjudged)) in &self.objects {
-            assert!(
-                judged > unjudged,
-                "{case}: object {object} has {judged} pixels judged and {unjudged} not"
-            );
+        if let Some(failure) = self.judging_failures().first() {
+            panic!("{case}: {failure}");
         }
+    }
+
+    /// Why [`Self::assert_mostly_judged`] would fail: empty where it passes.
+    pub fn judging_failures(&self) -> Vec<String> {
+        let mut failures = Vec::new();
+        if self.skipped_pixels >= self.lit_pixels / 5 {
+            failures.push(format!(
+                "too few pixels judged: {} lit, {} unjudged",
+                self.lit_pixels, self.skipped_pixels
+            ));
+        }
+        for (object, &(judged, unjudged)) in &self.objects {
+            if judged <= unjudged {
+                failures.push(format!(
+                    "object {object} has {judged} pixels judged and {unjudged} not"
+                ));
+            }
+        }
+        failures
     }
 
     /// Counts a covered pixel of `object` as judged or not.
@@ -189,7 +204,9 @@ impl Comparison {
         }
     }
 
-    fn write_pngs(&self, case: &str) -> PathBuf {
+    /// Writes the actual, expected and difference images as PNGs under
+    /// `target/render-tests/` (named after `case`) and returns their folder.
+    pub fn write_pngs(&self, case: &str) -> PathBuf {
         let directory = render_tests_directory();
         std::fs::create_dir_all(&directory).expect("create target/render-tests");
         let difference: Vec<[f32; 3]> = self

@@ -27,11 +27,12 @@ use std::{
 };
 
 use crate::{
-    Comparison, FloatImage,
-    app::headless_app_with_assets,
+    Comparison, Expected, FloatImage,
+    app::{finish_frame_driven_app, headless_app_with_assets},
     assert_no_failed_pipelines,
-    pixel_model::{self, near_a_cube_edge},
+    pixel_model::{self, SrgbDecoding, near_a_cube_edge},
     read_back_frame, run_until_settled,
+    see_through::{self, Behind, SeeThrough},
 };
 
 /// The camera every scene is seen from.
@@ -63,6 +64,21 @@ pub struct SurfaceInputs<M: Material = PhongMaterial> {
     pub every_map_bound: bool,
     /// The material behind each tag.
     pub materials: HashMap<u32, Handle<M>>,
+}
+
+impl<M: Material> Clone for SurfaceInputs<M> {
+    fn clone(&self) -> Self {
+        Self {
+            positions: self.positions.clone(),
+            normals: self.normals.clone(),
+            uvs: self.uvs.clone(),
+            tangents: self.tangents.clone(),
+            colors: self.colors.clone(),
+            second_uvs: self.second_uvs.clone(),
+            every_map_bound: self.every_map_bound,
+            materials: self.materials.clone(),
+        }
+    }
 }
 
 impl<M: Material> SurfaceInputs<M> {
@@ -208,11 +224,29 @@ impl Harness {
         asset_root: String,
         add_plugins: impl FnOnce(&mut App),
     ) -> Self {
-        let mut app = headless_app_with_assets(asset_root, |app| {
-            app.insert_resource(PhongLightCulling::EXACT)
-                .add_plugins(SurfaceInputsPlugin);
+        let app = headless_app_with_assets(asset_root, |app| {
+            add_harness_plugins(app);
             add_plugins(app);
         });
+        Self::around(one_at_a_time, app, width, height)
+    }
+
+    /// A harness around `app`, whose plugins (Bevy's from
+    /// [`frame_driven_plugins`](crate::frame_driven_plugins), `PhongPlugin` and the app's
+    /// own) are added but not built: an example's app, checked as it is.
+    pub fn adopting(mut app: App, width: u32, height: u32) -> Self {
+        add_harness_plugins(&mut app);
+        finish_frame_driven_app(&mut app);
+        Self::around(Rc::new(lock_rendering()), app, width, height)
+    }
+
+    /// Adds the render target and the harness camera to `app`, ready to update.
+    fn around(
+        one_at_a_time: Rc<MutexGuard<'static, ()>>,
+        mut app: App,
+        width: u32,
+        height: u32,
+    ) -> Self {
         // A wgpu validation error would otherwise stop rendering without a word (the log is
         // off) and surface only as a readback that never arrives.
         app.insert_resource(RenderErrorHandler(|error, _, _| {
@@ -292,16 +326,28 @@ impl Harness {
     pub fn adopt_scene_camera(&mut self) {
         let world = self.app.world_mut();
         let scene_camera = world
-            .query_filtered::<(Entity, &GlobalTransform, &Projection), With<PhongSceneCamera>>()
+            .query_filtered::<Entity, With<PhongSceneCamera>>()
             .iter(world)
-            .next()
-            .map(|(entity, transform, projection)| {
-                (entity, transform.compute_transform(), projection.clone())
-            });
-        let Some((entity, transform, projection)) = scene_camera else {
+            .next();
+        if let Some(camera) = scene_camera {
+            self.adopt_camera(camera);
+        }
+    }
+
+    /// Gives the harness camera the transform and projection of `camera` (an app's own,
+    /// with a `GlobalTransform` and a `Projection`), which is then despawned: the app's view
+    /// rendered into the harness's float target, without that camera's effects. Nothing
+    /// changes where `camera` lacks either component.
+    pub fn adopt_camera(&mut self, camera: Entity) {
+        let world = self.app.world_mut();
+        let Ok((transform, projection)) = world
+            .query::<(&GlobalTransform, &Projection)>()
+            .get(world, camera)
+            .map(|(transform, projection)| (transform.compute_transform(), projection.clone()))
+        else {
             return;
         };
-        world.despawn(entity);
+        world.despawn(camera);
         let mut cameras =
             world.query_filtered::<(&mut Transform, &mut Projection), With<HarnessCamera>>();
         for (mut camera_transform, mut camera_projection) in cameras.iter_mut(world) {
@@ -321,7 +367,7 @@ impl Harness {
 
     /// Runs frames until no pipeline has been compiling for three frames in a row
     /// ([`run_until_settled`]); panics if a pipeline failed to compile
-    /// ([`failed_pipelines`]), since Bevy would draw nothing with it.
+    /// ([`failed_pipelines`](crate::failed_pipelines)), since Bevy would draw nothing with it.
     pub fn settle(&mut self) {
         if !run_until_settled(&mut self.app, MAX_SETTLE_FRAMES, App::update) {
             panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
@@ -546,52 +592,131 @@ impl Harness {
     /// Compares `rendered` with the reference model on `inputs`, pixel by pixel: the
     /// [`pixel_model`](crate::pixel_model) given each pixel's inputs, lit by
     /// [`Self::reference_scene`] (the cookies where the device binds them). Shadows are not
-    /// modelled: a scene whose lights cast them is compared as if they did not.
+    /// modelled: a scene whose lights cast them is compared as if they did not. A pixel of a
+    /// material with an sRGB map is judged between its lowest and highest decodings
+    /// ([`SrgbDecoding`](crate::pixel_model::SrgbDecoding)); where an alpha mask discards,
+    /// the clear color is expected (nothing is behind).
     pub fn compare(&mut self, rendered: &FloatImage, inputs: &SurfaceInputs) -> Comparison {
+        self.compare_over(rendered, inputs, None)
+    }
+
+    /// [`Self::compare`] for the meshes of a material `M` made of a [`PhongMaterial`] (an
+    /// extension of it, say): each judged on its `PhongMaterial`, lit by every light, those
+    /// of extension kinds included.
+    pub fn compare_of<M: PhongSceneMaterial>(
+        &mut self,
+        rendered: &FloatImage,
+        inputs: &SurfaceInputs<M>,
+    ) -> Comparison {
+        self.compare_over(rendered, inputs, None)
+    }
+
+    /// As [`Self::compare`], except where a mesh lets what is behind it show: there the pixel
+    /// is followed through `behind` ([`see_through`](crate::see_through)).
+    fn compare_over<M: PhongSceneMaterial>(
+        &mut self,
+        rendered: &FloatImage,
+        inputs: &SurfaceInputs<M>,
+        behind: Option<&Behind<M>>,
+    ) -> Comparison {
         let scene = self.reference_scene();
         let images = pixel_model::loaded_images(self);
-        let flat_triangles = self.flat_shaded_triangles();
+        let flat_triangles = self.flat_shaded_triangles::<M>();
         let vertex_lit = self.vertex_lit_triangles(&scene, inputs, &images);
-        self.compare_pixels(rendered, inputs, |material, surface, pixel| {
-            let mut lights = scene.lights_at(surface.position, inputs.every_map_bound)?;
+        let camera = self.camera_position();
+        let materials = self.app.world().resource::<Assets<M>>();
+        let expected_on = |inputs: &SurfaceInputs<M>, pixel: usize| -> Expected {
+            let Some((handle, surface)) = inputs.surface_at(pixel, camera) else {
+                return Expected::Clear;
+            };
+            let Some(material) = materials.get(handle).and_then(M::phong_material) else {
+                return Expected::Unjudged;
+            };
+            let Some(mut lights) = scene.lights_at(surface.position, inputs.every_map_bound) else {
+                return Expected::Unjudged;
+            };
             if lit_per_vertex(material) {
                 // The built-in lights' sums interpolated from the vertices, weighed at the
                 // pixel; the other lights' terms as they are.
-                let light = vertex_lit.light_at(surface.position)?;
+                let Some(light) = vertex_lit.light_at(surface.position) else {
+                    return Expected::Unjudged;
+                };
                 lights.lights.clear();
                 lights.others.0.push(std::sync::Arc::new(light));
             }
             let surface = if material.flat_shading {
-                let face = pixel_model::face_normal_at(&flat_triangles, surface.position)?;
+                let Some(face) = pixel_model::face_normal_at(&flat_triangles, surface.position)
+                else {
+                    return Expected::Unjudged;
+                };
                 SurfacePoint {
                     normal: reference::face_normal(face, surface.normal),
-                    ..*surface
+                    ..surface
                 }
             } else {
-                *surface
+                surface
             };
-            pixel_model::expected_color(material, &surface, pixel, inputs, &images, &lights)
-        })
+            let color = |decoding| {
+                pixel_model::expected_color_decoded(
+                    material, &surface, pixel, inputs, &images, &lights, decoding,
+                )
+            };
+            let colors = if pixel_model::reads_srgb_map(material, &images) {
+                (color(SrgbDecoding::Lowest), color(SrgbDecoding::Highest))
+            } else {
+                let exact = color(SrgbDecoding::Exact);
+                (exact, exact)
+            };
+            match colors {
+                (Some(low), Some(high)) => Expected::Between(low, high),
+                _ => Expected::Unjudged,
+            }
+        };
+        let mut comparison = Comparison::new(rendered.width, rendered.height);
+        for (index, color) in rendered.pixels.iter().enumerate() {
+            if inputs.surface_at(index, camera).is_none() {
+                comparison.record_background(index, *color);
+                continue;
+            }
+            let expected = match behind {
+                Some(behind) => see_through::expected_through(
+                    index,
+                    inputs,
+                    behind,
+                    materials,
+                    &images,
+                    &expected_on,
+                ),
+                None => expected_on(inputs, index),
+            };
+            let object = inputs.positions.pixels[index][3] as u32;
+            comparison.count_object_pixel(object, expected != Expected::Unjudged);
+            comparison.record_expected(index, *color, expected);
+        }
+        comparison
     }
 
     /// The triangles of every mesh drawn with a [`PhongMaterial`] lit per vertex, each corner
     /// with the sums of `scene`'s lights there (tinted by their cookies where `inputs` say
     /// the device binds them; the toon ramp where it binds that).
-    fn vertex_lit_triangles(
+    fn vertex_lit_triangles<M: PhongSceneMaterial>(
         &mut self,
         scene: &ReferenceScene,
-        inputs: &SurfaceInputs,
+        inputs: &SurfaceInputs<M>,
         images: &HashMap<AssetId<Image>, Image>,
     ) -> pixel_model::VertexLitTriangles {
         let camera = self.camera_position();
         let world = self.app.world_mut();
-        let mut drawn =
-            world.query::<(&Mesh3d, &MeshMaterial3d<PhongMaterial>, &GlobalTransform)>();
+        let mut drawn = world.query::<(&Mesh3d, &MeshMaterial3d<M>, &GlobalTransform)>();
         let meshes = world.resource::<Assets<Mesh>>();
-        let materials = world.resource::<Assets<PhongMaterial>>();
+        let materials = world.resource::<Assets<M>>();
         let mut triangles = pixel_model::VertexLitTriangles::default();
         for (mesh, material, transform) in drawn.iter(world) {
-            let Some(material) = materials.get(&material.0).filter(|m| lit_per_vertex(m)) else {
+            let Some(material) = materials
+                .get(&material.0)
+                .and_then(M::phong_material)
+                .filter(|m| lit_per_vertex(m))
+            else {
                 continue;
             };
             let Some(mesh) = meshes.get(&mesh.0) else {
@@ -606,18 +731,18 @@ impl Harness {
         triangles
     }
 
-    /// The world-space triangles of every mesh drawn with a flat-shaded [`PhongMaterial`].
-    fn flat_shaded_triangles(&mut self) -> Vec<[DVec3; 3]> {
+    /// The world-space triangles of every mesh drawn with a flat-shaded `M`.
+    fn flat_shaded_triangles<M: PhongSceneMaterial>(&mut self) -> Vec<[DVec3; 3]> {
         let world = self.app.world_mut();
-        let mut drawn =
-            world.query::<(&Mesh3d, &MeshMaterial3d<PhongMaterial>, &GlobalTransform)>();
+        let mut drawn = world.query::<(&Mesh3d, &MeshMaterial3d<M>, &GlobalTransform)>();
         let meshes = world.resource::<Assets<Mesh>>();
-        let materials = world.resource::<Assets<PhongMaterial>>();
+        let materials = world.resource::<Assets<M>>();
         drawn
             .iter(world)
             .filter(|(_, material, _)| {
                 materials
                     .get(&material.0)
+                    .and_then(M::phong_material)
                     .is_some_and(|material| material.flat_shading)
             })
             .filter_map(|(mesh, _, transform)| {
@@ -633,8 +758,83 @@ impl Harness {
     /// Captures the inputs of every Phong pixel with its maps' and compares `rendered` with
     /// the reference model on them ([`Self::compare`]): the self-check of `render_scene`.
     pub fn compare_with_reference(&mut self, rendered: &FloatImage) -> Comparison {
-        let inputs = self.capture_inputs_with_maps();
-        self.compare(rendered, &inputs)
+        self.compare_with_reference_of::<PhongMaterial>(rendered)
+    }
+
+    /// [`Self::compare_with_reference`] for the meshes of a material `M` made of a
+    /// [`PhongMaterial`] ([`Self::compare_of`]).
+    pub fn compare_with_reference_of<M: PhongSceneMaterial>(
+        &mut self,
+        rendered: &FloatImage,
+    ) -> Comparison {
+        let inputs = self.capture_inputs_with_maps_of::<M>();
+        let blended = self.see_through_meshes::<M>(SeeThrough::Blended);
+        let masked = self.see_through_meshes::<M>(SeeThrough::Masked);
+        if blended.is_empty() && masked.is_empty() {
+            return self.compare_over(rendered, &inputs, None);
+        }
+        // Where a mask discards or a mesh blends, the frame shows what is behind it.
+        let without_blended = if blended.is_empty() {
+            inputs.clone()
+        } else {
+            self.capture_without::<M>(&blended)
+        };
+        let without_masked = if masked.is_empty() {
+            inputs.clone()
+        } else {
+            self.capture_without::<M>(&masked)
+        };
+        let without_either = if blended.is_empty() {
+            without_masked.clone()
+        } else if masked.is_empty() {
+            without_blended.clone()
+        } else {
+            self.capture_without::<M>(&[blended, masked].concat())
+        };
+        let behind = Behind {
+            without_blended,
+            without_masked,
+            without_either,
+        };
+        self.compare_over(rendered, &inputs, Some(&behind))
+    }
+
+    /// [`Self::capture_inputs_with_maps`] with `meshes` hidden (shown again after).
+    fn capture_without<M: PhongSceneMaterial>(&mut self, meshes: &[Entity]) -> SurfaceInputs<M> {
+        let world = self.app.world_mut();
+        let visibilities: Vec<Visibility> = meshes
+            .iter()
+            .map(|&mesh| {
+                let mut entity = world.entity_mut(mesh);
+                let visibility = entity.get::<Visibility>().copied().unwrap_or_default();
+                entity.insert(Visibility::Hidden);
+                visibility
+            })
+            .collect();
+        let inputs = self.capture_inputs_with_maps_of::<M>();
+        let world = self.app.world_mut();
+        for (&mesh, visibility) in meshes.iter().zip(visibilities) {
+            world.entity_mut(mesh).insert(visibility);
+        }
+        self.settle();
+        inputs
+    }
+
+    /// The meshes drawn with an `M` that lets what is behind through as `kind`.
+    fn see_through_meshes<M: PhongSceneMaterial>(&mut self, kind: SeeThrough) -> Vec<Entity> {
+        let world = self.app.world_mut();
+        let mut drawn = world.query::<(Entity, &MeshMaterial3d<M>)>();
+        let materials = world.resource::<Assets<M>>();
+        drawn
+            .iter(world)
+            .filter(|(_, material)| {
+                materials
+                    .get(&material.0)
+                    .and_then(M::phong_material)
+                    .is_some_and(|material| see_through::lets_through(material) == Some(kind))
+            })
+            .map(|(entity, _)| entity)
+            .collect()
     }
 
     /// Compares `rendered` with `expected(material, surface)` on `inputs`, pixel by pixel;
@@ -676,6 +876,14 @@ impl Harness {
         }
         comparison
     }
+}
+
+/// What the harness adds to an app: lights culled only past their range
+/// ([`PhongLightCulling::EXACT`]), so that renders follow SPEC.md exactly, and the passes
+/// that capture each pixel's inputs.
+fn add_harness_plugins(app: &mut App) {
+    app.insert_resource(PhongLightCulling::EXACT)
+        .add_plugins(SurfaceInputsPlugin);
 }
 
 /// Whether `material`'s lights are summed at its vertices (SPEC.md, "Per-vertex lighting"):

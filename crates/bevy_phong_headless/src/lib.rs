@@ -12,7 +12,10 @@
 //!   per-pixel inputs each pixel was lit with ([`Harness::capture_inputs`]), and compares a
 //!   frame with `bevy_phong::reference` pixel by pixel ([`Harness::compare`], giving a
 //!   [`Comparison`]), each pixel's expected color given by [`pixel_model`] with every
-//!   material feature and its maps' texels.
+//!   material feature and its maps' texels; [`Harness::compare_with_reference`] captures
+//!   the inputs itself and follows what shows through masked and blended meshes
+//!   ([`see_through`]), for `PhongMaterial` or any material made of one
+//!   ([`Harness::compare_with_reference_of`]): the examples' `--compare`.
 //! - [`read_back_frame`] reads one frame of a render target back (the harness, the
 //!   benchmark), and [`without_row_padding`] strips the GPU copy's row padding (the
 //!   examples' headless runs, which read back from a running app).
@@ -36,9 +39,14 @@ mod pipelines;
 pub mod pixel_model;
 #[cfg(not(target_arch = "wasm32"))]
 mod readback;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod see_through;
 
 #[cfg(not(target_arch = "wasm32"))]
-pub use app::{headless_app, headless_app_with_assets, headless_plugins};
+pub use app::{
+    finish_frame_driven_app, frame_driven_plugins, headless_app, headless_app_with_assets,
+    headless_plugins,
+};
 #[cfg(not(target_arch = "wasm32"))]
 pub use comparison::{Comparison, Expected, TOLERANCE};
 #[cfg(not(target_arch = "wasm32"))]

@@ -363,16 +363,79 @@ pub fn expected_color(
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
 ) -> Option<DVec3> {
+    // sRGB maps decoded exactly: a sampler may land within half an 8-bit step of that (see
+    // `SrgbDecoding`), so the render tests' maps are linear.
+    expected_color_decoded(
+        material,
+        surface,
+        pixel,
+        inputs,
+        images,
+        lights,
+        SrgbDecoding::Exact,
+    )
+}
+
+/// [`expected_color`] with the sRGB maps' texels decoded as `decoding` says, on the inputs
+/// of any material made of a [`PhongMaterial`].
+pub fn expected_color_decoded<M: Material>(
+    material: &PhongMaterial,
+    surface: &reference::SurfacePoint,
+    pixel: usize,
+    inputs: &SurfaceInputs<M>,
+    images: &HashMap<AssetId<Image>, Image>,
+    lights: &reference::Lights,
+    decoding: SrgbDecoding,
+) -> Option<DVec3> {
     if material.environment_map.is_some() || material.camera_environment {
         return None;
     }
-    // sRGB maps decoded exactly: a sampler may land within half an 8-bit step of that (see
-    // `SrgbDecoding`), so the render tests' maps are linear.
-    let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
+    let texels = texels_at(material, inputs, pixel, images, decoding)?;
     if masked_out(material, &texels, vertex_color(inputs, pixel).w)? {
         return Some(DVec3::ZERO);
     }
     lit_color(material, surface, pixel, inputs, &texels, images, lights)
+}
+
+/// Whether `material` reads a map stored as sRGB: its pixels are judged between the colors
+/// the lowest and the highest decodings give ([`SrgbDecoding`]).
+pub fn reads_srgb_map(material: &PhongMaterial, images: &HashMap<AssetId<Image>, Image>) -> bool {
+    [
+        &material.base_color_texture,
+        &material.specular_texture,
+        &material.emissive_texture,
+        &material.normal_map_texture,
+        &material.light_map_texture,
+        &material.ao_map_texture,
+        &material.alpha_map_texture,
+    ]
+    .into_iter()
+    .flatten()
+    .any(|handle| {
+        images
+            .get(&handle.id())
+            .is_some_and(|image| image.texture_descriptor.format.is_srgb())
+    })
+}
+
+/// How much of what is behind pixel `pixel` of `material` shows through it: `Some(0.0)`
+/// where nothing does, `Some(1.0)` where the alpha mask discards, `1 − alpha` where it
+/// blends ([`AlphaMode::Blend`]); `None` where that cannot be told (a texel edge, the
+/// mask's cutoff).
+pub fn see_through<M: Material>(
+    material: &PhongMaterial,
+    pixel: usize,
+    inputs: &SurfaceInputs<M>,
+    images: &HashMap<AssetId<Image>, Image>,
+) -> Option<f64> {
+    let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
+    let vertex_alpha = vertex_color(inputs, pixel).w;
+    match material.alpha_mode {
+        AlphaMode::Mask(_) => masked_out(material, &texels, vertex_alpha)
+            .map(|discarded| if discarded { 1.0 } else { 0.0 }),
+        AlphaMode::Blend => Some(1.0 - output_alpha(material, &texels, vertex_alpha)),
+        _ => Some(0.0),
+    }
 }
 
 /// Whether `direction`'s two largest components are within 10⁻⁵ of each other (relative):
