@@ -9,12 +9,19 @@
 //! inside its vertices' sphere by at most `1 − cos(θ)` of its radius (θ the angle from a
 //! grid cell's middle to its corners, under 0.14 rad here): the radius is judged within
 //! [`SAG`] below and `f32` rounding (10⁻⁵) above.
+//!
+//! Displacement follows the pose: a morphed and a skinned mesh move their posed vertices
+//! along their normals (`displacement_follows_the_morph_and_the_skin`).
 
 use crate::frames::{SIZE, TOLERANCE};
 use crate::texture_maps::{expected_color, float_map, loaded_images, spawn_map_lights};
 use bevy::{
     math::Affine2,
-    mesh::{UvChannel, VertexAttributeValues},
+    mesh::{
+        UvChannel, VertexAttributeValues,
+        morph::{MeshMorphWeights, MorphAttributes},
+        skinning::{SkinnedMesh, SkinnedMeshInverseBindposes},
+    },
     prelude::*,
 };
 use bevy_phong::prelude::*;
@@ -146,4 +153,144 @@ fn displaced_vertices_move_along_their_normals_by_the_map() {
         judged.iter().all(|&count| count > 200),
         "every sphere covers pixels: {judged:?}"
     );
+}
+
+/// The morph target of [`displacement_follows_the_morph_and_the_skin`]: every vertex lifted
+/// by this much at weight 1.
+const MORPH_LIFT: Vec3 = Vec3::new(0.0, 0.8, 0.0);
+/// The constant map's red (stored exactly in `f32`) and the scale it is read at: every vertex
+/// moves `HEIGHT · DISPLACEMENT_SCALE` = 0.2 along its normal.
+const HEIGHT: f32 = 0.5;
+const DISPLACEMENT_SCALE: f32 = 0.4;
+/// An icosahedron's inradius over its circumradius: its faces lie between the two spheres.
+const ICOSAHEDRON_INRADIUS: f64 = 0.794_654_472_291_766_1;
+
+/// Displacement after the pose: a morphed and a skinned icosahedron (12 vertices, each with
+/// its radial normal, so that it holds together when displaced) each move their vertices
+/// along their normals by the map. Each pixel lies between the inscribed and the
+/// circumscribed sphere of the displaced icosahedron, posed as its weight or its joint
+/// places it (closed forms, no shader), and is lit as the reference model says on its
+/// inputs. Undisplaced, the icosahedra would reach 0.5 from their centres, under the
+/// displaced ones' inradius (0.556); posed wrongly, 0.4 (the morph) or 1.2 (the joint) from
+/// where they belong.
+#[test]
+fn displacement_follows_the_morph_and_the_skin() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_map_lights(world);
+    let map = world
+        .resource_mut::<Assets<Image>>()
+        .add(float_map(|_, _| [HEIGHT, 0.0, 0.0, 1.0]));
+    let radius = 0.5;
+    let icosahedron = || {
+        Sphere::new(radius)
+            .mesh()
+            .ico(0)
+            .expect("an icosahedron of 12 vertices")
+    };
+    let material = |color: Color| PhongMaterial {
+        base_color: color,
+        shininess: 24.0,
+        displacement_map: Some(map.clone()),
+        displacement_scale: DISPLACEMENT_SCALE,
+        ..default()
+    };
+
+    // Morphed: half of `MORPH_LIFT`.
+    let weight = 0.5;
+    let unposed = Vec3::new(-1.2, -0.3, 0.0);
+    let morphed = icosahedron();
+    let vertices = morphed.count_vertices();
+    let morphed =
+        morphed.with_morph_targets(vec![
+            MorphAttributes::new(MORPH_LIFT, Vec3::ZERO, Vec3::ZERO);
+            vertices
+        ]);
+    let morphed = world.resource_mut::<Assets<Mesh>>().add(morphed);
+    let morphed_material = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(material(Color::srgb(0.9, 0.4, 0.3)));
+    world.spawn((
+        Mesh3d(morphed),
+        MeshMaterial3d(morphed_material.clone()),
+        MeshMorphWeights::Value {
+            weights: vec![weight],
+        },
+        Transform::from_translation(unposed),
+    ));
+
+    // Skinned: every vertex bound to one joint, with the identity as its inverse bind pose;
+    // the mesh entity stays at the origin, the joint stands where the icosahedron belongs.
+    let joint_at = Vec3::new(1.2, 0.3, 0.0);
+    let mut skinned = icosahedron();
+    let vertices = skinned.count_vertices();
+    skinned.insert_attribute(
+        Mesh::ATTRIBUTE_JOINT_INDEX,
+        VertexAttributeValues::Uint16x4(vec![[0; 4]; vertices]),
+    );
+    skinned.insert_attribute(
+        Mesh::ATTRIBUTE_JOINT_WEIGHT,
+        vec![[1.0_f32, 0.0, 0.0, 0.0]; vertices],
+    );
+    let skinned = world.resource_mut::<Assets<Mesh>>().add(skinned);
+    let inverse_bindposes = world
+        .resource_mut::<Assets<SkinnedMeshInverseBindposes>>()
+        .add(SkinnedMeshInverseBindposes::from(vec![Mat4::IDENTITY]));
+    let joint = world.spawn(Transform::from_translation(joint_at)).id();
+    let skinned_material = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(material(Color::srgb(0.3, 0.5, 0.9)));
+    world.spawn((
+        Mesh3d(skinned),
+        MeshMaterial3d(skinned_material.clone()),
+        SkinnedMesh {
+            inverse_bindposes,
+            joints: vec![joint],
+        },
+        Transform::IDENTITY,
+    ));
+
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let lights = harness.reference_lights();
+    let images = loaded_images(&mut harness);
+    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
+        expected_color(material, surface, pixel, &inputs, &images, &lights)
+    });
+    comparison.assert_within("displaced after the pose", TOLERANCE);
+
+    let displaced = f64::from(radius) + f64::from(HEIGHT * DISPLACEMENT_SCALE);
+    let centres = [
+        (
+            "morphed",
+            morphed_material,
+            (unposed + weight * MORPH_LIFT).as_dvec3(),
+        ),
+        ("skinned", skinned_material, joint_at.as_dvec3()),
+    ];
+    let camera = harness.camera_position();
+    for (name, material, centre) in centres {
+        let mut on_it = 0;
+        for pixel in 0..inputs.positions.pixels.len() {
+            let Some((drawn, surface)) = inputs.surface_at(pixel, camera) else {
+                continue;
+            };
+            if *drawn != material {
+                continue;
+            }
+            let distance = (surface.position - centre).length();
+            // Within `f32` rounding (10⁻⁵) of the two spheres.
+            assert!(
+                distance >= ICOSAHEDRON_INRADIUS * displaced * (1.0 - 1e-5)
+                    && distance <= displaced * (1.0 + 1e-5),
+                "{name}: pixel {pixel} lies {distance:.4} from {centre}, outside the displaced \
+                 icosahedron (between {:.4} and {displaced:.4})",
+                ICOSAHEDRON_INRADIUS * displaced
+            );
+            on_it += 1;
+        }
+        println!("{name}: {on_it} pixels on the displaced icosahedron");
+        assert!(on_it >= 200, "{name}: {on_it} pixels");
+    }
 }

@@ -18,7 +18,8 @@
 //! - `surface_inputs`: vertex colors, the UV transform, unlit materials, light, AO and alpha
 //!   maps and Bevy's `Lightmap`, the same way;
 //! - `shading_normals`: bump maps and flat shading, the same way;
-//! - `displacement`: displacement maps, the positions and the lit colors;
+//! - `displacement`: displacement maps, the positions and the lit colors, after a morph and
+//!   a skin too;
 //! - `per_vertex`: lighting per vertex against the reference model's per-vertex sums,
 //!   interpolated at each pixel;
 //! - `morphs`: two morphed meshes with their own weights, in the main pass, the prepass and
