@@ -118,5 +118,9 @@ mod tests {
         assert_eq!(face_normal(face, DVec3::new(0.2, 0.1, 0.9)), DVec3::Z);
         assert_eq!(face_normal(face, DVec3::new(0.2, 0.1, -0.9)), -DVec3::Z);
         assert_eq!(face_normal(DVec3::ZERO, DVec3::Z), DVec3::ZERO);
+        // A side in the face's plane keeps the face's own sign, as the shader's
+        // `select(face, -face, dot(face, side) < 0.0)` does.
+        assert_eq!(face_normal(face, DVec3::X), -DVec3::Z);
+        assert_eq!(face_normal(-face, DVec3::X), DVec3::Z);
     }
 }
