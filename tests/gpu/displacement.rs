@@ -253,12 +253,9 @@ fn displacement_follows_the_morph_and_the_skin() {
     harness.settle();
     let rendered = harness.render_next_frame();
     let inputs = harness.capture_inputs_with_maps();
-    let lights = harness.reference_lights();
-    let images = loaded_images(&mut harness);
-    let comparison = harness.compare_pixels(&rendered, &inputs, |material, surface, pixel| {
-        expected_color(material, surface, pixel, &inputs, &images, &lights)
-    });
-    comparison.assert_within("displaced after the pose", TOLERANCE);
+    harness
+        .compare(&rendered, &inputs)
+        .assert_within("displaced after the pose", TOLERANCE);
 
     let displaced = f64::from(radius) + f64::from(HEIGHT * DISPLACEMENT_SCALE);
     let centres = [
