@@ -879,6 +879,40 @@ mod tests {
     }
 
     #[test]
+    fn normalized_blinn_phong_is_three_js_brdf_worked_by_hand() {
+        // L and V 60° either side of N: H = N, N·H = 1, N·L = V·H = c = 1/2. Schlick's
+        // weight w = 2^((−5.55473·c − 6.98316)·c) = 2^(−4.8802625) = 0.0339543;
+        // F = f₀ + (1 − f₀)·w with f₀ = k_s = 0.2: 0.2271634; the term
+        // F · (α + 2)/(8π) · (N·H)^α · N·L = 0.2271634 · 8/(8π) · 1 · 0.5 = 0.0361542 (α = 6).
+        let angle = 60f64.to_radians();
+        let to_light = DVec3::new(angle.sin(), angle.cos(), 0.0);
+        let view = DVec3::new(-angle.sin(), angle.cos(), 0.0);
+        let surface = SurfacePoint {
+            position: DVec3::ZERO,
+            normal: DVec3::Y,
+            camera: view * 4.0,
+        };
+        let material = Material {
+            specular: DVec3::splat(0.2),
+            specular_strength: 1.0,
+            shininess: 6.0,
+            specular_model: SpecularModel::NormalizedBlinnPhong,
+            ..matte(DVec3::ZERO)
+        };
+        let color = phong_light(&surface, &material, to_light, DVec3::ZERO, DVec3::ONE);
+        let by_hand = 0.036_154_182_566_8;
+        assert!(close(color.x, by_hand), "{color} vs {by_hand}");
+        // A black specular color keeps the grazing part alone: w · 1/π · 0.5 = 0.0054040.
+        let black = Material {
+            specular: DVec3::ZERO,
+            ..material
+        };
+        let color = phong_light(&surface, &black, to_light, DVec3::ZERO, DVec3::ONE);
+        let by_hand = 0.033_954_285_871_0 / std::f64::consts::PI * 0.5;
+        assert!(close(color.x, by_hand), "{color} vs {by_hand}");
+    }
+
+    #[test]
     fn seed_004_attenuation_constants_give_one_over_five_point_one_at_ten_units() {
         // 1 / (1.0 + 0.09·10 + 0.032·100) = 1 / 5.1
         assert!(close(
