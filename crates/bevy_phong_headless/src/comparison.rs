@@ -137,8 +137,7 @@ impl Comparison {
             "{case}: {} lit pixels ({} skipped), largest error {:.3e} (tolerance {tolerance:.1e}) at {:?}",
             self.lit_pixels, self.skipped_pixels, self.max_error, self.worst_pixel
         );
-        let failed = self.lit_pixels == 0 || self.stray_pixels > 0 || self.max_error > tolerance;
-        if failed {
+        if !self.within(tolerance) {
             let directory = self.write_pngs(case);
             panic!(
                 "{case}: largest error {:.3e} exceeds {tolerance:.1e}, or no lit pixels ({}), \
@@ -149,6 +148,13 @@ impl Comparison {
                 directory.display()
             );
         }
+    }
+
+    /// Whether some pixels were judged, none was drawn outside every mesh, and every judged
+    /// pixel is within `tolerance` (relative to `max(1, |expected|)`): what
+    /// [`Self::assert_within`] asserts.
+    pub fn within(&self, tolerance: f64) -> bool {
+        self.lit_pixels > 0 && self.stray_pixels == 0 && self.max_error <= tolerance
     }
 
     /// The error that the share `quantile` (in `[0, 1]`) of the lit pixels stays within (the

@@ -672,28 +672,17 @@ impl Harness {
                 _ => Expected::Unjudged,
             }
         };
-        let mut comparison = Comparison::new(rendered.width, rendered.height);
-        for (index, color) in rendered.pixels.iter().enumerate() {
-            if inputs.surface_at(index, camera).is_none() {
-                comparison.record_background(index, *color);
-                continue;
-            }
-            let expected = match behind {
-                Some(behind) => see_through::expected_through(
-                    index,
-                    inputs,
-                    behind,
-                    materials,
-                    &images,
-                    &expected_on,
-                ),
-                None => expected_on(inputs, index),
-            };
-            let object = inputs.positions.pixels[index][3] as u32;
-            comparison.count_object_pixel(object, expected != Expected::Unjudged);
-            comparison.record_expected(index, *color, expected);
-        }
-        comparison
+        compare_covered(rendered, inputs, camera, |index, _, _| match behind {
+            Some(behind) => see_through::expected_through(
+                index,
+                inputs,
+                behind,
+                materials,
+                &images,
+                &expected_on,
+            ),
+            None => expected_on(inputs, index),
+        })
     }
 
     /// The triangles of every mesh drawn with a [`PhongMaterial`] lit per vertex, each corner
@@ -859,23 +848,34 @@ impl Harness {
     ) -> Comparison {
         let camera = self.camera_position();
         let assets = self.app.world().resource::<Assets<M>>();
-        let mut comparison = Comparison::new(rendered.width, rendered.height);
-        for (index, color) in rendered.pixels.iter().enumerate() {
-            let Some((material, surface)) = inputs.surface_at(index, camera) else {
-                comparison.record_background(index, *color);
-                continue;
-            };
-            let material = assets.get(material).expect("material exists");
-            let object = inputs.positions.pixels[index][3] as u32;
-            let judged = expected(material, &surface, index);
-            comparison.count_object_pixel(object, judged.is_some());
-            match judged {
-                Some(expected) => comparison.record(index, *color, expected),
-                None => comparison.skipped_pixels += 1,
-            }
-        }
-        comparison
+        compare_covered(rendered, inputs, camera, |index, handle, surface| {
+            let material = assets.get(handle).expect("material exists");
+            expected(material, surface, index).map_or(Expected::Unjudged, Expected::Lit)
+        })
     }
+}
+
+/// Compares `rendered` with `expected(index, material, surface)` at each pixel that a mesh
+/// of `M` covers in `inputs` (seen from `camera`), counting each object's judged and
+/// unjudged pixels; elsewhere the clear color is expected.
+fn compare_covered<M: Material>(
+    rendered: &FloatImage,
+    inputs: &SurfaceInputs<M>,
+    camera: DVec3,
+    expected: impl Fn(usize, &Handle<M>, &SurfacePoint) -> Expected,
+) -> Comparison {
+    let mut comparison = Comparison::new(rendered.width, rendered.height);
+    for (index, color) in rendered.pixels.iter().enumerate() {
+        let Some((material, surface)) = inputs.surface_at(index, camera) else {
+            comparison.record_background(index, *color);
+            continue;
+        };
+        let expected = expected(index, material, &surface);
+        let object = inputs.positions.pixels[index][3] as u32;
+        comparison.count_object_pixel(object, expected != Expected::Unjudged);
+        comparison.record_expected(index, *color, expected);
+    }
+    comparison
 }
 
 /// What the harness adds to an app: lights culled only past their range
