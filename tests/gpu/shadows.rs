@@ -204,6 +204,25 @@ pub(crate) struct CaseLight {
     pub cover: MapCover,
 }
 
+impl CaseLight {
+    /// The bound of a shadow-map texel's world size at `position` (`shadow_band.rs`), seen
+    /// by `viewer`.
+    fn texel_bound_at(&self, position: DVec3, viewer: &ViewerCamera) -> f64 {
+        let light = match self.toward {
+            Toward::Point(light) => light,
+            // Unused for cascades, which follow the camera.
+            Toward::Direction(_) => DVec3::ZERO,
+        };
+        texel_bound(
+            &self.cover,
+            self.settings.resolution,
+            light,
+            position,
+            viewer,
+        )
+    }
+}
+
 /// The result of one case.
 pub(crate) struct Verdict {
     /// Pixels on a mesh.
@@ -568,21 +587,15 @@ fn judge_frame(
         // whatever its `V`.
         let in_band = receives
             && matched.iter().any(|case| {
-                let (to_light, light) = match case.toward {
-                    Toward::Direction(direction) => (-direction.normalize(), DVec3::ZERO),
-                    Toward::Point(light) => ((light - surface.position).normalize(), light),
+                let to_light = match case.toward {
+                    Toward::Direction(direction) => -direction.normalize(),
+                    Toward::Point(light) => (light - surface.position).normalize(),
                 };
                 let cosine = surface.normal.normalize().dot(to_light);
                 if cosine <= 0.0 {
                     return false;
                 }
-                let texel = texel_bound(
-                    &case.cover,
-                    case.settings.resolution,
-                    light,
-                    surface.position,
-                    &viewer,
-                );
+                let texel = case.texel_bound_at(surface.position, &viewer);
                 let band = band_width(&case.settings, texel, cosine);
                 verdict.widest_band = verdict.widest_band.max(band);
                 near_edge(
@@ -1394,13 +1407,7 @@ fn lighting_per_vertex_takes_the_shadow_at_each_vertex() {
         camera,
         |corner| {
             let up = DVec3::Y;
-            let texel = texel_bound(
-                &case.cover,
-                case.settings.resolution,
-                DVec3::ZERO,
-                corner,
-                &viewer,
-            );
+            let texel = case.texel_bound_at(corner, &viewer);
             let band = band_width(&case.settings, texel, 0.0);
             if near_edge(corner, up, band, case.toward, &casters) {
                 return None;
