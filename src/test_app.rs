@@ -68,6 +68,14 @@ pub fn uploads_in_next_frame(app: &mut App) -> usize {
     app.world().resource::<BufferUploads>().0 - before
 }
 
+/// The invalid-input warnings sent since the last call, oldest first.
+pub fn invalid_inputs(app: &mut App) -> Vec<crate::validation::InvalidInput> {
+    app.world_mut()
+        .resource_mut::<bevy::ecs::message::Messages<crate::validation::InvalidInput>>()
+        .drain()
+        .collect()
+}
+
 /// The bytes of the built-in light buffer.
 pub fn built_in_buffer_bytes(app: &App) -> Vec<u8> {
     app.world()

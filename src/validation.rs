@@ -415,15 +415,10 @@ pub fn validate_materials(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{PhongDirectionalLight, test_app::test_app};
-    use bevy::ecs::message::Messages;
-
-    fn invalid_inputs(app: &mut bevy::app::App) -> Vec<InvalidInput> {
-        app.world_mut()
-            .resource_mut::<Messages<InvalidInput>>()
-            .drain()
-            .collect()
-    }
+    use crate::{
+        PhongDirectionalLight,
+        test_app::{invalid_inputs, test_app},
+    };
 
     #[test]
     fn invalid_shadow_settings_are_replaced_with_a_warning_per_field() {

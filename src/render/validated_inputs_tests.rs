@@ -8,24 +8,16 @@ use crate::{
     PhongPointLight, PhongSpotLight, limits,
     material::PhongMaterialUniform,
     reference,
-    test_app::{test_app, uploads_in_next_frame},
+    test_app::{invalid_inputs, test_app, uploads_in_next_frame},
     validation::{InvalidInput, Owner},
 };
 use bevy::{
     asset::Assets,
     color::{Alpha, Color, ColorToComponents},
-    ecs::message::Messages,
     math::{Quat, Vec3},
     prelude::Transform,
 };
 use core::f32::consts::PI;
-
-fn invalid_inputs(app: &mut bevy::app::App) -> Vec<InvalidInput> {
-    app.world_mut()
-        .resource_mut::<Messages<InvalidInput>>()
-        .drain()
-        .collect()
-}
 
 /// The fields `owner`'s warnings name, in order.
 fn fields_of(warnings: &[InvalidInput], owner: Owner) -> Vec<&'static str> {

@@ -5,7 +5,7 @@
 use super::tests::{LoadErrors, run_until, scene_app, scene_app_with, scratch_directory, spawned};
 use super::*;
 use crate::{PhongDirectionalLight, PhongMaterial, PhongSpotLight, lights::light_direction};
-use bevy::{asset::UnapprovedPathMode, ecs::message::Messages, prelude::*};
+use bevy::{asset::UnapprovedPathMode, prelude::*};
 use std::{path::Path, time::Duration};
 
 /// A file that must never be read: a valid material whose shininess no other file uses.
@@ -294,10 +294,8 @@ fn a_spot_angle_of_1e400_degrees_in_a_file_is_reported_and_clamped_to_180_degree
         0, 0, 0, 2, 0
     ]));
     app.update();
-    let warnings: Vec<_> = app
-        .world_mut()
-        .resource_mut::<Messages<crate::validation::InvalidInput>>()
-        .drain()
+    let warnings: Vec<_> = crate::test_app::invalid_inputs(&mut app)
+        .into_iter()
         .filter(|warning| warning.field == "outer_angle")
         .map(|warning| warning.value)
         .collect();
