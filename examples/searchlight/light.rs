@@ -99,8 +99,9 @@ pub struct Searchlight {
     /// With a range, or a `decay` and the plugin's ε (`PhongLightCulling`), the beam is
     /// listed only in the light clusters it reaches.
     pub range: Option<f32>,
-    /// Shadow settings: the beam's parallel rays get one orthographic shadow map. Default
-    /// off.
+    /// Shadow settings: the beam's parallel rays get one orthographic shadow map over the
+    /// beam's cross-section, `shadow_distance` deep; a `softness` is an angle in degrees, as
+    /// a directional light's. Default off.
     pub shadows: PhongShadows,
     /// How far along the beam its shadow map reaches, world units. Default 50.
     pub shadow_distance: f32,

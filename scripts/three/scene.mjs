@@ -14,7 +14,13 @@ const GEOMETRY_ARGUMENTS = {
   SphereGeometry: ["radius", "widthSegments", "heightSegments"],
   BoxGeometry: ["width", "height", "depth"],
 };
-const LIGHT_TYPES = ["AmbientLight", "DirectionalLight", "PointLight", "SpotLight"];
+const LIGHT_TYPES = [
+  "AmbientLight",
+  "HemisphereLight",
+  "DirectionalLight",
+  "PointLight",
+  "SpotLight",
+];
 const MATERIAL_TYPES = ["MeshPhongMaterial", "MeshToonMaterial"];
 
 function vector(value, what) {

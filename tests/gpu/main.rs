@@ -6,6 +6,8 @@
 //!   their maps and vertex colors (the crate's shader API);
 //! - `searchlight_clusters`: searchlights of finite reach in the light clusters, lit
 //!   exactly, and a far beam looped over by no fragment;
+//! - `searchlight_shadows`: the searchlight's beam, a light kind added from outside the
+//!   crate, casting shadows through the map its rays describe, judged by exact rays;
 //! - `clusters`: per-view light clusters against the reference model, around the frustum,
 //!   with two cameras and through 0 → 3,000 → 0 lights; the shader finds its own view;
 //! - `culling`: light clusters and ε culling against the reference model;
@@ -76,6 +78,7 @@ mod random;
 mod scene_files;
 mod searchlight;
 mod searchlight_clusters;
+mod searchlight_shadows;
 mod self_check;
 mod shading_normals;
 mod shadow_band;

@@ -108,6 +108,7 @@ fn two_morphed_meshes_are_drawn_prepassed_and_cast_shadows_with_their_own_weight
             toward: Toward::Direction(direction.as_dvec3()),
             settings: shadows,
             cover: MapCover::Cascades(PhongCascades::default()),
+            of_other_kind: false,
         }];
         let flat = world
             .resource_mut::<Assets<Image>>()

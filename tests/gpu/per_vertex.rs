@@ -197,3 +197,70 @@ fn a_vertex_outside_the_view_is_lit_by_the_lights_that_reach_it() {
         "the off-screen corner's light shows nowhere: brightest red {brightest}"
     );
 }
+
+/// Three.js's normalized Blinn-Phong lit per vertex: the share `w` of the highlight that
+/// Fresnel's term weighs by 1 instead of `f₀` is summed apart at the vertices (`grazing`,
+/// SPEC.md, "Per-vertex lighting"). Under a black specular color `f₀` is 0, so that share
+/// is all the highlight there is; the light comes from behind the objects toward the camera,
+/// where `V·H` is small and `w` large (about a sixth on the floor), so that the share decides
+/// every lit pixel: a device that dropped it would draw them black.
+#[test]
+fn the_fresnel_share_summed_at_the_vertices_follows_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::BLACK,
+    });
+    world.spawn((
+        PhongDirectionalLight {
+            color: Color::linear_rgb(2.0, 1.8, 1.5),
+            ..default()
+        },
+        Transform::from_xyz(0.0, 1.0, -6.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let grazing_only = PhongMaterial {
+        base_color: Color::BLACK,
+        specular_color: Color::BLACK,
+        specular_model: SpecularModel::NormalizedBlinnPhong,
+        shininess: 8.0,
+        vertex_lighting: true,
+        ..default()
+    };
+    let objects = [
+        (
+            low_poly_sphere(0.9),
+            Transform::from_xyz(0.0, 0.1, 0.0),
+            grazing_only.clone(),
+        ),
+        (
+            Plane3d::default()
+                .mesh()
+                .size(6.0, 6.0)
+                .subdivisions(3)
+                .into(),
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            grazing_only,
+        ),
+    ];
+    let (rendered, inputs) = assert_scene_follows(
+        &mut harness,
+        objects,
+        "the Fresnel share summed at the vertices",
+    );
+    let covered = inputs
+        .positions
+        .pixels
+        .iter()
+        .filter(|position| inputs.materials.contains_key(&(position[3] as u32)))
+        .count();
+    let showing = rendered
+        .pixels
+        .iter()
+        .filter(|color| f64::from(color[0]) > SHOWS)
+        .count();
+    println!("{showing} of {covered} covered pixels show the Fresnel share above {SHOWS:.0e}");
+    assert!(
+        showing * 2 > covered,
+        "the Fresnel share barely shows: {showing} of {covered} covered pixels above {SHOWS:.0e}"
+    );
+}

@@ -16,6 +16,9 @@
 //! - a point light, or a wider spot, has a cube of six 90° faces widened the same way: at
 //!   most `2 · m / (resolution − 32)`, `m` the largest of `|P − light|`'s three coordinates
 //!   (the depth along the face `P` is seen in);
+//! - a beam of parallel rays (an extension kind's `PhongShadowProjection::Beam`) has one
+//!   orthographic map over its rectangle: at most `2 · h / resolution`, `h` its larger
+//!   half-extent;
 //! - a directional light has one orthographic map per cascade, a square around the sphere
 //!   through the farthest of its slice's eight corners from their mean, the radius rounded up
 //!   to a sixteenth of a world unit: at most `2 · (R + 1/16) / resolution`, the largest over
@@ -54,6 +57,9 @@ pub(crate) enum MapCover {
     Cube,
     /// A directional light's cascades, fitted to the camera drawing `P`.
     Cascades(PhongCascades),
+    /// A beam of parallel rays (`PhongShadowProjection::Beam`): one orthographic map over
+    /// its rectangle, whose larger half-extent is `half_size` world units.
+    Beam { half_size: f64 },
 }
 
 impl MapCover {
@@ -154,6 +160,7 @@ pub(crate) fn texel_bound(
             2.0 * depth * outer_angle.tan() / spanned
         }
         MapCover::Cube => 2.0 * (position - light).abs().max_element() / spanned,
+        MapCover::Beam { half_size } => 2.0 * half_size / resolution,
         MapCover::Cascades(cascades) => {
             let depth = (position - camera.eye).dot(camera.forward);
             let overlap = f64::from(cascades.overlap).clamp(0.0, 0.95);

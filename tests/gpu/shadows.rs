@@ -35,6 +35,9 @@ const SIZE: u32 = 128;
 const RAY_START: f64 = 1e-4;
 /// Directions around `P` at which the band is probed, at two radii (`b` and `b / 2`).
 const BAND_PROBES: usize = 24;
+/// How much the exact rays must darken a pixel for its shadow to count as shown: ten of the
+/// frame tests' budget, a difference no rounding makes.
+const SHADOW_SHOWS: f64 = 10.0 * TOLERANCE;
 
 /// An analytic shape of the scene, matching a mesh that is spawned for it.
 #[derive(Clone, Debug)]
@@ -202,6 +205,9 @@ pub(crate) struct CaseLight {
     pub settings: PhongShadows,
     /// What its maps cover, for the band's texel bound.
     pub cover: MapCover,
+    /// A light of a kind added from outside the crate (`PhongLightKindPlugin`): the
+    /// reference's [`reference::Lights::others`], in the order these case lights come.
+    pub of_other_kind: bool,
 }
 
 impl CaseLight {
@@ -210,7 +216,7 @@ impl CaseLight {
     fn texel_bound_at(&self, position: DVec3, viewer: &ViewerCamera) -> f64 {
         let light = match self.toward {
             Toward::Point(light) => light,
-            // Unused for cascades, which follow the camera.
+            // Unused for cascades and beams, whose maps do not widen with the distance.
             Toward::Direction(_) => DVec3::ZERO,
         };
         texel_bound(
@@ -229,6 +235,9 @@ pub(crate) struct Verdict {
     covered: usize,
     /// Of those, the ones within the band of a light that reaches them.
     in_band: usize,
+    /// Of those outside the band, the ones the exact rays darken by more than
+    /// [`SHADOW_SHOWS`]: where a shadow that went missing would show.
+    decided: usize,
     /// Pixels whose color differs from the exact-visibility reference beyond the budget.
     disagreeing: usize,
     /// Of those, the ones outside the band (must be 0).
@@ -243,11 +252,12 @@ pub(crate) struct Verdict {
 impl Verdict {
     pub fn assert_holds(&self, case: &str) {
         println!(
-            "{case}: {} covered pixels, {} within the band, {} disagree with the exact \
-             visibility, all within the band (widest {:.4} world units) but {}; largest error \
-             outside the band {:.3e} (budget {TOLERANCE:.0e})",
+            "{case}: {} covered pixels, {} within the band, {} in shadow outside it, {} \
+             disagree with the exact visibility, all within the band (widest {:.4} world \
+             units) but {}; largest error outside the band {:.3e} (budget {TOLERANCE:.0e})",
             self.covered,
             self.in_band,
+            self.decided,
             self.disagreeing,
             self.widest_band,
             self.outside_band,
@@ -269,15 +279,35 @@ impl Verdict {
         );
         assert!(self.max_error_outside <= TOLERANCE, "{case}");
     }
+
+    /// [`Self::assert_holds`], and the shadows decide at least `share` of the covered pixels
+    /// outside the band: a case whose shadows went missing cannot pass.
+    pub fn assert_holds_with_shadows_on(&self, case: &str, share: f64) {
+        self.assert_holds(case);
+        assert!(
+            self.decided as f64 >= share * self.covered as f64,
+            "{case}: the shadows darken only {} of {} covered pixels",
+            self.decided,
+            self.covered
+        );
+    }
 }
 
-/// The scene's shapes, with the entity and material of each one's mesh.
-pub(crate) struct Scene {
-    pub shapes: Vec<(Entity, Shape, Handle<PhongMaterial>)>,
+/// The scene's shapes, with the entity and material of each one's mesh (a `PhongMaterial`
+/// or one made of it).
+pub(crate) struct Scene<M: Material = PhongMaterial> {
+    pub shapes: Vec<(Entity, Shape, Handle<M>)>,
 }
 
 impl Scene {
     fn spawn(harness: &mut Harness) -> Self {
+        Self::spawn_with(harness, |material| material)
+    }
+}
+
+impl<M: PhongSceneMaterial> Scene<M> {
+    /// The floor, the sphere and the box, each drawn with `made_of` its `PhongMaterial`.
+    pub fn spawn_with(harness: &mut Harness, made_of: impl Fn(PhongMaterial) -> M) -> Self {
         let world = harness.world_mut();
         let shapes = [
             Shape::Floor { half: 4.0 },
@@ -337,7 +367,7 @@ impl Scene {
                     }
                 };
                 let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-                let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+                let material = world.resource_mut::<Assets<M>>().add(made_of(material));
                 let entity = world
                     .spawn((Mesh3d(mesh), MeshMaterial3d(material.clone()), transform))
                     .id();
@@ -403,6 +433,7 @@ fn spawn_light(
         toward,
         settings,
         cover,
+        of_other_kind: false,
     }
 }
 
@@ -478,45 +509,31 @@ pub(crate) const EVERYONE: Roles = Roles {
 };
 
 /// Renders the settled frame and judges every pixel.
-pub(crate) fn judge(
+pub(crate) fn judge<M: PhongSceneMaterial>(
     harness: &mut Harness,
-    scene: &Scene,
+    scene: &Scene<M>,
     lights: &[CaseLight],
     roles: &Roles,
-    inputs: &SurfaceInputs,
+    inputs: &SurfaceInputs<M>,
 ) -> Verdict {
     harness.settle();
     let rendered = harness.render_next_frame();
     judge_frame(harness, scene, lights, roles, inputs, &rendered)
 }
 
-/// Judges every pixel of `rendered`, lit from `inputs`.
-fn judge_frame(
-    harness: &mut Harness,
-    scene: &Scene,
-    lights: &[CaseLight],
-    roles: &Roles,
-    inputs: &SurfaceInputs,
-    rendered: &FloatImage,
-) -> Verdict {
-    let casters_except = |receiver: Entity| -> Vec<Shape> {
-        scene
-            .shapes
-            .iter()
-            .filter(|(entity, ..)| (roles.casting)(*entity) && *entity != receiver)
-            .map(|(_, shape, _)| shape.clone())
-            .collect()
-    };
-    let viewer = ViewerCamera::of(harness);
-    let reference_lights = harness.reference_lights();
-    // Each reference light with the case light it came from, matched by where its rays
-    // come from.
-    let matched: Vec<&CaseLight> = reference_lights
+/// Each of the scene's reference lights with the case light it came from: a built-in one
+/// matched by where its rays come from, the others (`reference::Lights::others`) in order.
+fn match_case_lights<'a>(
+    reference_lights: &reference::Lights,
+    lights: &'a [CaseLight],
+) -> (Vec<&'a CaseLight>, Vec<&'a CaseLight>) {
+    let built_in = reference_lights
         .lights
         .iter()
         .map(|light| {
             lights
                 .iter()
+                .filter(|case| !case.of_other_kind)
                 .find(|case| match (case.toward, light) {
                     (Toward::Direction(d), reference::Light::Directional { direction, .. }) => {
                         d.normalize().distance(direction.normalize()) < 1e-5
@@ -530,11 +547,76 @@ fn judge_frame(
                 .expect("every light of the scene is a case light")
         })
         .collect();
+    let others: Vec<&CaseLight> = lights.iter().filter(|case| case.of_other_kind).collect();
+    assert_eq!(
+        others.len(),
+        reference_lights.others.0.len(),
+        "every light of another kind is a case light"
+    );
+    (built_in, others)
+}
+
+/// The reference color of `surface` with each light's exact `V`: the built-in lights
+/// (`lights`, without `others`) through `reference::shade_shadowed`, each light of another
+/// kind's term scaled by `f + (1 − f)·V` (its `ReferenceLight` gives one term, so its case
+/// must leave the same fraction `f` of the diffuse and the specular light in shadow).
+fn shade_exactly(
+    surface: &SurfacePoint,
+    material: &reference::Material,
+    (lights, others): (&reference::Lights, &reference::OtherLights),
+    (built_in_shadowing, others_shadowing): (&[Shadowing], &[Shadowing]),
+) -> DVec3 {
+    let shaded = reference::shade_shadowed(surface, material, lights, built_in_shadowing);
+    others
+        .0
+        .iter()
+        .zip(others_shadowing)
+        .fold(shaded, |sum, (light, shadowing)| {
+            assert_eq!(
+                shadowing.diffuse_in_shadow, shadowing.specular_in_shadow,
+                "a light of another kind leaves one fraction of its term in shadow"
+            );
+            sum + light.term(surface, material) * shadowing.factors().0
+        })
+}
+
+/// The largest channel of `|actual − expected|`, relative to `max(1, |expected|)`.
+fn relative_error(actual: &[f32], expected: DVec3) -> f64 {
+    (0..3)
+        .map(|c| (f64::from(actual[c]) - expected[c]).abs() / expected[c].abs().max(1.0))
+        .fold(0.0, f64::max)
+}
+
+/// Judges every pixel of `rendered`, lit from `inputs`.
+fn judge_frame<M: PhongSceneMaterial>(
+    harness: &mut Harness,
+    scene: &Scene<M>,
+    lights: &[CaseLight],
+    roles: &Roles,
+    inputs: &SurfaceInputs<M>,
+    rendered: &FloatImage,
+) -> Verdict {
+    let casters_except = |receiver: Entity| -> Vec<Shape> {
+        scene
+            .shapes
+            .iter()
+            .filter(|(entity, ..)| (roles.casting)(*entity) && *entity != receiver)
+            .map(|(_, shape, _)| shape.clone())
+            .collect()
+    };
+    let viewer = ViewerCamera::of(harness);
+    let reference_lights = harness.reference_lights();
+    let (built_in, others) = match_case_lights(&reference_lights, lights);
+    let built_in_lights = reference::Lights {
+        others: Default::default(),
+        ..reference_lights.clone()
+    };
     let camera = harness.camera_position();
-    let materials = harness.world_mut().resource::<Assets<PhongMaterial>>();
+    let materials = harness.world_mut().resource::<Assets<M>>();
     let mut verdict = Verdict {
         covered: 0,
         in_band: 0,
+        decided: 0,
         disagreeing: 0,
         outside_band: 0,
         widest_band: 0.0,
@@ -551,7 +633,10 @@ fn judge_frame(
             .iter()
             .find(|(.., material)| material == handle)
             .expect("a shape's material");
-        let phong_material = materials.get(handle).expect("material");
+        let phong_material = materials
+            .get(handle)
+            .and_then(M::phong_material)
+            .expect("a material made of a PhongMaterial");
         // The captured inputs do not discard: where a masked surface's holes are, they hold
         // the surface, the frame what is behind it.
         if matches!(phong_material.alpha_mode, AlphaMode::Mask(_)) {
@@ -565,28 +650,33 @@ fn judge_frame(
         };
         let receives = (roles.receiving)(*entity);
         let casters = casters_except(*entity);
-        let shadowing: Vec<Shadowing> = matched
-            .iter()
-            .map(|case| Shadowing {
-                visibility: if receives {
-                    exact_visibility(surface.position, case.toward, &casters)
-                } else {
-                    1.0
-                },
-                diffuse_in_shadow: f64::from(case.settings.diffuse_in_shadow),
-                specular_in_shadow: f64::from(case.settings.specular_in_shadow),
-            })
-            .collect();
-        let expected =
-            reference::shade_shadowed(&surface, &material, &reference_lights, &shadowing);
-        let error = (0..3)
-            .map(|c| (f64::from(color[c]) - expected[c]).abs() / expected[c].abs().max(1.0))
-            .fold(0.0, f64::max);
+        let shadowing = |cases: &[&CaseLight]| -> Vec<Shadowing> {
+            cases
+                .iter()
+                .map(|case| Shadowing {
+                    visibility: if receives {
+                        exact_visibility(surface.position, case.toward, &casters)
+                    } else {
+                        1.0
+                    },
+                    diffuse_in_shadow: f64::from(case.settings.diffuse_in_shadow),
+                    specular_in_shadow: f64::from(case.settings.specular_in_shadow),
+                })
+                .collect()
+        };
+        let expected = shade_exactly(
+            &surface,
+            &material,
+            (&built_in_lights, &reference_lights.others),
+            (&shadowing(&built_in), &shadowing(&others)),
+        );
+        let unshadowed = reference::shade(&surface, &material, &reference_lights);
+        let error = relative_error(color, expected);
         verdict.covered += 1;
         // Within the band of a light that reaches the pixel: one facing away gives nothing
         // whatever its `V`.
         let in_band = receives
-            && matched.iter().any(|case| {
+            && lights.iter().any(|case| {
                 let to_light = match case.toward {
                     Toward::Direction(direction) => -direction.normalize(),
                     Toward::Point(light) => (light - surface.position).normalize(),
@@ -607,6 +697,9 @@ fn judge_frame(
                 )
             });
         verdict.in_band += usize::from(in_band);
+        // The shadow decides this pixel: outside the band, exact rays darken it visibly.
+        verdict.decided +=
+            usize::from(!in_band && (expected - unshadowed).abs().max_element() > SHADOW_SHOWS);
         if error <= TOLERANCE {
             verdict.max_error_outside = verdict.max_error_outside.max(error);
             continue;
@@ -1156,6 +1249,7 @@ fn from_0_to_100_to_0_shadow_casting_lights_every_frame_is_right() {
                     toward: Toward::Point(position.as_dvec3()),
                     settings: shadows,
                     cover: MapCover::spot(-position, 35f32.to_radians()),
+                    of_other_kind: false,
                 };
                 (entity, light)
             })

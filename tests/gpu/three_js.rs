@@ -1,5 +1,6 @@
 //! three.js as the judge: a scene written as three.js describes it (`tests/three_js/scene.json`:
-//! Phong and toon materials, an ambient, a directional, a point and a spot light, a sphere, a
+//! Phong and toon materials, an ambient, a hemisphere (its sky toward a tilted position), a
+//! directional, a point and a spot light, a sphere, a
 //! box and a floor) is converted with `bevy_phong::from_three` and rendered by the crate, and
 //! rendered by three.js r187 itself in headless Chromium (`scripts/three/render.cjs`, WebGL2 on
 //! SwiftShader, into a float target); the two pictures are compared pixel by pixel. The
@@ -118,7 +119,11 @@ fn spawn(harness: &mut Harness, scene: &Scene) -> Vec<Handle<PhongMaterial>> {
         let aimed = aimed_transform(placed.position, placed.target);
         match placed.light.to_phong().expect("a light that converts") {
             ThreeLightOf::Ambient(light) => world.insert_resource(light),
-            ThreeLightOf::Hemisphere(light) => world.insert_resource(light),
+            // three.js lights the sky side toward the light's position (docs/from-three.md).
+            ThreeLightOf::Hemisphere(light) => world.insert_resource(PhongHemisphereLight {
+                up: placed.position.normalize(),
+                ..light
+            }),
             ThreeLightOf::Directional(light) => {
                 world.spawn((light, aimed));
             }

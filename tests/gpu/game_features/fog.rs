@@ -54,7 +54,8 @@ fn fogs() -> [(&'static str, DistanceFog); 4] {
 /// Each pixel's color is the reference model's, seen through the fog at the pixel's own
 /// distance from the camera (Bevy's fog formulas on the view distance, `reference::fogged`),
 /// except on the sphere, whose material turns fog off (`fog_enabled: false`): there it is
-/// the reference model's color as it is. Tolerance: the frames' (`TOLERANCE`); the fog adds
+/// the reference model's color as it is. The box is unlit: its base color is fogged as a lit
+/// color is (SPEC.md, "Unlit"). Tolerance: the frames' (`TOLERANCE`); the fog adds
 /// an `exp` and a blend in `f32`, a few roundings of 6e-8 each.
 #[test]
 fn distance_fog_matches_the_fog_formula_on_each_pixels_view_distance() {
@@ -62,6 +63,7 @@ fn distance_fog_matches_the_fog_formula_on_each_pixels_view_distance() {
     let materials = spawn_objects(&mut harness);
     let mut assets = harness.world_mut().resource_mut::<Assets<PhongMaterial>>();
     assets.get_mut(&materials[1]).unwrap().fog_enabled = false;
+    assets.get_mut(&materials[2]).unwrap().unlit = true;
     harness.world_mut().spawn((
         PhongDirectionalLight {
             color: Color::linear_rgb(0.7, 0.6, 0.5),
@@ -85,7 +87,12 @@ fn distance_fog_matches_the_fog_formula_on_each_pixels_view_distance() {
         harness.settle();
         let rendered = harness.render_next_frame();
         let comparison = harness.compare_with(&rendered, &inputs, |material, surface| {
-            let lit = reference::shade(surface, &reference::Material::from(material), &lights);
+            let model = reference::Material::from(material);
+            let lit = if material.unlit {
+                model.unlit_color()
+            } else {
+                reference::shade(surface, &model, &lights)
+            };
             if !material.fog_enabled {
                 return Some(lit);
             }

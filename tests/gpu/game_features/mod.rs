@@ -11,6 +11,7 @@ mod hdr;
 mod msaa;
 mod prepasses;
 mod ssao;
+mod tone_curves;
 mod wireframe;
 
 use bevy::math::DVec3;

@@ -195,6 +195,7 @@ fn skinned_and_morphed_meshes_cast_the_shadow_of_their_pose() {
         toward: Toward::Direction(transform.forward().as_dvec3()),
         settings: sun.shadows,
         cover: MapCover::Cascades(sun.cascades),
+        of_other_kind: false,
     }];
     let scene = Scene { shapes };
 
