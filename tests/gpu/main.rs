@@ -72,6 +72,7 @@ mod light;
 mod morphs;
 #[path = "../fuzz/mutations.rs"]
 mod mutations;
+mod penumbra;
 mod per_vertex;
 #[path = "../fuzz/random.rs"]
 mod random;
