@@ -99,7 +99,7 @@ fn point_with_cookie(
 }
 
 /// A floor `floor` units square and a sphere at `sphere_x` for the cookies to fall on.
-fn floor_and_sphere(floor: f32, sphere_x: f32) -> [(Mesh, Transform, PhongMaterial); 2] {
+pub(crate) fn floor_and_sphere(floor: f32, sphere_x: f32) -> [(Mesh, Transform, PhongMaterial); 2] {
     [
         (
             Plane3d::default().mesh().size(floor, floor).into(),

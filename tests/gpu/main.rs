@@ -29,6 +29,8 @@
 //! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
 //!   hemisphere light, the same way;
 //! - `cookies`: light cookies on spot, point and directional lights, the same way;
+//! - `bevy_light_textures`: Bevy's spot and directional light textures on mirrored lights,
+//!   each pixel's texel found with Bevy's own formulas;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
@@ -39,6 +41,8 @@
 //!   (`Harness::compare_with_reference`), one scene per material feature and kind of light;
 //! - `shadows`: every pixel's shadowing against rays cast in `f64` to each light, within a
 //!   band around the exact shadow's edge;
+//! - `penumbra`: soft shadows (PCSS): the penumbra widens with the light's size and the
+//!   blocker's distance, and has the formula's width;
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel;
 //! - `huge_vectors`: light directions of any scale and colors past the bound, against the
 //!   reference model;
@@ -53,6 +57,7 @@
 //! The soak test is the other binary on the render device (`tests/soak`): it measures the
 //! CPU time of its process, which it must have to itself.
 
+mod bevy_light_textures;
 #[path = "../fuzz/cases.rs"]
 mod cases;
 mod clusters;

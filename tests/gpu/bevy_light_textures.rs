@@ -1,0 +1,184 @@
+//! Bevy's light textures on the lights `PhongBevyLightsPlugin` mirrors: a `SpotLightTexture`
+//! and an untiled, scaled `DirectionalLightTexture` light `PhongMaterial` meshes where Bevy's
+//! own shader would read them. The expectation does not come from the crate's cookies: each
+//! pixel's texel is found with Bevy's formulas (bevy_pbr 0.20.1, `pbr_lighting.wesl`'s
+//! `spot_light` and `directional_light`, on the light's `GlobalTransform` inverted as
+//! `decal/clustered.rs` extracts it), written again here, and the mirrored light is scaled by
+//! that texel's red channel, as Bevy scales its own.
+//!
+//! The images are four flat quadrants, each a different red: pixels whose texel lies within
+//! two texels of a quadrant's edge are not judged (the filtered reads blend there). Under
+//! WebGL2's limits cookies are not bound and the lights are untextured.
+
+use crate::{
+    cookies::{cookie_image, floor_and_sphere},
+    texture_maps::{assert_pixels_follow, expected_color},
+};
+use bevy::{
+    color::{Color, ColorToComponents},
+    light::{DirectionalLight, DirectionalLightTexture, SpotLight, SpotLightTexture},
+    prelude::*,
+};
+use bevy_phong::{
+    PhongBevyLightsPlugin, prelude::*, reference, testing::limits::COOKIE_RESOLUTION,
+};
+use bevy_phong_headless::Harness;
+use glam::{DAffine3, DVec2, DVec3};
+
+/// Render size.
+const SIZE: u32 = 128;
+/// Texels around a quadrant's edge (and the image's) whose pixels are not judged.
+const EDGE_TEXELS: f64 = 2.0;
+
+/// The red byte of each quadrant (top left, top right, bottom left, bottom right of the
+/// image): four values whose decoded reds all differ, so that a flipped or turned image
+/// fails.
+type Quadrants = [u8; 4];
+const SPOT_QUADRANTS: Quadrants = [255, 60, 160, 110];
+const SUN_QUADRANTS: Quadrants = [90, 230, 30, 180];
+
+/// An sRGB image of four quadrants.
+fn quadrant_image(quadrants: Quadrants) -> Image {
+    let half = COOKIE_RESOLUTION / 2;
+    cookie_image(move |x, y| {
+        let index = usize::from(x >= half) + 2 * usize::from(y >= half);
+        [quadrants[index], 0, 0]
+    })
+}
+
+/// The decoded red of the texel at `uv` (0 to 1 across the image, `v` down), `None` within
+/// [`EDGE_TEXELS`] of a quadrant's edge.
+fn quadrant_red(quadrants: Quadrants, uv: DVec2) -> Option<f64> {
+    let margin = EDGE_TEXELS / f64::from(COOKIE_RESOLUTION);
+    let near = |t: f64| [0.0, 0.5, 1.0].iter().any(|edge| (t - edge).abs() < margin);
+    if near(uv.x) || near(uv.y) || !(0.0..=1.0).contains(&uv.x) || !(0.0..=1.0).contains(&uv.y) {
+        return None;
+    }
+    let index = usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5);
+    Some(f64::from(
+        Color::srgb_u8(quadrants[index], 0, 0)
+            .to_linear()
+            .to_f32_array()[0],
+    ))
+}
+
+/// Bevy's spot light texture coordinates of `position`: in the light's local space
+/// (`local_from_world`), `xy / (z · tan(outer_angle))` scaled by `(−½, ½)` about ½, in
+/// front of the light only (`z < 0`).
+fn bevy_spot_uv(local_from_world: DAffine3, tan_outer: f64, position: DVec3) -> Option<DVec2> {
+    let local = local_from_world.transform_point3(position);
+    (local.z < 0.0).then(|| local.truncate() / (local.z * tan_outer) * DVec2::new(-0.5, 0.5) + 0.5)
+}
+
+/// Bevy's directional light texture coordinates of `position`: its local `xy` scaled by
+/// `(−½, ½)` about ½ (one tile two local units across).
+fn bevy_directional_uv(local_from_world: DAffine3, position: DVec3) -> DVec2 {
+    let local = local_from_world.transform_point3(position);
+    local.truncate() * DVec2::new(-0.5, 0.5) + 0.5
+}
+
+#[test]
+fn bevy_light_textures_light_where_bevys_shader_reads_them() {
+    let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
+        app.add_plugins(PhongBevyLightsPlugin);
+    });
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let outer_angle = 0.6f32;
+    let spot_at = Transform::from_xyz(-1.2, 3.0, 0.6)
+        .looking_at(Vec3::new(-0.6, -1.0, 0.2), Vec3::new(0.3, 0.0, 1.0));
+    let spot_image = world
+        .resource_mut::<Assets<Image>>()
+        .add(quadrant_image(SPOT_QUADRANTS));
+    world.spawn((
+        SpotLight {
+            intensity: 500_000.0,
+            range: 20.0,
+            outer_angle,
+            inner_angle: 0.45,
+            shadow_maps_enabled: false,
+            ..default()
+        },
+        SpotLightTexture { image: spot_image },
+        spot_at,
+    ));
+    // Scaled by 1.5: a tile three units across, centred where the light's axis meets the
+    // floor, turned about it, dark outside.
+    let sun_at = Transform::from_xyz(1.3, 3.0, -0.2)
+        .looking_to(Vec3::new(0.15, -1.0, 0.1), Vec3::new(1.0, 0.0, 0.4))
+        .with_scale(Vec3::splat(1.5));
+    let sun_image = world
+        .resource_mut::<Assets<Image>>()
+        .add(quadrant_image(SUN_QUADRANTS));
+    world.spawn((
+        DirectionalLight {
+            illuminance: 2_500.0,
+            shadow_maps_enabled: false,
+            ..default()
+        },
+        DirectionalLightTexture {
+            image: sun_image,
+            tiled: false,
+        },
+        sun_at,
+    ));
+    let spot_from_world = GlobalTransform::from(spot_at)
+        .affine()
+        .inverse()
+        .as_daffine3();
+    let sun_from_world = GlobalTransform::from(sun_at)
+        .affine()
+        .inverse()
+        .as_daffine3();
+    let tan_outer = f64::from(outer_angle).tan();
+    assert_pixels_follow(
+        harness,
+        floor_and_sphere(8.0, 1.2),
+        "Bevy's light textures",
+        &|material, surface, pixel, inputs, images, lights| {
+            let textured = inputs.every_map_bound;
+            let position = surface.position;
+            let mut lit = Vec::new();
+            for light in &lights.lights {
+                let red = match light {
+                    // Past the image's square the cone gives no light (it is inscribed in
+                    // it), whatever the texel.
+                    reference::Light::Spot { .. } => {
+                        match bevy_spot_uv(spot_from_world, tan_outer, position) {
+                            Some(uv)
+                                if uv.abs().max_element() <= 1.0 && uv.min_element() >= 0.0 =>
+                            {
+                                quadrant_red(SPOT_QUADRANTS, uv)?
+                            }
+                            _ => 1.0,
+                        }
+                    }
+                    reference::Light::Directional { .. } => {
+                        let uv = bevy_directional_uv(sun_from_world, position);
+                        let inside = (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y);
+                        if inside {
+                            quadrant_red(SUN_QUADRANTS, uv)?
+                        } else if [uv.x, uv.y]
+                            .iter()
+                            .any(|t| (t.abs() < 1e-2) || ((t - 1.0).abs() < 1e-2))
+                        {
+                            return None;
+                        } else {
+                            0.0
+                        }
+                    }
+                    reference::Light::Point { .. } => unreachable!("no point light"),
+                };
+                let red = if textured { red } else { 1.0 };
+                lit.push(light.tinted(DVec3::splat(red)));
+            }
+            let lights = reference::Lights {
+                lights: lit,
+                ..lights.clone()
+            };
+            expected_color(material, surface, pixel, inputs, images, &lights)
+        },
+    );
+}
