@@ -1,10 +1,11 @@
-//! Bevy's light textures on the lights `PhongBevyLightsPlugin` mirrors: a `SpotLightTexture`
-//! and an untiled, scaled `DirectionalLightTexture` light `PhongMaterial` meshes where Bevy's
-//! own shader would read them. The expectation does not come from the crate's cookies: each
-//! pixel's texel is found with Bevy's formulas (bevy_pbr 0.20.1, `pbr_lighting.wesl`'s
-//! `spot_light` and `directional_light`, on the light's `GlobalTransform` inverted as
-//! `decal/clustered.rs` extracts it), written again here, and the mirrored light is scaled by
-//! that texel's red channel, as Bevy scales its own.
+//! Bevy's light textures on the lights `PhongBevyLightsPlugin` mirrors: a `SpotLightTexture`,
+//! an untiled, scaled `DirectionalLightTexture` and a `PointLightTexture` in each cube layout
+//! light `PhongMaterial` meshes where Bevy's own shader would read them. The expectation
+//! does not come from the crate's cookies: each pixel's texel is found with Bevy's formulas
+//! (bevy_pbr 0.20.1, `pbr_lighting.wesl`'s `spot_light`, `directional_light` and
+//! `cubemap_uv`, on the light's `GlobalTransform` inverted as `decal/clustered.rs` extracts
+//! it), written again here, and the mirrored light is scaled by that texel's red channel, as
+//! Bevy scales its own.
 //!
 //! The images are four flat quadrants, each a different red: pixels whose texel lies within
 //! two texels of a quadrant's edge are not judged (the filtered reads blend there). Under
@@ -15,8 +16,12 @@ use crate::{
     texture_maps::{assert_pixels_follow, expected_color},
 };
 use bevy::{
+    camera::primitives::CubemapLayout,
     color::{Color, ColorToComponents},
-    light::{DirectionalLight, DirectionalLightTexture, SpotLight, SpotLightTexture},
+    light::{
+        DirectionalLight, DirectionalLightTexture, PointLight, PointLightTexture, SpotLight,
+        SpotLightTexture,
+    },
     prelude::*,
 };
 use bevy_phong::{
@@ -28,7 +33,7 @@ use glam::{DAffine3, DVec2, DVec3};
 /// Render size.
 const SIZE: u32 = 128;
 /// Texels around a quadrant's edge (and the image's) whose pixels are not judged.
-const EDGE_TEXELS: f64 = 2.0;
+const EDGE_TEXELS: f64 = 1.0;
 
 /// The red byte of each quadrant (top left, top right, bottom left, bottom right of the
 /// image): four values whose decoded reds all differ, so that a flipped or turned image
@@ -181,4 +186,166 @@ fn bevy_light_textures_light_where_bevys_shader_reads_them() {
             expected_color(material, surface, pixel, inputs, images, &lights)
         },
     );
+}
+
+/// The red byte of `face` (Bevy's order: +X, −X, +Y, −Y, −Z, +Z) at `quadrant` of it (top
+/// left, top right, bottom left, bottom right): 24 values whose decoded reds all differ.
+fn cube_red_byte(face: usize, quadrant: usize) -> u8 {
+    (20 + 40 * face + 10 * quadrant) as u8
+}
+
+/// Where each face lies in an image of `layout`: its size and its corner, as fractions of
+/// the image (bevy_pbr 0.20.1, `pbr_lighting.wesl`'s `cubemap_uv`).
+fn face_placement(layout: CubemapLayout, face: usize) -> (DVec2, DVec2) {
+    let nibble = |packed: u32| f64::from((packed >> (4 * face)) & 0xF);
+    let (size, corner) = match layout {
+        CubemapLayout::CrossVertical => (
+            DVec2::new(1.0 / 3.0, 1.0 / 4.0),
+            DVec2::new(nibble(0x111102), nibble(0x132011)),
+        ),
+        CubemapLayout::CrossHorizontal => (
+            DVec2::new(1.0 / 4.0, 1.0 / 3.0),
+            DVec2::new(nibble(0x131102), nibble(0x112011)),
+        ),
+        CubemapLayout::SequenceHorizontal => {
+            (DVec2::new(1.0 / 6.0, 1.0), DVec2::new(face as f64, 0.0))
+        }
+        CubemapLayout::SequenceVertical => {
+            (DVec2::new(1.0, 1.0 / 6.0), DVec2::new(0.0, face as f64))
+        }
+    };
+    (size, corner * size)
+}
+
+/// Bevy's face and the coordinates on it (0 to 1, `v` down) of a direction from the light,
+/// in its local space (`cubemap_uv`).
+fn bevy_cube_face_uv(direction: DVec3) -> (usize, DVec2) {
+    let a = direction.abs();
+    let (face, uv, divisor) = if a.x >= a.y.max(a.z) {
+        if direction.x < 0.0 {
+            (1, DVec2::new(-direction.z, -direction.y), -direction.x)
+        } else {
+            (0, DVec2::new(direction.z, -direction.y), direction.x)
+        }
+    } else if a.y >= a.z {
+        if direction.y < 0.0 {
+            (3, DVec2::new(direction.x, direction.z), -direction.y)
+        } else {
+            (2, DVec2::new(direction.x, -direction.z), direction.y)
+        }
+    } else if direction.z < 0.0 {
+        (4, DVec2::new(direction.x, -direction.y), -direction.z)
+    } else {
+        (5, DVec2::new(direction.x, direction.y), direction.z)
+    };
+    (face, uv / divisor * 0.5 + 0.5)
+}
+
+/// A cube image of `layout` at the atlas's size: each face's four quadrants their
+/// [`cube_red_byte`], the cells no face uses black.
+fn cube_image(layout: CubemapLayout) -> Image {
+    let side = f64::from(COOKIE_RESOLUTION);
+    cookie_image(move |x, y| {
+        let at = DVec2::new((f64::from(x) + 0.5) / side, (f64::from(y) + 0.5) / side);
+        let red = (0..6)
+            .find_map(|face| {
+                let (size, corner) = face_placement(layout, face);
+                let uv = (at - corner) / size;
+                let inside = uv.min_element() >= 0.0 && uv.max_element() < 1.0;
+                inside.then(|| {
+                    cube_red_byte(
+                        face,
+                        usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5),
+                    )
+                })
+            })
+            .unwrap_or(0);
+        [red, 0, 0]
+    })
+}
+
+/// A `PointLightTexture` in each of Bevy's four layouts lights a mirrored point light's
+/// surroundings where Bevy's `cubemap_uv` reads it: each face, and each quadrant of it, at
+/// its place in the image. Pixels whose texel lies within two texels of a face's or a
+/// quadrant's edge are not judged.
+#[test]
+fn a_point_light_texture_lights_where_bevys_cube_layouts_place_each_face() {
+    for layout in [
+        CubemapLayout::CrossVertical,
+        CubemapLayout::CrossHorizontal,
+        CubemapLayout::SequenceVertical,
+        CubemapLayout::SequenceHorizontal,
+    ] {
+        let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
+            app.add_plugins(PhongBevyLightsPlugin);
+        });
+        let world = harness.world_mut();
+        world.insert_resource(PhongAmbientLight {
+            color: Color::linear_rgb(0.05, 0.05, 0.05),
+        });
+        let point_at = Transform::from_xyz(0.6, 0.9, 1.2).with_rotation(Quat::from_euler(
+            EulerRot::YXZ,
+            0.5,
+            0.3,
+            0.0,
+        ));
+        let image = world
+            .resource_mut::<Assets<Image>>()
+            .add(cube_image(layout));
+        world.spawn((
+            PointLight {
+                intensity: 200_000.0,
+                range: 20.0,
+                shadow_maps_enabled: false,
+                ..default()
+            },
+            PointLightTexture {
+                image,
+                cubemap_layout: layout,
+            },
+            point_at,
+        ));
+        let point_from_world = GlobalTransform::from(point_at)
+            .affine()
+            .inverse()
+            .as_daffine3();
+        let margin = EDGE_TEXELS / f64::from(COOKIE_RESOLUTION);
+        assert_pixels_follow(
+            harness,
+            floor_and_sphere(8.0, -1.2),
+            &format!("Bevy's point light texture, {layout:?}"),
+            &|material, surface, pixel, inputs, images, lights| {
+                let direction = point_from_world.transform_point3(surface.position);
+                let (face, uv) = bevy_cube_face_uv(direction);
+                let (size, _) = face_placement(layout, face);
+                // Two texels of the image, in the face's coordinates.
+                let near = |t: f64, extent: f64| {
+                    [0.0, 0.5, 1.0]
+                        .iter()
+                        .any(|edge| (t - edge).abs() * extent < margin)
+                };
+                if near(uv.x, size.x) || near(uv.y, size.y) {
+                    return None;
+                }
+                let quadrant = usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5);
+                let red = match inputs.every_map_bound {
+                    true => f64::from(
+                        Color::srgb_u8(cube_red_byte(face, quadrant), 0, 0)
+                            .to_linear()
+                            .to_f32_array()[0],
+                    ),
+                    false => 1.0,
+                };
+                let lights = reference::Lights {
+                    lights: lights
+                        .lights
+                        .iter()
+                        .map(|light| light.tinted(DVec3::splat(red)))
+                        .collect(),
+                    ..lights.clone()
+                };
+                expected_color(material, surface, pixel, inputs, images, &lights)
+            },
+        );
+    }
 }
