@@ -416,7 +416,7 @@ pub fn validate_materials(
 mod tests {
     use super::*;
     use crate::{
-        PhongDirectionalLight,
+        PhongDirectionalLight, PhongPointLight,
         test_app::{invalid_inputs, test_app},
     };
 
@@ -462,6 +462,45 @@ mod tests {
         assert_eq!(light.shadows.resolution, PhongShadows::MAX_RESOLUTION);
         assert_eq!(light.cascades.count, PhongCascades::MAX_COUNT);
         assert_eq!(light.cascades.first_far_bound, 20.0);
+    }
+
+    /// The boundaries of two rules: a first cascade that ends where the last does is valid
+    /// (one split at `max_distance`), and a range of exactly 0 is not (it is replaced with
+    /// `None`, with a warning).
+    #[test]
+    fn a_first_cascade_ending_at_the_last_is_valid_and_a_zero_range_is_not() {
+        let mut app = test_app(|_| {});
+        let sun = app
+            .world_mut()
+            .spawn(PhongDirectionalLight {
+                cascades: PhongCascades {
+                    first_far_bound: 20.0,
+                    max_distance: 20.0,
+                    ..Default::default()
+                },
+                ..Default::default()
+            })
+            .id();
+        let lamp = app
+            .world_mut()
+            .spawn(PhongPointLight {
+                range: Some(0.0),
+                ..Default::default()
+            })
+            .id();
+        app.update();
+        let warnings = invalid_inputs(&mut app);
+        let fields: Vec<(&Owner, &str)> = warnings
+            .iter()
+            .map(|warning| (&warning.owner, warning.field))
+            .collect();
+        assert_eq!(fields, [(&Owner::Entity(lamp), "range")]);
+        let sun = app.world().get::<PhongDirectionalLight>(sun).unwrap();
+        assert_eq!(sun.cascades.first_far_bound, 20.0);
+        assert_eq!(
+            app.world().get::<PhongPointLight>(lamp).unwrap().range,
+            None
+        );
     }
 
     #[test]

@@ -291,3 +291,88 @@ fn displacement_follows_the_morph_and_the_skin() {
         assert!(on_it >= 200, "{name}: {on_it} pixels");
     }
 }
+
+/// A vertex whose normal has no length has no direction to move along: it stays where it
+/// is while its neighbours move (SPEC.md, "Displacement"), and nothing drawn from it is NaN.
+/// A floor of 4 × 4 one-unit cells at `y = −1`, every vertex lifted 0.3 by the map but the
+/// middle one, whose normal is zero: the pixels outside that vertex's cells lie at
+/// `y = −0.7`, and its cells dip toward it (many pixels below −0.71).
+#[test]
+fn a_vertex_without_a_normal_stays_where_it_is() {
+    const LIFT: f32 = 0.3;
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_map_lights(world);
+    let map = world
+        .resource_mut::<Assets<Image>>()
+        .add(float_map(|_, _| [1.0, 0.0, 0.0, 1.0]));
+    let mut floor: Mesh = Plane3d::default()
+        .mesh()
+        .size(4.0, 4.0)
+        .subdivisions(3)
+        .into();
+    let Some(VertexAttributeValues::Float32x3(positions)) =
+        floor.attribute(Mesh::ATTRIBUTE_POSITION)
+    else {
+        panic!("a plane has positions");
+    };
+    let middle = positions
+        .iter()
+        .position(|p| Vec3::from(*p).length() < 1e-6)
+        .expect("a vertex in the middle");
+    let Some(VertexAttributeValues::Float32x3(normals)) =
+        floor.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
+    else {
+        panic!("a plane has normals");
+    };
+    normals[middle] = [0.0; 3];
+    let mesh = world.resource_mut::<Assets<Mesh>>().add(floor);
+    let material = world
+        .resource_mut::<Assets<PhongMaterial>>()
+        .add(PhongMaterial {
+            base_color: Color::srgb(0.7, 0.7, 0.6),
+            displacement_map: Some(map),
+            displacement_scale: LIFT,
+            ..default()
+        });
+    world.spawn((
+        Mesh3d(mesh),
+        MeshMaterial3d(material),
+        Transform::from_xyz(0.0, -1.0, 0.0),
+    ));
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs();
+    assert_eq!(rendered.non_finite_pixels(), 0, "NaN or infinite pixels");
+    let lifted = f64::from(LIFT) - 1.0;
+    let (mut outside, mut dipping) = (0, 0);
+    for position in &inputs.positions.pixels {
+        if !inputs.materials.contains_key(&(position[3] as u32)) {
+            continue;
+        }
+        let [x, y, z] = [0, 1, 2].map(|c| f64::from(position[c]));
+        // Rounding of the captured position: a few 1e-7 at these coordinates.
+        assert!(
+            (-1.0 - 1e-5..=lifted + 1e-5).contains(&y),
+            "a floor pixel at y = {y}, outside [−1, {lifted}]"
+        );
+        if x.abs().max(z.abs()) > 1.0 + 1e-3 {
+            outside += 1;
+            assert!(
+                (y - lifted).abs() < 1e-5,
+                "a pixel outside the middle vertex's cells at y = {y}, not {lifted}"
+            );
+        } else {
+            dipping += usize::from(y < lifted - 0.01);
+        }
+    }
+    println!("{outside} pixels lifted, {dipping} dipping toward the unmoved vertex");
+    assert!(
+        outside > 1000,
+        "only {outside} pixels outside the middle cells"
+    );
+    assert!(
+        dipping > 100,
+        "only {dipping} pixels dip toward the unmoved vertex"
+    );
+}
