@@ -82,15 +82,21 @@ fn bevy_directional_uv(local_from_world: DAffine3, position: DVec3) -> DVec2 {
     local.truncate() * DVec2::new(-0.5, 0.5) + 0.5
 }
 
-#[test]
-fn bevy_light_textures_light_where_bevys_shader_reads_them() {
+/// A harness that mirrors Bevy's lights, under an ambient light of 0.05.
+fn mirroring_harness() -> Harness {
     let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
         app.add_plugins(PhongBevyLightsPlugin);
     });
-    let world = harness.world_mut();
-    world.insert_resource(PhongAmbientLight {
+    harness.world_mut().insert_resource(PhongAmbientLight {
         color: Color::linear_rgb(0.05, 0.05, 0.05),
     });
+    harness
+}
+
+#[test]
+fn bevy_light_textures_light_where_bevys_shader_reads_them() {
+    let mut harness = mirroring_harness();
+    let world = harness.world_mut();
     let outer_angle = 0.6f32;
     let spot_at = Transform::from_xyz(-1.2, 3.0, 0.6)
         .looking_at(Vec3::new(-0.6, -1.0, 0.2), Vec3::new(0.3, 0.0, 1.0));
@@ -276,13 +282,8 @@ fn a_point_light_texture_lights_where_bevys_cube_layouts_place_each_face() {
         CubemapLayout::SequenceVertical,
         CubemapLayout::SequenceHorizontal,
     ] {
-        let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
-            app.add_plugins(PhongBevyLightsPlugin);
-        });
+        let mut harness = mirroring_harness();
         let world = harness.world_mut();
-        world.insert_resource(PhongAmbientLight {
-            color: Color::linear_rgb(0.05, 0.05, 0.05),
-        });
         let point_at = Transform::from_xyz(0.6, 0.9, 1.2).with_rotation(Quat::from_euler(
             EulerRot::YXZ,
             0.5,

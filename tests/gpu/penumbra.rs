@@ -17,6 +17,14 @@ use bevy_phong::{
 use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 use glam::DVec3;
 
+/// The scene's inputs and its frame, each once nothing compiles any more.
+fn settled_frame(harness: &mut Harness) -> (SurfaceInputs, FloatImage) {
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    harness.settle();
+    (inputs, harness.render_next_frame())
+}
+
 /// Each kind of light's penumbra widens with its softness: a spot and a point light's
 /// size (world units) and a directional light's angle (degrees), each over no softness
 /// and two growing ones; the verdict holds at each.
@@ -46,10 +54,7 @@ fn the_penumbra_widens_with_softness() {
         for softness in softnesses {
             let (mut harness, scene) = harness();
             let lights = vec![spawn(&mut harness, PhongShadows { softness, ..on() })];
-            harness.settle();
-            let inputs = harness.capture_inputs();
-            harness.settle();
-            let rendered = harness.render_next_frame();
+            let (inputs, rendered) = settled_frame(&mut harness);
             // The verdict still holds: the widest filter is within the band.
             judge_frame(&mut harness, &scene, &lights, &EVERYONE, &inputs, &rendered)
                 .assert_holds(&format!("{kind}, softness {softness}"));
@@ -107,10 +112,7 @@ fn the_penumbra_widens_with_the_distance_between_blocker_and_receiver() {
     for raise in [0.0, 1.5] {
         let sphere = scene.sphere();
         scene.translate(&mut harness, sphere, DVec3::new(0.0, raise, 0.0));
-        harness.settle();
-        let inputs = harness.capture_inputs();
-        harness.settle();
-        let rendered = harness.render_next_frame();
+        let (inputs, rendered) = settled_frame(&mut harness);
         judge_frame(&mut harness, &scene, &lights, &roles, &inputs, &rendered)
             .assert_holds(&format!("sphere raised {raise}"));
         let (partial, full) = floor_shadow_pixels(&mut harness, &scene, &inputs, &rendered);
@@ -204,10 +206,7 @@ fn the_penumbra_has_the_formulas_width() {
         casting: &|entity| entity != cube,
         receiving: &|_| true,
     };
-    harness.settle();
-    let inputs = harness.capture_inputs();
-    harness.settle();
-    let rendered = harness.render_next_frame();
+    let (inputs, rendered) = settled_frame(&mut harness);
     judge_frame(&mut harness, &scene, &lights, &roles, &inputs, &rendered)
         .assert_holds("the sphere raised, soft");
     let visibilities = floor_visibilities(&mut harness, &scene, &inputs, &rendered);

@@ -31,6 +31,15 @@ fn low_poly_sphere(radius: f32) -> Mesh {
     Sphere::new(radius).mesh().ico(1).expect("one subdivision")
 }
 
+/// A floor 6 units square of 32 triangles.
+fn coarse_floor() -> Mesh {
+    Plane3d::default()
+        .mesh()
+        .size(6.0, 6.0)
+        .subdivisions(3)
+        .into()
+}
+
 #[test]
 fn lights_summed_at_the_vertices_follow_the_reference_model() {
     let mut harness = Harness::new(SIZE, SIZE);
@@ -105,11 +114,7 @@ fn lights_summed_at_the_vertices_follow_the_reference_model() {
         ),
         // A coarse floor under all three lights.
         (
-            Plane3d::default()
-                .mesh()
-                .size(6.0, 6.0)
-                .subdivisions(3)
-                .into(),
+            coarse_floor(),
             Transform::from_xyz(0.0, -1.0, 0.0),
             PhongMaterial {
                 base_color: Color::srgb(0.8, 0.8, 0.7),
@@ -233,11 +238,7 @@ fn the_fresnel_share_summed_at_the_vertices_follows_the_reference_model() {
             grazing_only.clone(),
         ),
         (
-            Plane3d::default()
-                .mesh()
-                .size(6.0, 6.0)
-                .subdivisions(3)
-                .into(),
+            coarse_floor(),
             Transform::from_xyz(0.0, -1.0, 0.0),
             grazing_only,
         ),

@@ -25,8 +25,10 @@ const HARD_EDGE_BAND: f64 = 1e-4;
 /// At most this share of the lit pixels may sit in that band (it is a thin line).
 const MAX_SKIPPED_SHARE: f64 = 0.02;
 
-pub(crate) fn searchlit_scene() -> (Harness, SurfaceInputs<SearchlitMaterial>) {
-    let mut harness = Harness::with_plugins(128, 128, |app| {
+/// A `size`² harness with the searchlights' plugin, under an ambient light of 0.05, and the
+/// extension that binds their buffer to a material.
+pub(crate) fn searchlit_harness(size: u32) -> (Harness, SearchlightExtension) {
+    let mut harness = Harness::with_plugins(size, size, |app| {
         app.add_plugins(SearchlightPlugin);
     });
     let world = harness.world_mut();
@@ -35,6 +37,12 @@ pub(crate) fn searchlit_scene() -> (Harness, SurfaceInputs<SearchlitMaterial>) {
     });
     let extension =
         SearchlightExtension::new(world.resource::<PhongLightKindBuffer<Searchlight>>());
+    (harness, extension)
+}
+
+pub(crate) fn searchlit_scene() -> (Harness, SurfaceInputs<SearchlitMaterial>) {
+    let (mut harness, extension) = searchlit_harness(128);
+    let world = harness.world_mut();
     let objects: [(Mesh, Transform, Color, f32); 3] = [
         (
             Plane3d::default().mesh().size(12.0, 12.0).into(),

@@ -8,12 +8,13 @@
 //! `f + (1 − f)·V`.
 
 use crate::{
-    light::{Searchlight, SearchlightExtension, SearchlightPlugin, SearchlitMaterial},
+    light::{Searchlight, SearchlitMaterial},
+    searchlight::searchlit_harness,
     shadow_band::MapCover,
     shadows::{CaseLight, EVERYONE, Scene, Toward, judge},
 };
 use bevy::prelude::*;
-use bevy_phong::{extension::PhongLightKindBuffer, prelude::*};
+use bevy_phong::prelude::*;
 use bevy_phong_headless::Harness;
 
 /// Render size, as the other shadow tests'.
@@ -33,15 +34,7 @@ const EDGE: f32 = 0.4;
 
 /// The shadow scene's floor, sphere and box, searchlit, under a little ambient light.
 fn searchlit_shadow_scene() -> (Harness, Scene<SearchlitMaterial>) {
-    let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
-        app.add_plugins(SearchlightPlugin);
-    });
-    let world = harness.world_mut();
-    world.insert_resource(PhongAmbientLight {
-        color: Color::linear_rgb(0.05, 0.05, 0.05),
-    });
-    let extension =
-        SearchlightExtension::new(world.resource::<PhongLightKindBuffer<Searchlight>>());
+    let (mut harness, extension) = searchlit_harness(SIZE);
     let scene = Scene::spawn_with(&mut harness, |base| SearchlitMaterial {
         base,
         extension: extension.clone(),
