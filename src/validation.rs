@@ -223,7 +223,8 @@ impl Checker {
         }
     }
 
-    /// Cascade settings in their ranges: 1 to 4 cascades, the first ending before the last.
+    /// Cascade settings in their ranges: 1 to 4 cascades, the first ending at or before the
+    /// last.
     pub(crate) fn cascades(&mut self, cascades: &mut PhongCascades) {
         let count = cascades.count.clamp(1, PhongCascades::MAX_COUNT);
         if count != cascades.count {

@@ -100,8 +100,9 @@ pub struct Searchlight {
     /// listed only in the light clusters it reaches.
     pub range: Option<f32>,
     /// Shadow settings: the beam's parallel rays get one orthographic shadow map over the
-    /// beam's cross-section, `shadow_distance` deep; a `softness` is an angle in degrees, as
-    /// a directional light's. Default off.
+    /// square around every cross-section's soft edge (`radius + 2·edge` from the axis),
+    /// `shadow_distance` deep; a `softness` is an angle in degrees, as a directional
+    /// light's. Default off.
     pub shadows: PhongShadows,
     /// How far along the beam its shadow map reaches, world units. Default 50.
     pub shadow_distance: f32,
@@ -149,6 +150,12 @@ pub fn beam_up(transform: &GlobalTransform, direction: Vec3) -> Vec3 {
     (up - direction * up.dot(direction)).normalize_or_zero()
 }
 
+/// How far from the axis any cross-section's soft edge reaches: `radius + 2·edge` (a
+/// triangle's corner; a circle's `radius + edge`, a square's or diamond's `radius + √2·edge`).
+fn widest_reach(radius: f32, edge: f32) -> f32 {
+    radius + 2.0 * edge
+}
+
 impl PhongLightKind for Searchlight {
     type Gpu = GpuSearchlight;
     // A beam that fades takes its share of ε, as the crate's point and spot lights do.
@@ -188,13 +195,12 @@ impl PhongLightKind for Searchlight {
         record.reach = reach;
     }
 
-    /// The prism of the beam's cross-section, `reach` long: its soft edge reaches at most
-    /// `radius + 2·edge` from the axis (a triangle's corner; a circle's `radius + edge`, a
-    /// square's or diamond's `radius + √2·edge`).
+    /// The prism of the beam's cross-section, `reach` long, its soft edge at most
+    /// [`widest_reach`] from the axis.
     fn bounding_sphere(record: &GpuSearchlight, reach: f32) -> Option<BoundingSphere> {
         let half_length = 0.5 * reach;
         let center = Vec3::from(record.position) + Vec3::from(record.direction) * half_length;
-        let radius = half_length.hypot(record.radius + 2.0 * record.edge);
+        let radius = half_length.hypot(widest_reach(record.radius, record.edge));
         Some(BoundingSphere::new(center, radius))
     }
 
@@ -223,7 +229,7 @@ impl PhongLightKind for Searchlight {
     fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
         let direction = light_direction(transform);
         let up = beam_up(transform, direction);
-        let half_size = self.radius + self.edge;
+        let half_size = widest_reach(self.radius, self.edge);
         Some(PhongShadowRequest {
             projection: PhongShadowProjection::Beam {
                 origin: transform.translation(),

@@ -7,9 +7,9 @@
 //! it), written again here, and the mirrored light is scaled by that texel's red channel, as
 //! Bevy scales its own.
 //!
-//! The images are four flat quadrants, each a different red: pixels whose texel lies within
-//! two texels of a quadrant's edge are not judged (the filtered reads blend there). Under
-//! WebGL2's limits cookies are not bound and the lights are untextured.
+//! The images are flat quadrants, each a different red: pixels whose texel lies within
+//! [`EDGE_TEXELS`] of a quadrant's or a face's edge are not judged. Under WebGL2's limits
+//! cookies are not bound and the lights are untextured.
 
 use crate::{
     cookies::{cookie_image, floor_and_sphere},
@@ -32,7 +32,10 @@ use glam::{DAffine3, DVec2, DVec3};
 
 /// Render size.
 const SIZE: u32 = 128;
-/// Texels around a quadrant's edge (and the image's) whose pixels are not judged.
+/// How near (in the image's texels) a quadrant's or a face's edge a pixel's texel may lie and
+/// still be judged: an edge of a cube face falls inside a texel where the face is not a whole
+/// number of texels wide (256 / 3), and the filtered read blends half a texel either side;
+/// one texel holds both (the pixels judged just past it match to 8e-7).
 const EDGE_TEXELS: f64 = 1.0;
 
 /// The red byte of each quadrant (top left, top right, bottom left, bottom right of the
@@ -42,29 +45,50 @@ type Quadrants = [u8; 4];
 const SPOT_QUADRANTS: Quadrants = [255, 60, 160, 110];
 const SUN_QUADRANTS: Quadrants = [90, 230, 30, 180];
 
+/// The quadrant of `uv` (0 to 1 across, `v` down): 0 top left, 1 top right, 2 bottom left,
+/// 3 bottom right.
+fn quadrant(uv: DVec2) -> usize {
+    usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5)
+}
+
+/// Whether `uv` lies within `margin` of a quadrant's edge (0, ½ or 1 on either axis).
+fn near_an_edge(uv: DVec2, margin: DVec2) -> bool {
+    let near = |t: f64, margin: f64| [0.0, 0.5, 1.0].iter().any(|edge| (t - edge).abs() < margin);
+    near(uv.x, margin.x) || near(uv.y, margin.y)
+}
+
+/// [`EDGE_TEXELS`] in the image's coordinates.
+fn image_margin() -> DVec2 {
+    DVec2::splat(EDGE_TEXELS / f64::from(COOKIE_RESOLUTION))
+}
+
+/// The red of an sRGB byte, decoded as the sampler decodes it.
+fn decoded_red(byte: u8) -> f64 {
+    f64::from(Color::srgb_u8(byte, 0, 0).to_linear().to_f32_array()[0])
+}
+
+/// The inverse of a light's transform: its local space, as Bevy extracts it for the texture.
+fn local_from_world(transform: Transform) -> DAffine3 {
+    GlobalTransform::from(transform)
+        .affine()
+        .inverse()
+        .as_daffine3()
+}
+
 /// An sRGB image of four quadrants.
 fn quadrant_image(quadrants: Quadrants) -> Image {
-    let half = COOKIE_RESOLUTION / 2;
-    cookie_image(move |x, y| {
-        let index = usize::from(x >= half) + 2 * usize::from(y >= half);
-        [quadrants[index], 0, 0]
-    })
+    cookie_image(move |x, y| [quadrants[quadrant(texel_center(x, y))], 0, 0])
+}
+
+/// The centre of the texel `(x, y)` of an image at the atlas's size, 0 to 1 across.
+fn texel_center(x: u32, y: u32) -> DVec2 {
+    (DVec2::new(f64::from(x), f64::from(y)) + 0.5) / f64::from(COOKIE_RESOLUTION)
 }
 
 /// The decoded red of the texel at `uv` (0 to 1 across the image, `v` down), `None` within
 /// [`EDGE_TEXELS`] of a quadrant's edge.
 fn quadrant_red(quadrants: Quadrants, uv: DVec2) -> Option<f64> {
-    let margin = EDGE_TEXELS / f64::from(COOKIE_RESOLUTION);
-    let near = |t: f64| [0.0, 0.5, 1.0].iter().any(|edge| (t - edge).abs() < margin);
-    if near(uv.x) || near(uv.y) || !(0.0..=1.0).contains(&uv.x) || !(0.0..=1.0).contains(&uv.y) {
-        return None;
-    }
-    let index = usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5);
-    Some(f64::from(
-        Color::srgb_u8(quadrants[index], 0, 0)
-            .to_linear()
-            .to_f32_array()[0],
-    ))
+    (!near_an_edge(uv, image_margin())).then(|| decoded_red(quadrants[quadrant(uv)]))
 }
 
 /// Bevy's spot light texture coordinates of `position`: in the light's local space
@@ -135,15 +159,10 @@ fn bevy_light_textures_light_where_bevys_shader_reads_them() {
         },
         sun_at,
     ));
-    let spot_from_world = GlobalTransform::from(spot_at)
-        .affine()
-        .inverse()
-        .as_daffine3();
-    let sun_from_world = GlobalTransform::from(sun_at)
-        .affine()
-        .inverse()
-        .as_daffine3();
+    let spot_from_world = local_from_world(spot_at);
+    let sun_from_world = local_from_world(sun_at);
     let tan_outer = f64::from(outer_angle).tan();
+    let inside = |uv: DVec2| uv.min_element() >= 0.0 && uv.max_element() <= 1.0;
     assert_pixels_follow(
         harness,
         floor_and_sphere(8.0, 1.2),
@@ -158,26 +177,17 @@ fn bevy_light_textures_light_where_bevys_shader_reads_them() {
                     // it), whatever the texel.
                     reference::Light::Spot { .. } => {
                         match bevy_spot_uv(spot_from_world, tan_outer, position) {
-                            Some(uv)
-                                if uv.abs().max_element() <= 1.0 && uv.min_element() >= 0.0 =>
-                            {
-                                quadrant_red(SPOT_QUADRANTS, uv)?
-                            }
+                            Some(uv) if inside(uv) => quadrant_red(SPOT_QUADRANTS, uv)?,
                             _ => 1.0,
                         }
                     }
+                    // Dark outside the untiled image.
                     reference::Light::Directional { .. } => {
                         let uv = bevy_directional_uv(sun_from_world, position);
-                        let inside = (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y);
-                        if inside {
-                            quadrant_red(SUN_QUADRANTS, uv)?
-                        } else if [uv.x, uv.y]
-                            .iter()
-                            .any(|t| (t.abs() < 1e-2) || ((t - 1.0).abs() < 1e-2))
-                        {
-                            return None;
-                        } else {
-                            0.0
+                        match inside(uv) {
+                            true => quadrant_red(SUN_QUADRANTS, uv)?,
+                            false if near_an_edge(uv, image_margin()) => return None,
+                            false => 0.0,
                         }
                     }
                     reference::Light::Point { .. } => unreachable!("no point light"),
@@ -250,20 +260,14 @@ fn bevy_cube_face_uv(direction: DVec3) -> (usize, DVec2) {
 /// A cube image of `layout` at the atlas's size: each face's four quadrants their
 /// [`cube_red_byte`], the cells no face uses black.
 fn cube_image(layout: CubemapLayout) -> Image {
-    let side = f64::from(COOKIE_RESOLUTION);
     cookie_image(move |x, y| {
-        let at = DVec2::new((f64::from(x) + 0.5) / side, (f64::from(y) + 0.5) / side);
+        let at = texel_center(x, y);
         let red = (0..6)
             .find_map(|face| {
                 let (size, corner) = face_placement(layout, face);
                 let uv = (at - corner) / size;
                 let inside = uv.min_element() >= 0.0 && uv.max_element() < 1.0;
-                inside.then(|| {
-                    cube_red_byte(
-                        face,
-                        usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5),
-                    )
-                })
+                inside.then(|| cube_red_byte(face, quadrant(uv)))
             })
             .unwrap_or(0);
         [red, 0, 0]
@@ -272,7 +276,7 @@ fn cube_image(layout: CubemapLayout) -> Image {
 
 /// A `PointLightTexture` in each of Bevy's four layouts lights a mirrored point light's
 /// surroundings where Bevy's `cubemap_uv` reads it: each face, and each quadrant of it, at
-/// its place in the image. Pixels whose texel lies within two texels of a face's or a
+/// its place in the image. Pixels whose texel lies within [`EDGE_TEXELS`] of a face's or a
 /// quadrant's edge are not judged.
 #[test]
 fn a_point_light_texture_lights_where_bevys_cube_layouts_place_each_face() {
@@ -306,11 +310,7 @@ fn a_point_light_texture_lights_where_bevys_cube_layouts_place_each_face() {
             },
             point_at,
         ));
-        let point_from_world = GlobalTransform::from(point_at)
-            .affine()
-            .inverse()
-            .as_daffine3();
-        let margin = EDGE_TEXELS / f64::from(COOKIE_RESOLUTION);
+        let point_from_world = local_from_world(point_at);
         assert_pixels_follow(
             harness,
             floor_and_sphere(8.0, -1.2),
@@ -318,23 +318,13 @@ fn a_point_light_texture_lights_where_bevys_cube_layouts_place_each_face() {
             &|material, surface, pixel, inputs, images, lights| {
                 let direction = point_from_world.transform_point3(surface.position);
                 let (face, uv) = bevy_cube_face_uv(direction);
+                // The image's margin, in the face's coordinates.
                 let (size, _) = face_placement(layout, face);
-                // Two texels of the image, in the face's coordinates.
-                let near = |t: f64, extent: f64| {
-                    [0.0, 0.5, 1.0]
-                        .iter()
-                        .any(|edge| (t - edge).abs() * extent < margin)
-                };
-                if near(uv.x, size.x) || near(uv.y, size.y) {
+                if near_an_edge(uv, image_margin() / size) {
                     return None;
                 }
-                let quadrant = usize::from(uv.x >= 0.5) + 2 * usize::from(uv.y >= 0.5);
                 let red = match inputs.every_map_bound {
-                    true => f64::from(
-                        Color::srgb_u8(cube_red_byte(face, quadrant), 0, 0)
-                            .to_linear()
-                            .to_f32_array()[0],
-                    ),
+                    true => decoded_red(cube_red_byte(face, quadrant(uv))),
                     false => 1.0,
                 };
                 let lights = reference::Lights {

@@ -296,7 +296,7 @@ fn displacement_follows_the_morph_and_the_skin() {
 /// is while its neighbours move (SPEC.md, "Displacement"), and nothing drawn from it is NaN.
 /// A floor of 4 × 4 one-unit cells at `y = −1`, every vertex lifted 0.3 by the map but the
 /// middle one, whose normal is zero: the pixels outside that vertex's cells lie at
-/// `y = −0.7`, and its cells dip toward it (many pixels below −0.71).
+/// `y = −0.7`, its cells dip toward it (many pixels below −0.71), down to −1 at it.
 #[test]
 fn a_vertex_without_a_normal_stays_where_it_is() {
     const LIFT: f32 = 0.3;
@@ -346,6 +346,10 @@ fn a_vertex_without_a_normal_stays_where_it_is() {
     assert_eq!(rendered.non_finite_pixels(), 0, "NaN or infinite pixels");
     let lifted = f64::from(LIFT) - 1.0;
     let (mut outside, mut dipping) = (0, 0);
+    // The lowest pixel within 0.15 of the unmoved vertex (a few pixels across): a barycentric
+    // weight falls by at most √2 per unit, so it lies below −1 + 0.3 · √2 · 0.15 = −0.936 (a
+    // vertex lifted half-way, at −0.85, lies above).
+    let mut lowest_near_it = f64::INFINITY;
     for position in &inputs.positions.pixels {
         if !inputs.materials.contains_key(&(position[3] as u32)) {
             continue;
@@ -365,8 +369,14 @@ fn a_vertex_without_a_normal_stays_where_it_is() {
         } else {
             dipping += usize::from(y < lifted - 0.01);
         }
+        if x.hypot(z) < 0.15 {
+            lowest_near_it = lowest_near_it.min(y);
+        }
     }
-    println!("{outside} pixels lifted, {dipping} dipping toward the unmoved vertex");
+    println!(
+        "{outside} pixels lifted, {dipping} dipping toward the unmoved vertex, the lowest near \
+         it at {lowest_near_it:.4}"
+    );
     assert!(
         outside > 1000,
         "only {outside} pixels outside the middle cells"
@@ -374,5 +384,9 @@ fn a_vertex_without_a_normal_stays_where_it_is() {
     assert!(
         dipping > 100,
         "only {dipping} pixels dip toward the unmoved vertex"
+    );
+    assert!(
+        lowest_near_it < -0.936,
+        "the unmoved vertex's neighbourhood lies at {lowest_near_it} at the lowest, not near −1"
     );
 }

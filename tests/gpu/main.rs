@@ -29,8 +29,8 @@
 //! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
 //!   hemisphere light, the same way;
 //! - `cookies`: light cookies on spot, point and directional lights, the same way;
-//! - `bevy_light_textures`: Bevy's spot and directional light textures on mirrored lights,
-//!   each pixel's texel found with Bevy's own formulas;
+//! - `bevy_light_textures`: Bevy's spot, directional and point light textures (each cube
+//!   layout) on mirrored lights, each pixel's texel found with Bevy's own formulas;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,

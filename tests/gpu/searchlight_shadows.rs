@@ -11,17 +11,17 @@ use crate::{
     light::{Searchlight, SearchlitMaterial},
     searchlight::searchlit_harness,
     shadow_band::MapCover,
-    shadows::{CaseLight, EVERYONE, Scene, Toward, judge},
+    shadows::{CaseLight, EVERYONE, SIZE, Scene, SpawnLights, Toward, judge, on, spot},
 };
 use bevy::prelude::*;
-use bevy_phong::prelude::*;
+use bevy_phong::{
+    extension::{PhongLightKind, PhongShadowProjection},
+    prelude::*,
+};
 use bevy_phong_headless::Harness;
-
-/// Render size, as the other shadow tests'.
-const SIZE: u32 = 128;
 /// The share of the covered pixels the beam's shadows must darken outside the band: the
-/// sphere's and the box's shadows on the floor inside the beam, 2.3% (the soft beam, whose
-/// band is wider) to 5.5% of them measured; a missing map would leave none.
+/// sphere's and the box's shadows on the floor inside the beam, 2.0 % (the soft beam, whose
+/// band is wider) to 5.4 % of them measured; a missing map would leave none.
 const SHADOWED_SHARE: f64 = 0.015;
 /// Where the beam starts, above and to the left of everything, and where its axis meets the
 /// floor: slanted, so that the sphere's and the box's shadows fall beside them in view.
@@ -45,60 +45,35 @@ fn searchlit_shadow_scene() -> (Harness, Scene<SearchlitMaterial>) {
 /// Spawns the beam with `shadows` and returns what the judge needs of it.
 fn beam(harness: &mut Harness, shadows: PhongShadows) -> CaseLight {
     let direction = (BEAM_TARGET - BEAM_ORIGIN).normalize();
-    harness.world_mut().spawn((
-        Searchlight {
-            color: Color::linear_rgb(1.2, 1.1, 0.9),
-            radius: RADIUS,
-            edge: EDGE,
-            shadows,
-            shadow_distance: 12.0,
-            ..default()
-        },
-        Transform::from_translation(BEAM_ORIGIN).looking_to(direction, Vec3::Z),
-    ));
+    let searchlight = Searchlight {
+        color: Color::linear_rgb(1.2, 1.1, 0.9),
+        radius: RADIUS,
+        edge: EDGE,
+        shadows,
+        shadow_distance: 12.0,
+        ..default()
+    };
+    let at = Transform::from_translation(BEAM_ORIGIN).looking_to(direction, Vec3::Z);
+    // The rectangle the kind requests for its map.
+    let Some(PhongShadowProjection::Beam { half_size, .. }) = searchlight
+        .shadow(&GlobalTransform::from(at))
+        .map(|request| request.projection)
+    else {
+        panic!("a searchlight requests a beam's map");
+    };
+    harness.world_mut().spawn((searchlight, at));
     CaseLight {
         toward: Toward::Direction(direction.as_dvec3()),
         settings: shadows,
-        // The rectangle the example requests: the cross-section's circle with its edge.
         cover: MapCover::Beam {
-            half_size: f64::from(RADIUS + EDGE),
+            half_size: f64::from(half_size.max_element()),
         },
         of_other_kind: true,
     }
 }
 
-/// A shadow-casting spot light beside the beam (a built-in kind).
-fn spot(harness: &mut Harness, shadows: PhongShadows) -> CaseLight {
-    let (position, outer_angle) = (Vec3::new(1.5, 4.0, 2.0), 40f32.to_radians());
-    harness.world_mut().spawn((
-        PhongSpotLight {
-            color: Color::linear_rgb(0.5, 0.4, 0.3),
-            outer_angle,
-            inner_angle: 30f32.to_radians(),
-            shadows,
-            ..default()
-        },
-        Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    CaseLight {
-        toward: Toward::Point(position.as_dvec3()),
-        settings: shadows,
-        cover: MapCover::spot(-position, outer_angle),
-        of_other_kind: false,
-    }
-}
-
-/// Shadows on, at the other shadow tests' resolution.
-fn on() -> PhongShadows {
-    PhongShadows {
-        resolution: 512,
-        ..PhongShadows::ON
-    }
-}
-
 #[test]
 fn a_searchlight_beam_shadows_where_its_parallel_rays_are_blocked() {
-    type SpawnLights = dyn Fn(&mut Harness) -> Vec<CaseLight>;
     let cases: [(&str, &SpawnLights); 3] = [
         ("beam", &|h| vec![beam(h, on())]),
         // Percentage-closer soft shadows: the beam's maps are orthographic, its softness an
@@ -126,7 +101,10 @@ fn a_searchlight_beam_shadows_where_its_parallel_rays_are_blocked() {
                 specular_in_shadow: 0.1,
                 ..on()
             };
-            vec![beam(h, beam_dimmed), spot(h, spot_dimmed)]
+            vec![
+                beam(h, beam_dimmed),
+                spot(h, Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, spot_dimmed),
+            ]
         }),
     ];
     for (case, lights) in cases {

@@ -143,8 +143,9 @@ fn cascade_ends(cascades: &PhongCascades) -> Vec<f64> {
 }
 
 /// An upper bound of the world size of a texel of the maps of a light at `light` (unused
-/// for a directional one) with `resolution`² maps covering `cover`, at `position`; 0 where
-/// no map covers it.
+/// for a directional one and a beam) with `resolution`² maps covering `cover`, at
+/// `position`; 0 where no cascade covers it (a beam's texel is the same everywhere: outside
+/// its map, where the light is unshadowed, the band only grows).
 pub(crate) fn texel_bound(
     cover: &MapCover,
     resolution: u32,

@@ -28,7 +28,7 @@ use bevy_phong_headless::{CAMERA_POSITION, FloatImage, Harness, HarnessCamera, S
 use glam::{DMat3, DVec3};
 
 /// Render size.
-const SIZE: u32 = 128;
+pub(crate) const SIZE: u32 = 128;
 /// Rays start this far along their direction from `P`, world units: past the rounding of
 /// the read-back position (a few 1e-7 at these coordinates) so that a surface does not
 /// block its own light where it faces it.
@@ -746,7 +746,7 @@ pub(crate) fn one_cascade() -> PhongCascades {
 }
 
 /// Spawns a case's lights.
-type SpawnLights = dyn Fn(&mut Harness) -> Vec<CaseLight>;
+pub(crate) type SpawnLights = dyn Fn(&mut Harness) -> Vec<CaseLight>;
 
 pub(crate) const SUN: Vec3 = Vec3::new(-0.5, -1.0, -0.35);
 

@@ -32,11 +32,11 @@ fn an_hdr_camera_keeps_phong_colors_above_one() {
         .assert_within("hdr", HDR_TOLERANCE);
 }
 
-/// Each of Bevy's tonemapping curves that reads no lookup table maps every Phong color `c`
-/// as its formula does (`tone_curves.rs`), after the camera's exposure and before its
-/// saturation (`ColorGrading`'s global part), in the material's shader on a camera without
-/// HDR (as `StandardMaterial` does it); Reinhard's also in Bevy's tonemapping pass on an HDR
-/// camera. (The others are not compared there: the half floats' rounding grows through a
+/// Bevy's Reinhard, luminance Reinhard, ACES fitted and Khronos PBR Neutral curves map every
+/// Phong color `c` as their formulas do (`tone_curves.rs`), after the camera's exposure and
+/// before its saturation (`ColorGrading`'s global part), in the material's shader on a camera
+/// without HDR (as `StandardMaterial` does it); Reinhard's also in Bevy's tonemapping pass on
+/// an HDR camera. (The others are not compared there: the half floats' rounding grows through a
 /// curve whose channels share the luminance beyond `HDR_TOLERANCE`, and Bevy's luminance
 /// Reinhard divides the black background's zero luminance by itself.) The scene's
 /// highlights exceed 1.5, where each curve is far from the identity: an untonemapped frame

@@ -40,9 +40,10 @@ fn visibility_of(factor: f64, albedo: f64) -> f64 {
 }
 
 /// Each channel of a pixel's ambient factor, recovered from the frames, may differ from the
-/// one the formula predicts by this much: the pixels' `f32` rounding (10⁻⁷ of values above
-/// 0.05) and the cubic's in the shader (a few 10⁻⁷), the visibility recovered from the red
-/// channel carrying them over by the ratio of the channels' slopes (under 4 on this floor).
+/// one the formula predicts by this much: the ratio of two `f32` pixels (a relative 6e-8
+/// each, on values down to 0.005) and the cubic's rounding in the shader (a few 10⁻⁷), the
+/// visibility recovered from the red channel carrying them over by the ratio of the
+/// channels' slopes (under 4 on this floor).
 const FACTOR_TOLERANCE: f64 = 1e-5;
 
 /// With `ScreenSpaceAmbientOcclusion` on the camera:
@@ -67,7 +68,9 @@ fn ssao_darkens_the_ambient_term_only() {
     let floor = materials[0].clone();
     let floor_color = Color::srgb(0.9, 0.5, 0.15);
     // An AO map on it, four levels from 0.4 to 0.85: SSAO multiplies it (SPEC.md, "Baked
-    // light"), so that the ratio of the frames is still SSAO's factor alone.
+    // light"), so that the ratio of the frames is still SSAO's factor alone. (The map itself
+    // is checked in `surface_inputs`; here its combination with SSAO: a `min`, as
+    // `StandardMaterial` takes it, fails.)
     let ao_map = harness
         .world_mut()
         .resource_mut::<Assets<Image>>()
@@ -199,7 +202,8 @@ fn ssao_darkens_the_ambient_term_only() {
          green and blue factors are the formula's within {largest:.2e}"
     );
     // The floor around the sphere's and the cube's feet is occluded over thousands of
-    // pixels (3,802 measured, the AO map darkening some below the blue channel's floor of 0.005); at least 100 says the check saw the creases at all.
+    // pixels (3,802 measured; the AO map darkens some below the blue channel's floor of
+    // 0.005); at least 100 says the check saw the creases at all.
     assert!(judged >= 100, "only {judged} occluded floor pixels judged");
     assert!(
         darkest < 0.9,

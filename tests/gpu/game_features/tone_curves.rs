@@ -1,19 +1,23 @@
 //! Bevy's tonemapping (`bevy_core_pipeline` 0.20.1, `tonemapping.wesl`, `tone_mapping`),
-//! written again in `f64` from its formulas for the methods that read no lookup table, with
+//! written again in `f64` from its formulas for four of the curves that read no lookup table,
+//! with
 //! the global color grading a camera applies in both places Bevy tonemaps (the material's
 //! shader and the post-process): the exposure before the curve, the saturation after it.
 //! The grading Bevy does per section, or with a hue or white balance, is compiled into its
 //! post-process only; these tests leave it at its default.
 
 use bevy::{core_pipeline::tonemapping::Tonemapping, render::view::ColorGradingGlobal};
+use bevy_phong::reference;
 use glam::{DMat3, DVec3};
 
 /// Rec. 709's luminance weights, as `tonemapping_luminance` takes them.
 const LUMINANCE: DVec3 = DVec3::new(0.2126, 0.7152, 0.0722);
 
-/// Bevy's `tone_mapping` of a lit `color` under `method` and the camera's `grading`;
-/// `None` for a method with a lookup table (AgX, TonyMcMapface, Blender Filmic), or the
-/// display transform, which this module does not write again.
+/// Bevy's `tone_mapping` of a lit `color` under `method` and the camera's `grading`:
+/// Reinhard (the reference model's `reinhard`), luminance Reinhard, ACES fitted and Khronos
+/// PBR Neutral. `None` for the others: the methods with a lookup table (AgX, TonyMcMapface,
+/// Blender Filmic), the display transform and `Linear`, which this module does not write
+/// again, and `Tonemapping::None`, under which Bevy grades nothing either.
 pub fn tone_mapped(
     color: DVec3,
     method: Tonemapping,
@@ -21,8 +25,7 @@ pub fn tone_mapped(
 ) -> Option<DVec3> {
     let exposed = color.max(DVec3::ZERO) * 2f64.powf(f64::from(grading.exposure));
     let curved = match method {
-        Tonemapping::None => exposed,
-        Tonemapping::Reinhard => exposed / (DVec3::ONE + exposed),
+        Tonemapping::Reinhard => reference::reinhard(exposed),
         Tonemapping::ReinhardLuminance => {
             let luminance = exposed.dot(LUMINANCE);
             exposed * (1.0 / (1.0 + luminance))
@@ -84,9 +87,8 @@ mod tests {
     /// Values worked by hand: Reinhard's 1 → ½; the luminance curve scales gray 1 by ½ and
     /// keeps hue; ACES's fit maps gray 1 to `(1.0245786 − 0.000090537) / (0.983729 +
     /// 0.4329510 + 0.238081)` = 0.6191154 (the matrices' rows sum to 1 within 1e-5, so gray
-    /// stays gray within that),
-    /// clamps black's −0.00038 to 0 and large values to 1; PBR Neutral leaves a mid gray 0.5
-    /// at 0.46 (its toe takes 0.04).
+    /// stays gray within that), clamps black's −0.00038 to 0 and large values to 1; PBR
+    /// Neutral leaves a mid gray 0.5 at 0.46 (its toe takes 0.04).
     #[test]
     fn each_curve_gives_values_worked_by_hand() {
         let neutral = ColorGradingGlobal::default();
@@ -116,13 +118,15 @@ mod tests {
                 .max_element()
                 < 1e-12
         );
-        // A doubled exposure is an exposure of 1; a saturation of 0 leaves gray.
+        // An exposure of 1 doubles the color before the curve (red 4: Reinhard's 0.8); a
+        // saturation of 0 leaves its luminance as gray.
         let graded = ColorGradingGlobal {
             exposure: 1.0,
             post_saturation: 0.0,
             ..ColorGradingGlobal::default()
         };
-        let grayed = tone_mapped(red, Tonemapping::None, &graded).unwrap();
-        assert!((grayed - gray(4.0 * 0.2126)).abs().max_element() < 1e-12);
+        let grayed = tone_mapped(red, Tonemapping::Reinhard, &graded).unwrap();
+        assert!((grayed - gray(0.8 * 0.2126)).abs().max_element() < 1e-12);
+        assert_eq!(tone_mapped(red, Tonemapping::None, &graded), None);
     }
 }
