@@ -172,6 +172,68 @@ pub fn influence_radius(decay: [f32; 3], intensity: f32, epsilon: f32) -> f32 {
 mod tests {
     use super::*;
 
+    /// The boundaries of `influence_radius`: a light exactly at ε reaches ε out to where its
+    /// fall-off begins (1 unit for `1/d²`), one below ε reaches nowhere, and so does a NaN
+    /// intensity.
+    #[test]
+    fn a_light_at_epsilon_reaches_to_its_fall_off_and_one_below_or_nan_nowhere() {
+        let epsilon = 1.0 / 256.0;
+        let inverse_square = [0.0, 0.0, 1.0];
+        assert_eq!(influence_radius(inverse_square, epsilon, epsilon), 1.0);
+        assert_eq!(
+            influence_radius(inverse_square, 0.5 * epsilon, epsilon),
+            0.0
+        );
+        assert_eq!(influence_radius(inverse_square, f32::NAN, epsilon), 0.0);
+    }
+
+    /// A camera's clusters are brought into `1..=64` tiles along each axis and `1..=64`
+    /// slices; values inside stay as they are.
+    #[test]
+    fn view_clusters_are_clamped_into_their_ranges() {
+        let clamped = PhongViewClusters {
+            tiles: UVec2::new(0, 1000),
+            slices: 0,
+        }
+        .clamped();
+        assert_eq!(
+            clamped,
+            PhongViewClusters {
+                tiles: UVec2::new(1, PhongViewClusters::MAX_TILES),
+                slices: 1,
+            }
+        );
+        let inside = PhongViewClusters {
+            tiles: UVec2::new(7, 3),
+            slices: 40,
+        };
+        assert_eq!(inside.clamped(), inside);
+    }
+
+    /// The radius is rounded up to the next `f32`: at or past the exact radius (the root of
+    /// `constant + linear·d + quadratic·d² = I / ε`, worked in `f64` in its textbook form),
+    /// and the `f32` just below it falls short of the exact one.
+    #[test]
+    fn the_radius_is_the_exact_one_rounded_up_to_an_f32() {
+        let epsilon = 1.0 / 1024.0;
+        for step in 1..200 {
+            let intensity = 0.01 * step as f32;
+            let decay = [1.0, 0.3, 0.07];
+            // The coefficients as the function takes them: `f32`s.
+            let [constant, linear, quadratic] = decay.map(f64::from);
+            let threshold = f64::from(intensity) / f64::from(epsilon) - constant;
+            let exact = (-linear + (linear * linear + 4.0 * quadratic * threshold).sqrt())
+                / (2.0 * quadratic);
+            let radius = influence_radius(decay, intensity, epsilon);
+            assert!(
+                f64::from(radius) >= exact && f64::from(radius.next_down()) < exact,
+                "intensity {intensity}: radius {:.17}, the f32 below it {:.17}, exact {exact:.17}",
+                f64::from(radius),
+                f64::from(radius.next_down())
+            );
+        }
+    }
+
     #[test]
     fn the_common_opengl_decay_falls_to_one_256th_at_about_88_units() {
         let radius = influence_radius([1.0, 0.09, 0.032], 1.0, 1.0 / 256.0);
