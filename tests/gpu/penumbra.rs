@@ -12,7 +12,7 @@ use crate::shadows::{
 use bevy::prelude::*;
 use bevy_phong::{
     prelude::*,
-    reference::{self, Shadowing, SurfacePoint},
+    reference::{self, Shadowing},
 };
 use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs};
 use glam::DVec3;
@@ -267,12 +267,10 @@ fn floor_visibilities(
     rendered: &FloatImage,
 ) -> Vec<(DVec3, f64)> {
     let floor = &scene.shapes[0].2;
-    let tag = inputs
-        .materials
-        .iter()
-        .find(|(_, handle)| *handle == floor)
-        .map(|(tag, _)| *tag)
-        .expect("the floor is drawn");
+    assert!(
+        inputs.materials.values().any(|handle| handle == floor),
+        "the floor is drawn"
+    );
     let reference_lights = harness.reference_lights();
     let camera = harness.camera_position();
     let material = reference::Material::from(
@@ -284,16 +282,12 @@ fn floor_visibilities(
     );
     let mut visibilities = Vec::new();
     for (index, color) in rendered.pixels.iter().enumerate() {
-        let position = inputs.positions.pixels[index];
-        if position[3] as u32 != tag {
+        let Some((handle, surface)) = inputs.surface_at(index, camera) else {
+            continue;
+        };
+        if handle != floor {
             continue;
         }
-        let normal = inputs.normals.pixels[index];
-        let surface = SurfacePoint {
-            position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
-            normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
-            camera,
-        };
         let shade = |visibility| {
             let shadowing = Shadowing {
                 visibility,

@@ -628,9 +628,7 @@ pub(crate) fn judge_frame<M: PhongSceneMaterial>(
         max_error_outside: 0.0,
     };
     for (index, color) in rendered.pixels.iter().enumerate() {
-        let position = inputs.positions.pixels[index];
-        let normal = inputs.normals.pixels[index];
-        let Some(handle) = inputs.materials.get(&(position[3] as u32)) else {
+        let Some((handle, surface)) = inputs.surface_at(index, camera) else {
             continue;
         };
         let (entity, ..) = scene
@@ -648,11 +646,6 @@ pub(crate) fn judge_frame<M: PhongSceneMaterial>(
             continue;
         }
         let material = reference::Material::from(phong_material);
-        let surface = SurfacePoint {
-            position: DVec3::new(position[0].into(), position[1].into(), position[2].into()),
-            normal: DVec3::new(normal[0].into(), normal[1].into(), normal[2].into()),
-            camera,
-        };
         let receives = (roles.receiving)(*entity);
         let casters = casters_except(*entity);
         let shadowing = |cases: &[&CaseLight]| -> Vec<Shadowing> {
