@@ -13,8 +13,15 @@ scripts/ensure-vulkan.sh
 scripts/ensure-browser.sh
 source scripts/runtime-dir.sh
 export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
-# Each part says when it starts, in seconds since the script began.
-part() { echo "== test.sh [${SECONDS} s] $*"; }
+# Each part says when it starts, in seconds since the script began; the script ends with
+# each part's seconds.
+STEP_PREFIX="== test.sh"
+source scripts/steps.sh
+part() { step "$@"; }
+
+# The examples rendered and compared below (the minimal one is rendered by the GPU tests:
+# it opens a window and nothing else).
+EXAMPLES="showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon"
 
 part "every target's tests, on the device's own limits"
 # The unit, integration and doc tests, the benchmark once and the `bench` example's tests;
@@ -24,15 +31,12 @@ cargo test "$@"
 # The glTF test asset is what its writer writes (a workspace crate without Bevy).
 cargo test -p phong_gltf_asset "$@"
 
-# Every example must still render: each writes its PNG headless and exits.
+# Every example must still render: each writes its PNG headless, then, in the same run,
+# compares its scene with the reference model, pixel by pixel (what the comparison leaves
+# out and why: examples/support/compare.rs), and exits.
 part "the examples"
-for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
-    cargo run --quiet --example "$example" -- --headless "target/examples/$example.png"
-done
-# Each example's scene against the reference model, pixel by pixel (what the comparison
-# leaves out and why: examples/support/compare.rs).
-for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
-    cargo run --quiet --example "$example" -- --compare
+for example in $EXAMPLES; do
+    cargo run --quiet --example "$example" -- --headless "target/examples/$example.png" --compare
 done
 # The showcase's sphere shows its three highlights where the lighting model puts them.
 cargo run --quiet --example showcase -- --check target/examples/showcase.png
@@ -50,15 +54,12 @@ cargo run --quiet --example bench -- --quick
 export WGPU_SETTINGS_PRIO=webgl2
 part "the render tests and the examples under WebGL2's limits"
 cargo test --test gpu --test soak "$@"
-for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
-    cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png"
-done
-for example in showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon; do
-    cargo run --quiet --example "$example" -- --compare
+for example in $EXAMPLES; do
+    cargo run --quiet --example "$example" -- --headless "target/examples/webgl2/$example.png" --compare
 done
 cargo run --quiet --example showcase -- --check target/examples/webgl2/showcase.png
 cargo run --quiet --example render_scene -- assets/scenes/shadows.phong_scene.ron \
     --out target/examples/webgl2/render_scene_shadows --size 480x270
 cargo run --quiet --example render_scene -- assets/scenes/shapes.phong_scene.ron \
     --out target/examples/webgl2/render_scene --size 480x270 --check
-part "done"
+steps_summary

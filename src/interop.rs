@@ -45,6 +45,10 @@
 //! A mirrored light is updated whenever its Bevy light changes, and removed with it. Do not
 //! also put a Phong light of the same kind on a Bevy light's entity: the mirror owns it.
 
+mod standard_material;
+
+pub use standard_material::PhongStandardMaterialPlugin;
+
 use crate::{
     lights::{
         ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCookie,

@@ -75,8 +75,13 @@
 //! - **Scene and material files** ([`scene`]): a scene written in RON
 //!   (`*.phong_scene.ron`), spawned by a [`PhongSceneRoot`](scene::PhongSceneRoot) and
 //!   hot-reloaded; a material alone in a `*.phong.ron` file.
-//! - **Texture maps**: base color, specular, emissive and normal maps on [`PhongMaterial`],
-//!   each sampled only by the materials that have it.
+//! - **Texture maps**: base color, specular, emissive, normal, alpha, bump, displacement,
+//!   light, ambient occlusion and toon ramp maps and an environment cube map on
+//!   [`PhongMaterial`] ([`MaterialFeatures`] lists them), each sampled only by the materials
+//!   that have it.
+//! - **From Bevy's own types**: `PhongMaterial::from(&StandardMaterial)`;
+//!   [`PhongStandardMaterialPlugin`] switches every `StandardMaterial` mesh of a game to it,
+//!   and [`PhongBevyLightsPlugin`] mirrors Bevy's lights.
 //! - **Shadows**: each light's [`PhongShadows`] turns on shadow maps that the
 //!   plugin renders (cascades for directional lights, a cube for point lights, one map for
 //!   spot lights), filtered with percentage-closer soft shadows; `NotShadowCaster` and
@@ -172,12 +177,14 @@ mod validation;
 mod view_key;
 
 #[cfg(test)]
+mod docs_tests;
+#[cfg(test)]
 mod layering_tests;
 
 pub use culling::{PhongLightCulling, PhongViewClusters};
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
-pub use interop::{BevyLightExposure, PhongBevyLightsPlugin};
+pub use interop::{BevyLightExposure, PhongBevyLightsPlugin, PhongStandardMaterialPlugin};
 pub use lights::{
     ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
     PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
@@ -192,13 +199,15 @@ pub use schedule::PhongSystems;
 pub use shadows::PhongLit;
 pub use validation::{InvalidInput, Owner};
 
-/// `use bevy_phong::prelude::*;` imports the plugin, the material and the lights.
+/// `use bevy_phong::prelude::*;` imports the plugins, the material and the lights: everything
+/// a game names to set up a scene.
 pub mod prelude {
     pub use crate::{
-        ConeEdge, Decay, DiffuseMode, PhongAmbientLight, PhongCascades, PhongDirectionalLight,
-        PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
-        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongSceneMaterial, PhongShadows,
-        PhongSpotLight, PhongViewClusters, SpecularMode, SpecularModel,
+        BevyLightExposure, ConeEdge, Decay, DiffuseMode, EnvironmentCombine, PhongAmbientLight,
+        PhongBevyLightsPlugin, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
+        PhongLightCookie, PhongLightCulling, PhongMaterial, PhongMaterialAppExt, PhongPlugin,
+        PhongPointLight, PhongSceneMaterial, PhongShadows, PhongSpotLight,
+        PhongStandardMaterialPlugin, PhongViewClusters, SpecularMode, SpecularModel,
     };
 
     #[cfg(feature = "scene")]

@@ -1,14 +1,18 @@
 //! [`PhongMaterial`]: the surface a Phong or Blinn-Phong mesh is made of.
 
 mod features;
+mod from_standard;
 mod key;
 mod maps;
+pub(crate) mod metallic_roughness;
 mod ranges;
 mod vertex_lighting;
 
 pub use features::MaterialFeatures;
+pub(crate) use from_standard::phong_material_from_standard;
 pub use key::PhongMaterialKey;
 pub(crate) use maps::{MapDevices, material_maps};
+pub(crate) use metallic_roughness::MetallicRoughness;
 pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};
 
 use crate::displacement::DisplacementUniform;
@@ -546,7 +550,7 @@ pub struct PhongMaterialUniform {
     /// [`PhongMaterial::bump_scale`].
     pub bump_scale: f32,
     /// The stylized modes' numbers: the diffuse wrap, the toon bands (as a float) and their
-    /// smoothing, the toon highlight's smoothing ([`Self::style_of`]).
+    /// smoothing, the toon highlight's smoothing (`PhongMaterial::style_of`).
     pub style: Vec4,
     /// The rim: `rim_color · rim_strength` (linear RGB) and `rim_power`.
     pub rim: Vec4,
@@ -623,7 +627,7 @@ impl PhongMaterialUniform {
 }
 
 /// The material's displacement as the vertex stage reads it, each value in its range
-/// ([`PhongMaterial::in_range`]).
+/// (`PhongMaterial::in_range`).
 impl From<&PhongMaterial> for DisplacementUniform {
     fn from(material: &PhongMaterial) -> Self {
         let material = material.in_range();

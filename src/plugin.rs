@@ -1,6 +1,8 @@
 //! [`PhongPlugin`], which adds every part of the crate to an app, and
 //! [`PhongMaterialAppExt`] for the materials that bind its lights.
 
+mod order;
+
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     extension::add_light_kind,
@@ -28,6 +30,7 @@ use bevy::{
     camera::visibility::VisibilitySystems,
     ecs::schedule::{IntoScheduleConfigs, common_conditions::resource_exists},
     image::Image,
+    log::warn,
     pbr::{MaterialPlugin, MeshMaterial3d},
     render::RenderApp,
     shader::{Shader, load_shader_library},
@@ -38,14 +41,16 @@ use core::hash::Hash;
 /// gather system that writes them into the light buffer each frame, [`PhongMaterial`], and
 /// the loaders of scene and material files ([`crate::scene`], feature `scene`).
 ///
-/// Add it after Bevy's `DefaultPlugins` (it needs the render plugin to draw; without a
-/// render app, as under `MinimalPlugins`, it still gathers lights, which is what ECS-only
-/// tests use).
+/// Add it after Bevy's `DefaultPlugins`: `.add_plugins((DefaultPlugins, PhongPlugin))`.
+/// Added before Bevy's `AssetPlugin` or `RenderPlugin`, it stops with a message that says
+/// so. Without a renderer (`MinimalPlugins` and `AssetPlugin`, as ECS-only tests use) it
+/// still gathers and validates lights, and warns once that nothing is drawn.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PhongPlugin;
 
 impl Plugin for PhongPlugin {
     fn build(&self, app: &mut App) {
+        order::check_build(app);
         init_shader_buffers(app);
         configure_phong_systems(app);
         app.init_resource::<PhongAmbientLight>()
@@ -163,6 +168,14 @@ impl Plugin for PhongPlugin {
         app.add_phong_material::<PhongMaterial>();
         #[cfg(feature = "scene")]
         crate::scene::add_scene_files(app);
+    }
+
+    fn finish(&self, app: &mut App) {
+        match order::check_finish(app) {
+            Ok(None) => {}
+            Ok(Some(warning)) => warn!("{warning}"),
+            Err(message) => panic!("{message}"),
+        }
     }
 }
 

@@ -21,7 +21,7 @@ pub use crate::surface_inputs::{
 };
 pub use crate::view_key::view_key;
 
-/// The ranges and bounds every input is clamped to ([`crate::limits`]).
+/// The ranges and bounds every input is clamped to (the crate's `limits` module).
 pub mod limits {
     pub use crate::limits::*;
 }

@@ -20,16 +20,19 @@
 use super::StillLoading;
 use bevy::{
     app::{AppExit, PluginGroupBuilder},
+    camera::RenderTarget,
     image::{ImageSampler, ImageSamplerDescriptor},
     light::NotShadowCaster,
     pbr::Lightmap,
     prelude::*,
-    render::render_resource::TextureDimension,
+    render::render_resource::{TextureDimension, TextureFormat, TextureUsages},
     time::TimeUpdateStrategy,
 };
 use bevy_phong::PhongSceneMaterial;
-use bevy_phong_headless::{Harness, HarnessCamera, TOLERANCE, frame_driven_plugins};
-use std::time::Duration;
+use bevy_phong_headless::{
+    Harness, HarnessCamera, TOLERANCE, frame_driven_plugins, read_back_frame,
+};
+use std::{path::Path, path::PathBuf, time::Duration};
 
 /// Size of the compared frame: a third of the PNG's, so that the reference model's f64
 /// pass over every pixel stays short.
@@ -50,9 +53,11 @@ pub fn add_plugins(
 }
 
 /// Renders `app`'s scene and compares it with the reference model: success where every
-/// judged pixel is within [`TOLERANCE`] and most pixels of each object are judged.
-pub fn run<M: PhongSceneMaterial>(app: App) -> AppExit {
-    match compare::<M>(app) {
+/// judged pixel is within [`TOLERANCE`] and most pixels of each object are judged. With a
+/// `picture` path, the example's own view is written there first, as a headless run writes
+/// it.
+pub fn run<M: PhongSceneMaterial>(app: App, picture: Option<PathBuf>) -> AppExit {
+    match compare::<M>(app, picture) {
         Ok(summary) => {
             println!("--compare: {summary}");
             AppExit::Success
@@ -64,7 +69,7 @@ pub fn run<M: PhongSceneMaterial>(app: App) -> AppExit {
     }
 }
 
-fn compare<M: PhongSceneMaterial>(app: App) -> Result<String, String> {
+fn compare<M: PhongSceneMaterial>(app: App, picture: Option<PathBuf>) -> Result<String, String> {
     let mut harness = Harness::adopting(app, COMPARED_SIZE.x, COMPARED_SIZE.y);
     // The first frame runs the example's startup: its camera and scene exist after it.
     harness.app.update();
@@ -89,6 +94,9 @@ fn compare<M: PhongSceneMaterial>(app: App) -> Result<String, String> {
             cameras.len()
         ));
     };
+    if let Some(path) = picture {
+        write_picture(&mut harness, camera, &path)?;
+    }
     harness.adopt_camera(camera);
     let world = harness.world_mut();
     let meshes: Vec<Entity> = world
@@ -177,4 +185,37 @@ fn sample_nearest_from_the_first_level(images: &mut Assets<Image>) {
         image.texture_descriptor.mip_level_count = 1;
         image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor::nearest());
     }
+}
+
+/// Renders the example's own `camera`, with its effects, into an sRGB image of the headless
+/// picture's size once the pipelines have settled, and writes it to `path` as a PNG: the
+/// picture `--headless` writes, from the same run as the comparison.
+fn write_picture(harness: &mut Harness, camera: Entity, path: &Path) -> Result<(), String> {
+    let size = super::PICTURE_SIZE;
+    let mut target = Image::new_target_texture(size.x, size.y, TextureFormat::Rgba8UnormSrgb, None);
+    target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+    let world = harness.world_mut();
+    let target = world.resource_mut::<Assets<Image>>().add(target);
+    world
+        .entity_mut(camera)
+        .insert(RenderTarget::Image(target.clone().into()));
+    harness.settle();
+    for _ in 0..super::SETTLE_FRAMES {
+        harness.app.update();
+    }
+    let (width, height) = (size.x as usize, size.y as usize);
+    let pixels = read_back_frame(&mut harness.app, &target, 4 * width, height, App::update);
+    if let Some(parent) = path.parent() {
+        let _ = std::fs::create_dir_all(parent);
+    }
+    image::save_buffer(
+        path,
+        &pixels,
+        size.x,
+        size.y,
+        image::ExtendedColorType::Rgba8,
+    )
+    .map_err(|error| format!("cannot write {}: {error}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
 }

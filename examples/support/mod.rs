@@ -1,6 +1,7 @@
 //! What every example shares: a window where a display exists, else (or with
 //! `--headless PATH`) a render to a PNG file and exit; with `--compare`, the scene compared
-//! with the reference model; in a browser (wasm32), a canvas.
+//! with the reference model (with `--headless PATH` too, the picture is written first, in
+//! the same run); in a browser (wasm32), a canvas.
 
 #[cfg(not(target_arch = "wasm32"))]
 mod compare;
@@ -30,9 +31,10 @@ pub enum RunMode {
     #[cfg(not(target_arch = "wasm32"))]
     Headless(PathBuf),
     /// Render the scene into a float image, compare it with the reference model, then exit
-    /// (with an error where they differ).
+    /// (with an error where they differ). With a path, the example's own view is first
+    /// written there as a PNG, as [`RunMode::Headless`] writes it.
     #[cfg(not(target_arch = "wasm32"))]
-    Compare,
+    Compare(Option<PathBuf>),
     /// In a browser, on the page's `<canvas id="bevy">`.
     #[cfg(target_arch = "wasm32")]
     Canvas,
@@ -45,20 +47,25 @@ impl RunMode {
         RunMode::Canvas
     }
 
-    /// `--headless PATH` renders to PATH; `--compare` compares with the reference model;
-    /// without a display (no `DISPLAY` or `WAYLAND_DISPLAY`) it renders to
-    /// `target/NAME.png`; otherwise it opens a window.
+    /// `--headless PATH` renders to PATH; `--compare` compares with the reference model
+    /// (after writing PATH, where both are given); without a display (no `DISPLAY` or
+    /// `WAYLAND_DISPLAY`) it renders to `target/NAME.png`; otherwise it opens a window.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn from_args(name: &str) -> Self {
         let args: Vec<String> = std::env::args().skip(1).collect();
+        let headless = args
+            .iter()
+            .position(|arg| arg == "--headless")
+            .map(|index| {
+                args.get(index + 1)
+                    .filter(|path| !path.starts_with("--"))
+                    .map(PathBuf::from)
+                    .unwrap_or_else(|| default_png(name))
+            });
         if args.iter().any(|arg| arg == "--compare") {
-            return RunMode::Compare;
+            return RunMode::Compare(headless);
         }
-        if let Some(index) = args.iter().position(|arg| arg == "--headless") {
-            let path = args
-                .get(index + 1)
-                .map(PathBuf::from)
-                .unwrap_or_else(|| default_png(name));
+        if let Some(path) = headless {
             return RunMode::Headless(path);
         }
         let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
@@ -111,7 +118,7 @@ pub fn example_app_with(
         #[cfg(not(target_arch = "wasm32"))]
         RunMode::Headless(_) => headless::add_plugins(&mut app, configure),
         #[cfg(not(target_arch = "wasm32"))]
-        RunMode::Compare => compare::add_plugins(&mut app, configure),
+        RunMode::Compare(_) => compare::add_plugins(&mut app, configure),
         #[cfg(target_arch = "wasm32")]
         RunMode::Canvas => web::add_plugins(&mut app, name, configure),
     }
@@ -133,8 +140,8 @@ pub fn run(app: App) -> AppExit {
 /// `PhongMaterial`).
 pub fn run_comparing<M: bevy_phong::PhongSceneMaterial>(mut app: App) -> AppExit {
     #[cfg(not(target_arch = "wasm32"))]
-    if matches!(app.world().resource::<RunMode>(), RunMode::Compare) {
-        return compare::run::<M>(app);
+    if let RunMode::Compare(picture) = app.world().resource::<RunMode>().clone() {
+        return compare::run::<M>(app, picture);
     }
     app.run()
 }

@@ -1,28 +1,10 @@
 //! [`phong_material_from_gltf`]: a glTF material (metallic/roughness) as a [`PhongMaterial`].
 
-use crate::{
-    limits::{self, Limits},
-    material::{PhongMaterial, SpecularModel},
+use crate::material::{
+    MetallicRoughness, PhongMaterial,
+    metallic_roughness::{DIELECTRIC_F0, emissive_color},
 };
-use bevy::{
-    color::{Color, LinearRgba},
-    gltf::GltfMaterial,
-    log::warn,
-};
-
-/// `metallicFactor`: `[0, 1]`, NaN → 0 (a dielectric, `GltfMaterial`'s default).
-pub const METALLIC: Limits = Limits::new(0.0, 1.0, 0.0);
-
-/// `roughnessFactor`: `[0, 1]`, NaN → 0.5 (`GltfMaterial`'s default).
-pub const ROUGHNESS: Limits = Limits::new(0.0, 1.0, 0.5);
-
-/// The smallest and largest highlight exponent the conversion gives: `r = 1` (fully rough)
-/// would give 0, a flat highlight; below `r ≈ 0.119` the exponent exceeds `10⁴`, where the
-/// highlight is already a point at any screen resolution.
-pub const SHININESS_RANGE: (f32, f32) = (1.0, 1e4);
-
-/// The specular reflectance of a dielectric at normal incidence (glTF's and Bevy's `F₀`).
-pub const DIELECTRIC_F0: f32 = 0.04;
+use bevy::{gltf::GltfMaterial, log::warn, math::Vec3};
 
 /// The [`PhongMaterial`] that stands for a glTF material, as `PhongGltfPlugin` builds it for
 /// each material of a file (`Material{n}/phong`).
@@ -83,30 +65,18 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
             );
         }
     }
-    let metallic = METALLIC.apply(material.metallic);
-    let shininess = shininess_from_roughness(material.perceptual_roughness);
-    let base = limits::linear_color(material.base_color.to_linear());
-    // An unlit material shows its base color as it is (KHR_materials_unlit).
-    let diffuse = if material.unlit { 1.0 } else { 1.0 - metallic };
-    // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly.
-    let f0 = |channel: f32| DIELECTRIC_F0 * diffuse + channel * metallic;
+    let numbers = MetallicRoughness {
+        base_color: material.base_color,
+        metallic: material.metallic,
+        perceptual_roughness: material.perceptual_roughness,
+        dielectric_f0: Vec3::splat(DIELECTRIC_F0),
+        unlit: material.unlit,
+    };
     PhongMaterial {
-        base_color: Color::LinearRgba(LinearRgba::new(
-            base.red * diffuse,
-            base.green * diffuse,
-            base.blue * diffuse,
-            base.alpha,
-        )),
-        ambient_factor: 1.0,
-        specular_color: Color::linear_rgb(f0(base.red), f0(base.green), f0(base.blue)),
-        specular_strength: normalization(shininess),
-        shininess,
-        specular_model: SpecularModel::BlinnPhong,
         emissive: emissive_color(material.emissive),
         alpha_mode: material.alpha_mode,
         base_color_texture: material.base_color_texture.clone(),
         base_color_channel: material.base_color_channel.clone(),
-        specular_texture: None,
         emissive_texture: material.emissive_texture.clone(),
         emissive_channel: material.emissive_channel.clone(),
         normal_map_texture: material.normal_map_texture.clone(),
@@ -114,37 +84,9 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
         flip_normal_map_y: false,
         double_sided: material.double_sided,
         uv_transform: material.uv_transform,
-        unlit: material.unlit,
         ao_map_texture: material.occlusion_texture.clone(),
         ao_map_channel: material.occlusion_channel.clone(),
-        ..PhongMaterial::default()
-    }
-}
-
-/// The energy normalization of a Blinn-Phong lobe of exponent `shininess` in the crate's
-/// units: `(n + 8) / 8` (see [`phong_material_from_gltf`]).
-pub fn normalization(shininess: f32) -> f32 {
-    (shininess + 8.0) / 8.0
-}
-
-/// `emissive` in [`limits::INTENSITY`]'s range, alpha 1 (the shader reads its RGB only).
-fn emissive_color(emissive: LinearRgba) -> LinearRgba {
-    let emissive = limits::linear_color(emissive);
-    LinearRgba::rgb(emissive.red, emissive.green, emissive.blue)
-}
-
-/// The Blinn-Phong exponent of roughness `r`: `clamp(2 / r⁴ − 2, 1, 10⁴)`; NaN is taken as
-/// 0.5, values outside `[0, 1]` are clamped first ([`ROUGHNESS`]).
-pub fn shininess_from_roughness(roughness: f32) -> f32 {
-    let r = ROUGHNESS.apply(roughness);
-    let (min, max) = SHININESS_RANGE;
-    let alpha_squared = r * r * r * r;
-    // 2/α² − 2 ≥ max exactly when α² ≤ 2 / (max + 2): this also covers r = 0 (and the
-    // subnormal α² whose quotient would overflow) without dividing by zero.
-    if alpha_squared <= 2.0 / (max + 2.0) {
-        max
-    } else {
-        (2.0 / alpha_squared - 2.0).clamp(min, max)
+        ..numbers.phong_material()
     }
 }
 
@@ -177,8 +119,13 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{SpecularModel, limits, material::metallic_roughness::shininess_from_roughness};
     use bevy::{
-        asset::Handle, color::ColorToComponents, image::Image, mesh::UvChannel, prelude::AlphaMode,
+        asset::Handle,
+        color::{Color, ColorToComponents, LinearRgba},
+        image::Image,
+        mesh::UvChannel,
+        prelude::AlphaMode,
     };
 
     fn linear(color: Color) -> [f32; 4] {

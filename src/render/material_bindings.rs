@@ -267,7 +267,7 @@ pub fn material_map_bindings() -> Vec<(&'static str, u32, bool)> {
 }
 
 /// Whether `render_device` binds every map of a [`PhongMaterial`]; where it does not
-/// (WebGL2), the maps `material_maps!` marks [`MapDevices::Full`] (the alpha map, the
+/// (WebGL2), the maps `material_maps!` marks `MapDevices::Full` (the alpha map, the
 /// environment map, the bump map and the toon ramp) are left out, with a warning, and the
 /// material is drawn without them (a toon ramp's material in its bands).
 pub fn binds_every_map(render_device: &RenderDevice) -> bool {

@@ -1,5 +1,7 @@
 //! The tests that run on the render device (Mesa's lavapipe in CI), in one binary:
 //!
+//! - `adoption`: the minimal example's scene, and a scene of Bevy's own materials and
+//!   lights switched to Phong, against the reference model;
 //! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
 //!   reference model, on each pixel's own inputs;
 //! - `searchlight`: the same for the searchlight example's extension, its surfaces with
@@ -57,6 +59,7 @@
 //! The soak test is the other binary on the render device (`tests/soak`): it measures the
 //! CPU time of its process, which it must have to itself.
 
+mod adoption;
 mod bevy_light_textures;
 #[path = "../fuzz/cases.rs"]
 mod cases;

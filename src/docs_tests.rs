@@ -1,0 +1,95 @@
+//! The field tables of the docs against the types: every field of a light, of its settings
+//! and of [`PhongMaterial`](crate::PhongMaterial) is a row of the table under the heading that
+//! names its type (docs/lights.md, docs/material.md). A field added to a type without a row
+//! fails here, naming the type, the field and the file.
+
+use bevy::reflect::{TypeInfo, Typed};
+use std::{collections::BTreeSet, fs, path::Path};
+
+/// The names in the first column of the first table after the heading that names
+/// `type_name` in backticks (`## \`PhongSpotLight\``): every name written in backticks
+/// there (a row may name several fields).
+fn documented_fields(markdown: &str, type_name: &str) -> Option<BTreeSet<String>> {
+    let heading = format!("`{type_name}`");
+    let mut lines = markdown.lines();
+    lines.find(|line| line.starts_with('#') && line.contains(&heading))?;
+    let rows = lines
+        .skip_while(|line| !line.starts_with('|'))
+        .take_while(|line| line.starts_with('|'));
+    Some(
+        rows.filter_map(|row| row.split('|').nth(1))
+            .flat_map(|cell| cell.split('`').skip(1).step_by(2).map(str::to_string))
+            .collect(),
+    )
+}
+
+/// The reflected fields of `T` (every field a user sets; `#[reflect(ignore)]` ones left out).
+fn fields_of<T: Typed>() -> Vec<&'static str> {
+    match T::type_info() {
+        TypeInfo::Struct(info) => info.iter().map(|field| field.name()).collect(),
+        other => panic!("{} is not a struct", other.type_path()),
+    }
+}
+
+/// Fails naming each field of `T` without a row in `file`'s table for it.
+fn assert_documented<T: Typed>(file: &str) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+    let markdown = fs::read_to_string(&path).unwrap_or_else(|error| panic!("{file}: {error}"));
+    let type_name = T::type_info().type_path_table().short_path();
+    let documented = documented_fields(&markdown, type_name)
+        .unwrap_or_else(|| panic!("{file} has no heading naming `{type_name}`"));
+    let missing: Vec<_> = fields_of::<T>()
+        .into_iter()
+        .filter(|field| !documented.contains(*field))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "{file}: the table under `{type_name}` lacks {missing:?}"
+    );
+}
+
+#[test]
+fn every_field_of_every_light_and_its_settings_has_a_row_in_the_lights_page() {
+    use crate::lights::*;
+    assert_documented::<PhongAmbientLight>("docs/lights.md");
+    assert_documented::<PhongHemisphereLight>("docs/lights.md");
+    assert_documented::<PhongDirectionalLight>("docs/lights.md");
+    assert_documented::<PhongPointLight>("docs/lights.md");
+    assert_documented::<PhongSpotLight>("docs/lights.md");
+    assert_documented::<Decay>("docs/lights.md");
+    assert_documented::<PhongLightCookie>("docs/lights.md");
+    assert_documented::<PhongShadows>("docs/lights.md");
+    assert_documented::<PhongCascades>("docs/lights.md");
+    assert_documented::<crate::PhongLightCulling>("docs/lights.md");
+    assert_documented::<crate::PhongViewClusters>("docs/lights.md");
+}
+
+#[test]
+fn every_field_of_the_material_has_a_row_in_the_material_page() {
+    assert_documented::<crate::PhongMaterial>("docs/material.md");
+}
+
+#[test]
+fn a_table_is_read_from_its_heading_to_its_last_row() {
+    let markdown = "# Page\n## `Other`\n| field |\n|---|\n| `x` |\n## `Light`\ntext\n\n\
+                    | field | meaning |\n|---|---|\n| `color` | c |\n| `range` (world units), `reach` | r |\n\n\
+                    | `later` | not this table |\n";
+    let fields = documented_fields(markdown, "Light").unwrap();
+    assert_eq!(
+        fields,
+        BTreeSet::from(["color", "range", "reach"].map(String::from))
+    );
+    assert_eq!(documented_fields(markdown, "Missing"), None);
+}
+
+#[test]
+fn the_readme_shows_the_minimal_example_whole() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let example = fs::read_to_string(root.join("examples/minimal.rs")).expect("the example");
+    let readme = fs::read_to_string(root.join("README.md")).expect("the README");
+    let code = &example[example.find("use bevy::").expect("the example's code")..];
+    assert!(
+        readme.contains(code),
+        "README.md's \"Use it\" block is no longer examples/minimal.rs: copy the example there"
+    );
+}

@@ -1,0 +1,284 @@
+//! `PhongMaterial::from(&StandardMaterial)`: Bevy's physically based material as a Blinn-Phong
+//! one, by the rules glTF materials follow ([`MetallicRoughness`]).
+
+use super::{MetallicRoughness, PhongMaterial, metallic_roughness::emissive_color};
+use bevy::{
+    color::{ColorToComponents, LinearRgba},
+    log::warn,
+    pbr::StandardMaterial,
+};
+
+/// The Phong material that draws like `material` as nearly as Blinn-Phong can.
+///
+/// | `StandardMaterial` | `PhongMaterial` |
+/// |---|---|
+/// | `base_color`, `base_color_texture`, `base_color_channel` | `base_color = base_color · (1 − metallic)` in linear RGB (alpha kept), the same texture and UV set |
+/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ, `specular_tint` t | `specular_model: BlinnPhong`, `specular_color = mix(0.16 · (ρ·t)², base_color, m)` (Bevy's `F₀`; 0.04 at the default ρ = 0.5), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
+/// | `emissive`, `emissive_texture`, `emissive_channel` | the same |
+/// | `normal_map_texture`, `normal_map_channel`, `flip_normal_map_y` | the same |
+/// | `occlusion_texture`, `occlusion_channel` | `ao_map_texture`, `ao_map_channel` (intensity 1) |
+/// | `alpha_mode`, `double_sided`, `cull_mode`, `unlit`, `fog_enabled`, `depth_bias`, `uv_transform` | the same |
+///
+/// What has no counterpart is left out, with one warning that lists it: the
+/// metallic/roughness map, parallax (`depth_map`), transmission, thickness, clearcoat,
+/// anisotropy and an emissive exposure weight. Bevy's `Lightmap` component keeps working on
+/// the mesh; its exposure is the camera's (see `BevyLightExposure`). Invalid numbers are
+/// brought into range as `PhongMaterial`'s validation does: the result never holds a NaN.
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_phong::prelude::*;
+///
+/// let plastic = StandardMaterial {
+///     base_color: Color::linear_rgb(0.8, 0.1, 0.1),
+///     perceptual_roughness: 0.5,
+///     ..default()
+/// };
+/// let phong = PhongMaterial::from(&plastic);
+/// assert_eq!(phong.shininess, 30.0); // 2 / 0.5⁴ − 2
+/// assert_eq!(phong.specular_strength, 4.75); // (30 + 8) / 8
+/// ```
+impl From<&StandardMaterial> for PhongMaterial {
+    fn from(material: &StandardMaterial) -> Self {
+        phong_material_from_standard(material, "a StandardMaterial")
+    }
+}
+
+/// [`PhongMaterial::from`] a `StandardMaterial`, whose warning (if any) names it `label`.
+pub(crate) fn phong_material_from_standard(
+    material: &StandardMaterial,
+    label: &str,
+) -> PhongMaterial {
+    let unmapped = unmapped_standard_features(material);
+    if !unmapped.is_empty() {
+        warn!(
+            "{label}: {} not used by PhongMaterial (drawn without them)",
+            unmapped.join(", ")
+        );
+    }
+    let tinted = LinearRgba::from(material.specular_tint).to_vec3() * material.reflectance;
+    let numbers = MetallicRoughness {
+        base_color: material.base_color,
+        metallic: material.metallic,
+        perceptual_roughness: material.perceptual_roughness,
+        dielectric_f0: 0.16 * tinted * tinted,
+        unlit: material.unlit,
+    };
+    PhongMaterial {
+        emissive: emissive_color(material.emissive),
+        alpha_mode: material.alpha_mode,
+        base_color_texture: material.base_color_texture.clone(),
+        base_color_channel: material.base_color_channel.clone(),
+        emissive_texture: material.emissive_texture.clone(),
+        emissive_channel: material.emissive_channel.clone(),
+        normal_map_texture: material.normal_map_texture.clone(),
+        normal_map_channel: material.normal_map_channel.clone(),
+        flip_normal_map_y: material.flip_normal_map_y,
+        double_sided: material.double_sided,
+        cull_mode: material.cull_mode,
+        fog_enabled: material.fog_enabled,
+        depth_bias: material.depth_bias,
+        uv_transform: material.uv_transform,
+        ao_map_texture: material.occlusion_texture.clone(),
+        ao_map_channel: material.occlusion_channel.clone(),
+        ..numbers.phong_material()
+    }
+}
+
+/// The fields of `material` that [`PhongMaterial::from`] leaves out because they are set and
+/// Phong has no counterpart, by their names (empty when it maps everything set).
+pub(crate) fn unmapped_standard_features(material: &StandardMaterial) -> Vec<&'static str> {
+    [
+        (
+            material.metallic_roughness_texture.is_some(),
+            "metallic_roughness_texture",
+        ),
+        (material.depth_map.is_some(), "depth_map"),
+        (
+            material.specular_transmission > 0.0,
+            "specular_transmission",
+        ),
+        (material.diffuse_transmission > 0.0, "diffuse_transmission"),
+        (material.thickness > 0.0, "thickness"),
+        (material.clearcoat > 0.0, "clearcoat"),
+        (material.anisotropy_strength > 0.0, "anisotropy_strength"),
+        (
+            material.emissive_exposure_weight != 0.0,
+            "emissive_exposure_weight",
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(set, name)| set.then_some(name))
+    .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bevy::{
+        asset::Handle,
+        color::{Color, LinearRgba},
+        image::Image,
+        math::Affine2,
+        mesh::UvChannel,
+        prelude::AlphaMode,
+        render::render_resource::Face,
+    };
+
+    fn linear(color: Color) -> [f32; 4] {
+        color.to_linear().to_f32_array()
+    }
+
+    /// Exact up to f32 rounding of a product or a `mix` (a few ulps of values ≤ 1).
+    const ROUNDING: f32 = 1e-6;
+
+    fn assert_close(actual: [f32; 4], expected: [f32; 4], what: &str) {
+        for (a, e) in actual.iter().zip(expected) {
+            assert!(
+                (a - e).abs() <= ROUNDING,
+                "{what}: {actual:?}, expected {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_default_standard_material_is_a_white_dielectric_of_four_percent_specular() {
+        // Bevy's defaults: white, metallic 0, perceptual roughness 0.5, reflectance 0.5.
+        let phong = PhongMaterial::from(&StandardMaterial::default());
+        assert_close(linear(phong.base_color), [1.0, 1.0, 1.0, 1.0], "base");
+        // 0.16 · 0.5² = 0.04, worked by hand.
+        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F₀");
+        assert_eq!(phong.shininess, 30.0, "2 / 0.5⁴ − 2");
+        assert_eq!(phong.specular_strength, 4.75, "(30 + 8) / 8");
+        assert_eq!(phong.specular_model, crate::SpecularModel::BlinnPhong);
+    }
+
+    #[test]
+    fn reflectance_and_specular_tint_give_bevys_dielectric_f0() {
+        // ρ = 0.8, t = (1, 0.5, 0.25): 0.16 · (0.8, 0.4, 0.2)² = (0.1024, 0.0256, 0.0064).
+        let material = StandardMaterial {
+            reflectance: 0.8,
+            specular_tint: Color::linear_rgb(1.0, 0.5, 0.25),
+            ..Default::default()
+        };
+        let phong = PhongMaterial::from(&material);
+        assert_close(
+            linear(phong.specular_color),
+            [0.1024, 0.0256, 0.0064, 1.0],
+            "F₀",
+        );
+    }
+
+    #[test]
+    fn a_metal_has_no_diffuse_and_its_color_as_specular() {
+        let material = StandardMaterial {
+            base_color: Color::linear_rgb(1.0, 0.8, 0.3),
+            metallic: 1.0,
+            perceptual_roughness: 0.25,
+            ..Default::default()
+        };
+        let phong = PhongMaterial::from(&material);
+        assert_close(linear(phong.base_color), [0.0, 0.0, 0.0, 1.0], "base");
+        assert_close(
+            linear(phong.specular_color),
+            [1.0, 0.8, 0.3, 1.0],
+            "specular",
+        );
+        assert_eq!(phong.shininess, 510.0, "2 / 0.25⁴ − 2");
+    }
+
+    #[test]
+    fn maps_modes_and_flags_carry_over() {
+        let texture = |index: u32| {
+            Handle::<Image>::Uuid(
+                bevy::asset::uuid::Uuid::from_u128(u128::from(index)),
+                Default::default(),
+            )
+        };
+        let transform = Affine2::from_scale_angle_translation(
+            bevy::math::Vec2::new(2.0, 3.0),
+            0.5,
+            bevy::math::Vec2::new(0.1, 0.2),
+        );
+        let material = StandardMaterial {
+            base_color_texture: Some(texture(1)),
+            base_color_channel: UvChannel::Uv1,
+            emissive: LinearRgba::rgb(0.5, 0.25, 0.0),
+            emissive_texture: Some(texture(2)),
+            normal_map_texture: Some(texture(3)),
+            normal_map_channel: UvChannel::Uv1,
+            flip_normal_map_y: true,
+            occlusion_texture: Some(texture(4)),
+            occlusion_channel: UvChannel::Uv1,
+            alpha_mode: AlphaMode::Mask(0.3),
+            double_sided: true,
+            cull_mode: None,
+            unlit: true,
+            fog_enabled: false,
+            depth_bias: 2.0,
+            uv_transform: transform,
+            ..Default::default()
+        };
+        let phong = PhongMaterial::from(&material);
+        assert_eq!(phong.base_color_texture, Some(texture(1)));
+        assert_eq!(phong.base_color_channel, UvChannel::Uv1);
+        assert_eq!(phong.emissive, LinearRgba::rgb(0.5, 0.25, 0.0));
+        assert_eq!(phong.emissive_texture, Some(texture(2)));
+        assert_eq!(phong.normal_map_texture, Some(texture(3)));
+        assert_eq!(phong.normal_map_channel, UvChannel::Uv1);
+        assert!(phong.flip_normal_map_y);
+        assert_eq!(phong.ao_map_texture, Some(texture(4)));
+        assert_eq!(phong.ao_map_channel, UvChannel::Uv1);
+        assert_eq!(phong.alpha_mode, AlphaMode::Mask(0.3));
+        assert!(phong.double_sided);
+        assert_eq!(phong.cull_mode, None);
+        assert!(phong.unlit);
+        assert!(!phong.fog_enabled);
+        assert_eq!(phong.depth_bias, 2.0);
+        assert_eq!(phong.uv_transform, transform);
+        // An unlit material keeps its base color whole (not darkened by metallic).
+        assert_close(linear(phong.base_color), [1.0, 1.0, 1.0, 1.0], "unlit base");
+        let culled = PhongMaterial::from(&StandardMaterial {
+            cull_mode: Some(Face::Front),
+            ..Default::default()
+        });
+        assert_eq!(culled.cull_mode, Some(Face::Front));
+    }
+
+    #[test]
+    fn nan_numbers_give_a_material_without_nan() {
+        let material = StandardMaterial {
+            base_color: Color::linear_rgba(f32::NAN, 0.5, 0.5, 1.0),
+            metallic: f32::NAN,
+            perceptual_roughness: f32::NAN,
+            reflectance: f32::NAN,
+            emissive: LinearRgba::rgb(f32::NAN, 1.0, 1.0),
+            ..Default::default()
+        };
+        let phong = PhongMaterial::from(&material);
+        for value in linear(phong.base_color)
+            .into_iter()
+            .chain(linear(phong.specular_color))
+            .chain(phong.emissive.to_f32_array())
+            .chain([phong.shininess, phong.specular_strength])
+        {
+            assert!(!value.is_nan(), "{phong:?}");
+        }
+        assert_eq!(phong.shininess, 30.0, "NaN roughness taken as 0.5");
+    }
+
+    #[test]
+    fn fields_without_a_counterpart_are_listed() {
+        assert!(unmapped_standard_features(&StandardMaterial::default()).is_empty());
+        let material = StandardMaterial {
+            clearcoat: 1.0,
+            specular_transmission: 0.5,
+            depth_map: Some(Handle::default()),
+            ..Default::default()
+        };
+        assert_eq!(
+            unmapped_standard_features(&material),
+            ["depth_map", "specular_transmission", "clearcoat"]
+        );
+    }
+}

@@ -1,0 +1,120 @@
+//! A metallic/roughness surface (glTF's, Bevy's `StandardMaterial`'s) as a Blinn-Phong one:
+//! the rules that [`phong_material_from_gltf`](crate::gltf::phong_material_from_gltf) and
+//! `PhongMaterial::from(&StandardMaterial)` share.
+//!
+//! - `base_color = base · (1 − metallic)` in linear RGB (alpha kept); an unlit surface keeps
+//!   its base color as it is;
+//! - `specular_color = mix(F₀, base, metallic)`, `F₀` the dielectric reflectance at normal
+//!   incidence (0.04 for glTF; `0.16 · (reflectance · specular_tint)²` for
+//!   `StandardMaterial`, Bevy's `calculate_F0_dielectric`);
+//! - a Blinn-Phong highlight of exponent `n = clamp(2 / r⁴ − 2, 1, 10⁴)` for perceptual
+//!   roughness `r`, the width of a GGX / Beckmann lobe of `α = r²` (`n = 2/α² − 2`, Walter et
+//!   al. 2007), with strength `(n + 8) / 8`, the lobe's energy normalization: the normalized
+//!   Blinn-Phong BRDF is `(n + 8)/(8π) · cos^n(θ_h)`, and the crate's diffuse term
+//!   `k_d · max(N·L, 0)` is the Lambert BRDF `k_d/π` times π, so the same π gives
+//!   `(n + 8)/8`.
+
+use super::{PhongMaterial, SpecularModel};
+use crate::limits::{self, Limits};
+use bevy::{
+    color::{Color, LinearRgba},
+    math::Vec3,
+};
+
+/// `metallic`: `[0, 1]`, NaN → 0 (a dielectric, the default of both sources).
+pub(crate) const METALLIC: Limits = Limits::new(0.0, 1.0, 0.0);
+
+/// Perceptual roughness: `[0, 1]`, NaN → 0.5 (the default of both sources).
+pub(crate) const ROUGHNESS: Limits = Limits::new(0.0, 1.0, 0.5);
+
+/// The smallest and largest highlight exponent the conversion gives: `r = 1` (fully rough)
+/// would give 0, a flat highlight; below `r ≈ 0.119` the exponent exceeds `10⁴`, where the
+/// highlight is already a point at any screen resolution.
+pub(crate) const SHININESS_RANGE: (f32, f32) = (1.0, 1e4);
+
+/// The specular reflectance of a dielectric at normal incidence (glTF's `F₀`, and Bevy's at
+/// its default reflectance 0.5).
+pub(crate) const DIELECTRIC_F0: f32 = 0.04;
+
+/// A metallic/roughness surface's numbers.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MetallicRoughness {
+    /// The base color, any color space (alpha is the output alpha).
+    pub(crate) base_color: Color,
+    /// `[0, 1]` ([`METALLIC`]).
+    pub(crate) metallic: f32,
+    /// `[0, 1]` ([`ROUGHNESS`]).
+    pub(crate) perceptual_roughness: f32,
+    /// The dielectric `F₀` per channel, linear RGB (`[0, 1]`, NaN → [`DIELECTRIC_F0`]).
+    pub(crate) dielectric_f0: Vec3,
+    /// Shown as its base color, unlit (`KHR_materials_unlit`, `StandardMaterial::unlit`).
+    pub(crate) unlit: bool,
+}
+
+impl MetallicRoughness {
+    /// The [`PhongMaterial`] of these numbers: its colors, exponent, strength and the
+    /// Blinn-Phong model, the other fields at their defaults. Never holds a NaN: the numbers
+    /// are brought into their ranges first.
+    pub(crate) fn phong_material(&self) -> PhongMaterial {
+        let metallic = METALLIC.apply(self.metallic);
+        let shininess = shininess_from_roughness(self.perceptual_roughness);
+        let base = limits::linear_color(self.base_color.to_linear());
+        let f0 = self.dielectric_f0.to_array().map(|channel| {
+            if channel.is_nan() {
+                DIELECTRIC_F0
+            } else {
+                channel.clamp(0.0, 1.0)
+            }
+        });
+        // An unlit material shows its base color as it is (KHR_materials_unlit).
+        let diffuse = if self.unlit { 1.0 } else { 1.0 - metallic };
+        // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly.
+        let specular = |f0: f32, channel: f32| f0 * diffuse + channel * metallic;
+        PhongMaterial {
+            base_color: Color::LinearRgba(LinearRgba::new(
+                base.red * diffuse,
+                base.green * diffuse,
+                base.blue * diffuse,
+                base.alpha,
+            )),
+            ambient_factor: 1.0,
+            specular_color: Color::linear_rgb(
+                specular(f0[0], base.red),
+                specular(f0[1], base.green),
+                specular(f0[2], base.blue),
+            ),
+            specular_strength: normalization(shininess),
+            shininess,
+            specular_model: SpecularModel::BlinnPhong,
+            unlit: self.unlit,
+            ..PhongMaterial::default()
+        }
+    }
+}
+
+/// The energy normalization of a Blinn-Phong lobe of exponent `shininess` in the crate's
+/// units: `(n + 8) / 8` (see the module docs).
+pub(crate) fn normalization(shininess: f32) -> f32 {
+    (shininess + 8.0) / 8.0
+}
+
+/// The Blinn-Phong exponent of roughness `r`: `clamp(2 / r⁴ − 2, 1, 10⁴)`; NaN is taken as
+/// 0.5, values outside `[0, 1]` are clamped first ([`ROUGHNESS`]).
+pub(crate) fn shininess_from_roughness(roughness: f32) -> f32 {
+    let r = ROUGHNESS.apply(roughness);
+    let (min, max) = SHININESS_RANGE;
+    let alpha_squared = r * r * r * r;
+    // 2/α² − 2 ≥ max exactly when α² ≤ 2 / (max + 2): this also covers r = 0 (and the
+    // subnormal α² whose quotient would overflow) without dividing by zero.
+    if alpha_squared <= 2.0 / (max + 2.0) {
+        max
+    } else {
+        (2.0 / alpha_squared - 2.0).clamp(min, max)
+    }
+}
+
+/// `emissive` in [`limits::INTENSITY`]'s range, alpha 1 (the shader reads its RGB only).
+pub(crate) fn emissive_color(emissive: LinearRgba) -> LinearRgba {
+    let emissive = limits::linear_color(emissive);
+    LinearRgba::rgb(emissive.red, emissive.green, emissive.blue)
+}
