@@ -1,12 +1,12 @@
 //! [`SurfaceInputsMaterial`]: renders the per-pixel inputs of the lighting equation.
 
-use crate::{PhongMaterial, displacement::DisplacementUniform};
+use crate::{PhongMaterial, displacement::DisplacementUniform, material::culled_in_view};
 use bevy::{
     app::{App, Plugin},
     asset::{Asset, Handle, embedded_asset},
     image::Image,
     mesh::{MeshVertexBufferLayoutRef, UvChannel},
-    pbr::{Material, MaterialPipeline, MaterialPipelineKey, MaterialPlugin},
+    pbr::{Material, MaterialPipeline, MaterialPipelineKey, MaterialPlugin, MeshPipelineKey},
     reflect::Reflect,
     render::render_resource::{
         AsBindGroup, Face, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
@@ -205,7 +205,9 @@ impl Material for SurfaceInputsMaterial {
         layout: &MeshVertexBufferLayoutRef,
         key: MaterialPipelineKey<Self>,
     ) -> Result<(), SpecializedMeshPipelineError> {
-        descriptor.primitive.cull_mode = key.bind_group_data.culled;
+        // As the material it stands in for: the other face in views that mirror the scene.
+        let mirrored = key.mesh_key.contains(MeshPipelineKey::INVERT_CULLING);
+        descriptor.primitive.cull_mode = culled_in_view(key.bind_group_data.culled, mirrored);
         if key.bind_group_data.displaced {
             crate::displacement::displace(
                 descriptor,

@@ -53,11 +53,7 @@ impl PhongMaterialKey {
         if self.has(MaterialFeatures::DOUBLE_SIDED) {
             return None;
         }
-        match (self.cull_mode, mirrored) {
-            (Some(Face::Back), false) | (Some(Face::Front), true) => Some(Face::Back),
-            (Some(Face::Front), false) | (Some(Face::Back), true) => Some(Face::Front),
-            (None, _) => None,
-        }
+        culled_in_view(self.cull_mode, mirrored)
     }
 
     /// The fragment shader defs of this variant on a mesh with `layout`, beside those Bevy's
@@ -122,6 +118,17 @@ fn missing_attributes(needs: MeshNeeds) -> Option<&'static str> {
             "its UV set and tangents (Mesh::ATTRIBUTE_UV_1, Mesh::ATTRIBUTE_TANGENT: \
              Mesh::with_generated_tangents)",
         ),
+    }
+}
+
+/// The face a view culls of a material that culls `cull_mode`: that face, or the other in
+/// views that mirror the scene (`mirrored`, Bevy's `INVERT_CULLING`), whose triangles wind
+/// the other way.
+pub(crate) fn culled_in_view(cull_mode: Option<Face>, mirrored: bool) -> Option<Face> {
+    match (cull_mode, mirrored) {
+        (Some(Face::Back), false) | (Some(Face::Front), true) => Some(Face::Back),
+        (Some(Face::Front), false) | (Some(Face::Back), true) => Some(Face::Front),
+        (None, _) => None,
     }
 }
 

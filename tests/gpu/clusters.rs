@@ -254,3 +254,39 @@ fn the_shader_finds_its_own_views_clusters() {
         );
     }
 }
+
+/// An orthographic camera, as isometric and strategy games use: its clusters are sliced
+/// evenly in depth (`DepthSlices::linear`) and its tiles cut a box, not a pyramid. Forty
+/// lights of short range among the objects, each listed only in the clusters it reaches,
+/// light every pixel as the reference model says; a light a cluster missed would miss by its
+/// whole contribution.
+#[test]
+fn an_orthographic_view_lights_every_pixel_as_the_model_says() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    harness.world_mut().insert_resource(PhongAmbientLight::NONE);
+    spawn_objects(&mut harness);
+    harness
+        .camera_mut()
+        .insert(Projection::Orthographic(OrthographicProjection {
+            scaling_mode: bevy::camera::ScalingMode::FixedVertical {
+                viewport_height: 9.0,
+            },
+            near: 0.0,
+            far: 40.0,
+            ..OrthographicProjection::default_3d()
+        }));
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let world = harness.world_mut();
+    for i in 0..40 {
+        let t = i as f32;
+        let position = Vec3::new(
+            (t * 0.618).fract() * 10.0 - 5.0,
+            -0.5 + (t * 0.382).fract() * 2.0,
+            (t * 0.754).fract() * 10.0 - 5.0,
+        );
+        world.spawn(light(position, 1.0 + (t * 0.13).fract() * 2.0, t * 9.0));
+    }
+    assert_exact(&mut harness, &inputs, "orthographic view");
+    assert_eq!(clustered_light_count(&mut harness), 40);
+}

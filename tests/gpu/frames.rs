@@ -367,3 +367,99 @@ fn light_count_grows_to_5000_and_back_to_1() {
     harness.world_mut().despawn(first);
     check(&mut harness, &inputs, "back_to_zero_lights");
 }
+
+/// A spot whose inner angle is at or past its outer one has a hard edge at the outer cone
+/// (three.js's `penumbra: 0` converts to it): full light inside, none outside, as the
+/// reference model says. The shader takes its own branch for it (`cone_scale` 0). Both
+/// sides of the edge cover many pixels of the floor, the sphere and the torus; a pixel
+/// within f32 rounding of the edge (`1 − cos θ` within 1e-7 of the outer cone's) could go
+/// either way, and none lies there in this frame.
+#[test]
+fn a_hard_edged_spot_lights_its_cone_and_nothing_past_it() {
+    let (mut harness, inputs, _) = scene();
+    let camera = harness.camera_position();
+    let at = Vec3::new(0.5, 5.0, 3.0);
+    let transform = Transform::from_translation(at).looking_at(Vec3::new(0.0, -0.5, 0.0), Vec3::Y);
+    let outer = 15_f32.to_radians();
+    let axis = transform.forward().as_vec3().as_dvec3();
+    for (case, inner) in [
+        ("hard spot, inner = outer", outer),
+        ("hard spot, inner > outer", 0.4),
+    ] {
+        let spot = harness
+            .world_mut()
+            .spawn((
+                PhongSpotLight {
+                    color: Color::linear_rgb(1.0, 0.9, 0.7),
+                    decay: Decay::DISTANCE_50,
+                    inner_angle: inner,
+                    outer_angle: outer,
+                    ..default()
+                },
+                transform,
+            ))
+            .id();
+        check(&mut harness, &inputs, case);
+        harness.world_mut().despawn(spot);
+    }
+    // Where the frame's surface points lie against the cone: many on each side, none within
+    // rounding of its edge.
+    let outer_versine = 1.0 - f64::from(outer).cos();
+    let (mut inside, mut outside, mut on_edge) = (0, 0, 0);
+    for index in 0..inputs.positions.pixels.len() {
+        let Some((_, surface)) = inputs.surface_at(index, camera) else {
+            continue;
+        };
+        let from_light = (surface.position - at.as_dvec3()).normalize();
+        let versine = 1.0 - from_light.dot(axis);
+        match versine - outer_versine {
+            d if d.abs() < 1e-7 => on_edge += 1,
+            d if d < 0.0 => inside += 1,
+            _ => outside += 1,
+        }
+    }
+    assert!(
+        inside > 500 && outside > 500 && on_edge == 0,
+        "{inside} pixels inside the cone, {outside} outside, {on_edge} on its edge"
+    );
+}
+
+/// A view that mirrors the scene (a camera scaled by −1 across, as a planar reflection's is)
+/// turns every triangle's winding, and `Camera::invert_culling` tells the materials to cull
+/// the other face (Bevy's `INVERT_CULLING`): each mesh still shows its outside, lit as the
+/// reference model says. Where the Phong pipeline culled the usual face, the frame would
+/// show the meshes' insides (their far sides, facing away from the camera): nearly every
+/// shown pixel must face the camera (interpolated normals at a silhouette may lean a little
+/// past it; a culled outside turns nearly all of them away).
+#[test]
+fn a_mirrored_view_shows_every_mesh_from_outside() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    spawn_objects(&mut harness);
+    let mut camera = harness.camera_mut();
+    camera
+        .get_mut::<Camera>()
+        .expect("the harness camera")
+        .invert_culling = true;
+    camera
+        .get_mut::<Transform>()
+        .expect("the harness camera's transform")
+        .scale = Vec3::new(-1.0, 1.0, 1.0);
+    harness.world_mut().spawn(directional_light());
+    harness.world_mut().spawn(red_point_light());
+    harness.settle();
+    let inputs = harness.capture_inputs();
+    let camera = harness.camera_position();
+    let (mut facing, mut judged) = (0, 0);
+    for index in 0..inputs.positions.pixels.len() {
+        if let Some((_, surface)) = inputs.surface_at(index, camera) {
+            judged += 1;
+            facing += usize::from(surface.normal.dot(camera - surface.position) > 0.0);
+        }
+    }
+    assert!(judged > 5000, "{judged} pixels show a mesh");
+    assert!(
+        facing * 100 >= judged * 98,
+        "{facing} of {judged} shown surfaces face the camera"
+    );
+    check(&mut harness, &inputs, "mirrored view");
+}

@@ -3,7 +3,8 @@
 //! - `adoption`: the minimal example's scene, and a scene of Bevy's own materials and
 //!   lights switched to Phong, against the reference model;
 //! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
-//!   reference model, on each pixel's own inputs;
+//!   reference model, on each pixel's own inputs (hard-edged spots and a mirrored view
+//!   among them);
 //! - `searchlight`: the same for the searchlight example's extension, its surfaces with
 //!   their maps and vertex colors (the crate's shader API);
 //! - `searchlight_clusters`: searchlights of finite reach in the light clusters, lit
@@ -11,7 +12,8 @@
 //! - `searchlight_shadows`: the searchlight's beam, a light kind added from outside the
 //!   crate, casting shadows through the map its rays describe, judged by exact rays;
 //! - `clusters`: per-view light clusters against the reference model, around the frustum,
-//!   with two cameras and through 0 → 3,000 → 0 lights; the shader finds its own view;
+//!   with two cameras, in an orthographic view and through 0 → 3,000 → 0 lights; the shader
+//!   finds its own view;
 //! - `culling`: light clusters and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
@@ -27,7 +29,8 @@
 //! - `per_vertex`: lighting per vertex against the reference model's per-vertex sums,
 //!   interpolated at each pixel;
 //! - `morphs`: two morphed meshes with their own weights, in the main pass, the prepass and
-//!   the shadow maps, against their closed-form pose;
+//!   the shadow maps, against their closed-form pose; a target that turns normals, on each
+//!   vertex stage, against its closed-form color;
 //! - `stylized`: the diffuse and specular modes (wrap, toon bands and ramps), the rim and the
 //!   hemisphere light, the same way;
 //! - `cookies`: light cookies on spot, point and directional lights, the same way;

@@ -18,8 +18,11 @@
 //!   keeps only the fragments at the prepass's depth, so a cube the prepass placed elsewhere
 //!   leaves holes and stray occlusions that the judge sees.
 //! - Shadow maps: the floor receives both cubes' shadows from a directional light.
+//!
+//! And a morph target that turns normals, lit on each vertex stage against its closed form.
 
 use crate::{
+    frames::TOLERANCE,
     shadow_band::MapCover,
     shadows::{CaseLight, EVERYONE, Scene, Shape, Toward, judge},
     texture_maps::float_map,
@@ -198,5 +201,140 @@ fn two_morphed_meshes_are_drawn_prepassed_and_cast_shadows_with_their_own_weight
             );
         }
         judge(&mut harness, &scene, &lights, &EVERYONE, &inputs).assert_holds(case);
+    }
+}
+
+/// How far the morph target turns each vertex normal: `n + w·Δn` with
+/// `Δn = (sin 60°, cos 60° − 1, 0)` turns the floor's `+Y` toward `+X` (60° at weight 1).
+const NORMAL_TURN: f32 = std::f32::consts::FRAC_PI_3;
+/// The weight each quad is posed at.
+const NORMAL_WEIGHT: f32 = 0.7;
+
+/// A flat quad at `y = 0` whose one morph target moves no vertex but turns every normal by
+/// [`NORMAL_TURN`] (a glTF face's blend shape carries such normal deltas).
+fn quad_with_turning_normals() -> Mesh {
+    let mesh: Mesh = Plane3d::default().mesh().size(1.6, 1.6).into();
+    let vertices = mesh.count_vertices();
+    let delta = Vec3::new(NORMAL_TURN.sin(), NORMAL_TURN.cos() - 1.0, 0.0);
+    mesh.with_morph_targets(vec![
+        MorphAttributes::new(Vec3::ZERO, delta, Vec3::ZERO);
+        vertices
+    ])
+}
+
+/// A morphed face is lit by its moved normals, on each vertex stage a Phong mesh can take:
+/// Bevy's (a plain material), the crate's (a displaced one) and the crate's per-vertex one.
+/// The expectation is the closed form of SPEC.md's equation without a highlight, on the
+/// posed normal `normalize(n + w·Δn)` worked here: `k_d ⊙ (ambient + c · max(N·L, 0))`, one
+/// color per quad. Captured positions are only checked to lie on the quads' plane (the
+/// target moves no vertex); no captured normal is read.
+#[test]
+fn morph_targets_turn_the_normals_each_vertex_stage_lights_with() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    harness.look_from(Vec3::new(0.0, 4.0, 2.5));
+    let world = harness.world_mut();
+    let ambient = Vec3::splat(0.1);
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(ambient.x, ambient.y, ambient.z),
+    });
+    let light_color = Vec3::new(0.9, 0.8, 0.7);
+    // Toward the light: up and toward +X, so that the turned normal faces it more.
+    let to_light = Vec3::new(0.8, 1.0, 0.3).normalize();
+    world.spawn((
+        PhongDirectionalLight {
+            color: Color::linear_rgb(light_color.x, light_color.y, light_color.z),
+            ..default()
+        },
+        Transform::default().looking_to(-to_light, Vec3::Z),
+    ));
+    let flat = world
+        .resource_mut::<Assets<Image>>()
+        .add(float_map(|_, _| [0.5, 0.0, 0.0, 1.0]));
+    let mesh = world
+        .resource_mut::<Assets<Mesh>>()
+        .add(quad_with_turning_normals());
+    let base = Vec3::new(0.8, 0.6, 0.4);
+    let plain = PhongMaterial {
+        base_color: Color::linear_rgb(base.x, base.y, base.z),
+        specular_strength: 0.0,
+        ..default()
+    };
+    let stages = [
+        ("Bevy's vertex stage", plain.clone()),
+        (
+            "the crate's displaced vertex stage",
+            PhongMaterial {
+                displacement_map: Some(flat),
+                displacement_scale: 0.0,
+                displacement_bias: 0.0,
+                ..plain.clone()
+            },
+        ),
+        (
+            "the crate's per-vertex stage",
+            PhongMaterial {
+                vertex_lighting: true,
+                ..plain
+            },
+        ),
+    ];
+    let mut materials = Vec::new();
+    for (index, (stage, material)) in stages.into_iter().enumerate() {
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((
+            Mesh3d(mesh.clone()),
+            MeshMaterial3d(material.clone()),
+            MeshMorphWeights::Value {
+                weights: vec![NORMAL_WEIGHT],
+            },
+            Transform::from_xyz(-1.8 + 1.8 * index as f32, 0.0, 0.0),
+        ));
+        materials.push((stage, material));
+    }
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs();
+    let camera = harness.camera_position();
+
+    // The posed normal and the color it gives, worked from the target's delta.
+    let posed = (Vec3::Y
+        + NORMAL_WEIGHT * Vec3::new(NORMAL_TURN.sin(), NORMAL_TURN.cos() - 1.0, 0.0))
+    .normalize()
+    .as_dvec3();
+    let n_dot_l = posed.dot(to_light.as_dvec3()).max(0.0);
+    let expected = base.as_dvec3() * (ambient.as_dvec3() + light_color.as_dvec3() * n_dot_l);
+    let unturned =
+        base.as_dvec3() * (ambient.as_dvec3() + light_color.as_dvec3() * f64::from(to_light.y));
+    assert!(
+        (expected - unturned).abs().max_element() > 0.05,
+        "the turn shows: {expected} against {unturned} unturned"
+    );
+    for (stage, material) in &materials {
+        let (mut pixels, mut largest) = (0, 0.0_f64);
+        for index in 0..inputs.positions.pixels.len() {
+            let Some((drawn, surface)) = inputs.surface_at(index, camera) else {
+                continue;
+            };
+            if drawn != material {
+                continue;
+            }
+            assert!(
+                surface.position.y.abs() < 1e-5,
+                "{stage}: a pixel off the plane"
+            );
+            let color = rendered.pixels[index];
+            let error = (0..3)
+                .map(|c| (f64::from(color[c]) - expected[c]).abs())
+                .fold(0.0, f64::max);
+            largest = largest.max(error);
+            pixels += 1;
+        }
+        println!("{stage}: {pixels} pixels, largest error {largest:.2e}");
+        assert!(pixels > 300, "{stage}: {pixels} pixels of its quad");
+        assert!(
+            largest <= TOLERANCE,
+            "{stage}: a morphed face lit {largest:.3e} away from its posed normal's color \
+             {expected} (the normal left unturned gives {unturned})"
+        );
     }
 }

@@ -265,3 +265,91 @@ fn the_fresnel_share_summed_at_the_vertices_follows_the_reference_model() {
         "the Fresnel share barely shows: {showing} of {covered} covered pixels above {SHOWS:.0e}"
     );
 }
+
+/// Vertex colors (`COLOR_0`, multiplying `k_d` and alpha) on a mesh lit per vertex, and
+/// `NotShadowReceiver` there: the vertex stage sums the lights, the fragment weighs them with
+/// the color interpolated at the pixel, and a mesh that receives no shadow takes none at its
+/// vertices, though the sun casts shadows and a sphere stands between it and the floor.
+#[test]
+fn vertex_colors_and_meshes_receiving_no_shadow_are_lit_per_vertex_as_the_model_says() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::srgb(0.1, 0.1, 0.1),
+    });
+    world.spawn((
+        PhongDirectionalLight {
+            color: Color::srgb(0.7, 0.7, 0.6),
+            shadows: PhongShadows {
+                enabled: true,
+                ..default()
+            },
+            ..default()
+        },
+        Transform::from_xyz(0.5, 3.0, 1.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    world.spawn((
+        PhongPointLight {
+            color: Color::srgb(0.6, 0.5, 0.9),
+            decay: Decay::new(1.0, 0.2, 0.3),
+            range: Some(5.0),
+            ..default()
+        },
+        Transform::from_xyz(-1.0, 0.5, 1.5),
+    ));
+    // Each vertex of the floor its own color, from its position: red across, blue in depth.
+    let mut floor = coarse_floor();
+    let colors: Vec<[f32; 4]> = match floor.attribute(Mesh::ATTRIBUTE_POSITION) {
+        Some(bevy::mesh::VertexAttributeValues::Float32x3(positions)) => positions
+            .iter()
+            .map(|[x, _, z]| [0.5 + x / 6.0, 0.8, 0.5 + z / 6.0, 1.0])
+            .collect(),
+        _ => panic!("the floor has positions"),
+    };
+    floor.insert_attribute(Mesh::ATTRIBUTE_COLOR, colors);
+    let mut sphere = low_poly_sphere(0.7);
+    let count = sphere.count_vertices();
+    sphere.insert_attribute(
+        Mesh::ATTRIBUTE_COLOR,
+        (0..count)
+            .map(|i| [0.4 + 0.6 * ((i % 7) as f32 / 6.0), 0.6, 0.9, 1.0])
+            .collect::<Vec<[f32; 4]>>(),
+    );
+    let objects = [
+        (
+            floor,
+            Transform::from_xyz(0.0, -1.0, 0.0),
+            PhongMaterial {
+                shininess: 8.0,
+                vertex_lighting: true,
+                ..default()
+            },
+        ),
+        (
+            sphere,
+            Transform::from_xyz(0.2, 0.0, 0.2),
+            PhongMaterial {
+                shininess: 30.0,
+                vertex_lighting: true,
+                ..default()
+            },
+        ),
+    ];
+    for (mesh, transform, material) in objects {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world.resource_mut::<Assets<PhongMaterial>>().add(material);
+        world.spawn((
+            Mesh3d(mesh),
+            MeshMaterial3d(material),
+            transform,
+            bevy::light::NotShadowReceiver,
+        ));
+    }
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let comparison = harness.compare(&rendered, &inputs);
+    let name = "vertex colors, no shadow received, lit per vertex";
+    comparison.assert_within(name, TOLERANCE);
+    comparison.assert_mostly_judged(name);
+}
