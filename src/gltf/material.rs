@@ -119,6 +119,7 @@ pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::metallic_roughness::tests::{assert_close, linear};
     use crate::{SpecularModel, limits, material::metallic_roughness::shininess_from_roughness};
     use bevy::{
         asset::Handle,
@@ -127,22 +128,6 @@ mod tests {
         mesh::UvChannel,
         prelude::AlphaMode,
     };
-
-    fn linear(color: Color) -> [f32; 4] {
-        color.to_linear().to_f32_array()
-    }
-
-    /// Exact up to f32 rounding of a product or a `mix` (a few ulps of values ≤ 1).
-    const ROUNDING: f32 = 1e-6;
-
-    fn assert_close(actual: [f32; 4], expected: [f32; 4], what: &str) {
-        for (a, e) in actual.iter().zip(expected) {
-            assert!(
-                (a - e).abs() <= ROUNDING,
-                "{what}: {actual:?}, expected {expected:?}"
-            );
-        }
-    }
 
     #[test]
     fn a_dielectric_keeps_its_color_and_gets_four_percent_specular() {

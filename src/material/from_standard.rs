@@ -115,6 +115,7 @@ pub(crate) fn unmapped_standard_features(material: &StandardMaterial) -> Vec<&'s
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::metallic_roughness::tests::{assert_close, linear};
     use bevy::{
         asset::Handle,
         color::{Color, LinearRgba},
@@ -124,22 +125,6 @@ mod tests {
         prelude::AlphaMode,
         render::render_resource::Face,
     };
-
-    fn linear(color: Color) -> [f32; 4] {
-        color.to_linear().to_f32_array()
-    }
-
-    /// Exact up to f32 rounding of a product or a `mix` (a few ulps of values ≤ 1).
-    const ROUNDING: f32 = 1e-6;
-
-    fn assert_close(actual: [f32; 4], expected: [f32; 4], what: &str) {
-        for (a, e) in actual.iter().zip(expected) {
-            assert!(
-                (a - e).abs() <= ROUNDING,
-                "{what}: {actual:?}, expected {expected:?}"
-            );
-        }
-    }
 
     #[test]
     fn the_default_standard_material_is_a_white_dielectric_of_four_percent_specular() {

@@ -118,3 +118,27 @@ pub(crate) fn emissive_color(emissive: LinearRgba) -> LinearRgba {
     let emissive = limits::linear_color(emissive);
     LinearRgba::rgb(emissive.red, emissive.green, emissive.blue)
 }
+
+/// What the tests of both conversions compare colors with.
+#[cfg(test)]
+pub(crate) mod tests {
+    use bevy::color::{Color, ColorToComponents};
+
+    /// `color` in linear RGBA.
+    pub(crate) fn linear(color: Color) -> [f32; 4] {
+        color.to_linear().to_f32_array()
+    }
+
+    /// Exact up to f32 rounding of a product or a `mix` (a few ulps of values ≤ 1).
+    const ROUNDING: f32 = 1e-6;
+
+    /// Fails naming `what` where a channel is off by more than [`ROUNDING`].
+    pub(crate) fn assert_close(actual: [f32; 4], expected: [f32; 4], what: &str) {
+        for (a, e) in actual.iter().zip(expected) {
+            assert!(
+                (a - e).abs() <= ROUNDING,
+                "{what}: {actual:?}, expected {expected:?}"
+            );
+        }
+    }
+}

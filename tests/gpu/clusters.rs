@@ -36,6 +36,19 @@ fn light(position: Vec3, range: f32, hue: f32) -> (PhongPointLight, Transform) {
     )
 }
 
+/// Forty lights of short range (1 to 3) scattered among the objects.
+fn spawn_lights_among_the_objects(world: &mut World) {
+    for i in 0..40 {
+        let t = i as f32;
+        let position = Vec3::new(
+            (t * 0.618).fract() * 10.0 - 5.0,
+            -0.5 + (t * 0.382).fract() * 2.0,
+            (t * 0.754).fract() * 10.0 - 5.0,
+        );
+        world.spawn(light(position, 1.0 + (t * 0.13).fract() * 2.0, t * 9.0));
+    }
+}
+
 fn objects() -> (Harness, SurfaceInputs) {
     let mut harness = Harness::new(SIZE, SIZE);
     harness.world_mut().insert_resource(PhongAmbientLight::NONE);
@@ -81,15 +94,7 @@ fn lights_around_the_frustum_light_every_pixel_as_the_model_says() {
         world.spawn(light(Vec3::new(0.0, 1.0, -far), far + 2.0, 300.0));
     }
     // Near ones among the objects.
-    for i in 0..40 {
-        let t = i as f32;
-        let position = Vec3::new(
-            (t * 0.618).fract() * 10.0 - 5.0,
-            -0.5 + (t * 0.382).fract() * 2.0,
-            (t * 0.754).fract() * 10.0 - 5.0,
-        );
-        world.spawn(light(position, 1.0 + (t * 0.13).fract() * 2.0, t * 9.0));
-    }
+    spawn_lights_among_the_objects(world);
     assert_exact(&mut harness, &inputs, "lights_around_the_frustum");
     assert_eq!(clustered_light_count(&mut harness), 48);
     let clusters = harness.world_mut().resource::<PhongLightClusters>();
@@ -278,15 +283,7 @@ fn an_orthographic_view_lights_every_pixel_as_the_model_says() {
     harness.settle();
     let inputs = harness.capture_inputs();
     let world = harness.world_mut();
-    for i in 0..40 {
-        let t = i as f32;
-        let position = Vec3::new(
-            (t * 0.618).fract() * 10.0 - 5.0,
-            -0.5 + (t * 0.382).fract() * 2.0,
-            (t * 0.754).fract() * 10.0 - 5.0,
-        );
-        world.spawn(light(position, 1.0 + (t * 0.13).fract() * 2.0, t * 9.0));
-    }
+    spawn_lights_among_the_objects(world);
     assert_exact(&mut harness, &inputs, "orthographic view");
     assert_eq!(clustered_light_count(&mut harness), 40);
 }
