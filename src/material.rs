@@ -11,6 +11,7 @@ mod vertex_lighting;
 pub use features::MaterialFeatures;
 pub(crate) use from_standard::phong_material_from_standard;
 pub use key::PhongMaterialKey;
+#[cfg(feature = "testing")]
 pub(crate) use key::culled_in_view;
 pub(crate) use maps::{MapDevices, material_maps};
 pub(crate) use metallic_roughness::MetallicRoughness;
