@@ -25,7 +25,7 @@ use bevy::{
     light::NotShadowCaster,
     pbr::Lightmap,
     prelude::*,
-    render::render_resource::{TextureDimension, TextureFormat, TextureUsages},
+    render::render_resource::TextureDimension,
     time::TimeUpdateStrategy,
 };
 use bevy_phong::PhongSceneMaterial;
@@ -191,11 +191,10 @@ fn sample_nearest_from_the_first_level(images: &mut Assets<Image>) {
 /// picture's size once the pipelines have settled, and writes it to `path` as a PNG: the
 /// picture `--headless` writes, from the same run as the comparison.
 fn write_picture(harness: &mut Harness, camera: Entity, path: &Path) -> Result<(), String> {
-    let size = super::PICTURE_SIZE;
-    let mut target = Image::new_target_texture(size.x, size.y, TextureFormat::Rgba8UnormSrgb, None);
-    target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
     let world = harness.world_mut();
-    let target = world.resource_mut::<Assets<Image>>().add(target);
+    let target = world
+        .resource_mut::<Assets<Image>>()
+        .add(super::picture_target());
     world
         .entity_mut(camera)
         .insert(RenderTarget::Image(target.clone().into()));
@@ -203,19 +202,10 @@ fn write_picture(harness: &mut Harness, camera: Entity, path: &Path) -> Result<(
     for _ in 0..super::SETTLE_FRAMES {
         harness.app.update();
     }
-    let (width, height) = (size.x as usize, size.y as usize);
+    let (width, height) = (
+        super::PICTURE_SIZE.x as usize,
+        super::PICTURE_SIZE.y as usize,
+    );
     let pixels = read_back_frame(&mut harness.app, &target, 4 * width, height, App::update);
-    if let Some(parent) = path.parent() {
-        let _ = std::fs::create_dir_all(parent);
-    }
-    image::save_buffer(
-        path,
-        &pixels,
-        size.x,
-        size.y,
-        image::ExtendedColorType::Rgba8,
-    )
-    .map_err(|error| format!("cannot write {}: {error}", path.display()))?;
-    println!("wrote {}", path.display());
-    Ok(())
+    super::save_picture(path, &pixels)
 }

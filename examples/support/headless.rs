@@ -9,10 +9,7 @@ use bevy::{
     app::{AppExit, PluginGroupBuilder, ScheduleRunnerPlugin},
     camera::RenderTarget,
     prelude::*,
-    render::{
-        gpu_readback::{Readback, ReadbackComplete},
-        render_resource::{TextureFormat, TextureUsages},
-    },
+    render::gpu_readback::{Readback, ReadbackComplete},
     time::TimeUpdateStrategy,
 };
 use bevy_phong_headless::{headless_plugins, without_row_padding};
@@ -57,14 +54,7 @@ fn render_cameras_to_image(
     mut images: ResMut<Assets<Image>>,
     cameras: Query<Entity, With<Camera3d>>,
 ) {
-    let mut image = Image::new_target_texture(
-        PICTURE_SIZE.x,
-        PICTURE_SIZE.y,
-        TextureFormat::Rgba8UnormSrgb,
-        None,
-    );
-    image.texture_descriptor.usage |= TextureUsages::COPY_SRC;
-    let image = images.add(image);
+    let image = images.add(super::picture_target());
     for camera in &cameras {
         commands
             .entity(camera)
@@ -131,29 +121,15 @@ fn save_capture(
     *saved = true;
     let (width, height) = (PICTURE_SIZE.x as usize, PICTURE_SIZE.y as usize);
     let pixels = without_row_padding(&readback.data, 4 * width, height);
-    if let Some(parent) = path.parent() {
-        let _ = std::fs::create_dir_all(parent);
-    }
-    match image::save_buffer(
-        path,
-        &pixels,
-        width as u32,
-        height as u32,
-        image::ExtendedColorType::Rgba8,
-    ) {
-        Ok(()) => {
-            println!("wrote {}", path.display());
-            commands.insert_resource(PendingExit {
-                exit: AppExit::Success,
-                frames_left: DRAIN_FRAMES,
-            });
-        }
+    let exit = match super::save_picture(path, &pixels) {
+        Ok(()) => AppExit::Success,
         Err(error) => {
-            eprintln!("cannot write {}: {error}", path.display());
-            commands.insert_resource(PendingExit {
-                exit: AppExit::error(),
-                frames_left: DRAIN_FRAMES,
-            });
+            eprintln!("{error}");
+            AppExit::error()
         }
-    }
+    };
+    commands.insert_resource(PendingExit {
+        exit,
+        frames_left: DRAIN_FRAMES,
+    });
 }

@@ -86,6 +86,38 @@ fn default_png(name: &str) -> PathBuf {
     PathBuf::from("target").join(format!("{name}.png"))
 }
 
+/// The render target of the saved picture: [`PICTURE_SIZE`], sRGB, readable back.
+#[cfg(not(target_arch = "wasm32"))]
+fn picture_target() -> Image {
+    use bevy::render::render_resource::{TextureFormat, TextureUsages};
+    let mut image = Image::new_target_texture(
+        PICTURE_SIZE.x,
+        PICTURE_SIZE.y,
+        TextureFormat::Rgba8UnormSrgb,
+        None,
+    );
+    image.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+    image
+}
+
+/// Writes the picture's RGBA bytes (rows unpadded) to `path` as a PNG, making its folder.
+#[cfg(not(target_arch = "wasm32"))]
+fn save_picture(path: &std::path::Path, pixels: &[u8]) -> Result<(), String> {
+    if let Some(parent) = path.parent() {
+        let _ = std::fs::create_dir_all(parent);
+    }
+    image::save_buffer(
+        path,
+        pixels,
+        PICTURE_SIZE.x,
+        PICTURE_SIZE.y,
+        image::ExtendedColorType::Rgba8,
+    )
+    .map_err(|error| format!("cannot write {}: {error}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
 /// An app with Bevy's default plugins set up for `mode`: a titled window, no window and
 /// a loop that renders until the PNG is written, or the page's canvas.
 #[allow(
