@@ -13,7 +13,8 @@
 //!   servers use): it gathers lights and validates input, and warns once that nothing is
 //!   drawn ([`NO_RENDERER`]).
 
-use bevy::{app::App, asset::AssetPlugin, render::RenderApp};
+use crate::material::PhongMaterial;
+use bevy::{app::App, asset::AssetPlugin, pbr::MaterialPlugin, render::RenderApp};
 
 /// The panic message of a `PhongPlugin` added before Bevy's `AssetPlugin`.
 pub(crate) const ADD_AFTER_DEFAULT_PLUGINS: &str = "bevy_phong: add PhongPlugin after \
@@ -30,34 +31,23 @@ pub(crate) const NO_RENDERER: &str = "bevy_phong: the app has no renderer (Bevy'
     RenderPlugin, part of DefaultPlugins): PhongPlugin gathers and validates lights, but \
     nothing is drawn";
 
-/// Whether the app had a render sub-app when `PhongPlugin` was built (what `finish`
-/// compares with).
-#[derive(bevy::ecs::resource::Resource)]
-pub(crate) struct RendererAtBuild(pub(crate) bool);
-
 /// Called first in `PhongPlugin::build`: stops with [`ADD_AFTER_DEFAULT_PLUGINS`] where Bevy's
-/// `AssetPlugin` is not there yet, and records whether a renderer is.
-pub(crate) fn check_build(app: &mut App) {
+/// `AssetPlugin` is not there yet.
+pub(crate) fn check_build(app: &App) {
     if !app.is_plugin_added::<AssetPlugin>() {
         panic!("{ADD_AFTER_DEFAULT_PLUGINS}");
     }
-    let renderer = app.get_sub_app(RenderApp).is_some();
-    app.insert_resource(RendererAtBuild(renderer));
 }
 
-/// What `PhongPlugin::finish` finds: `Err` with [`RENDERER_ADDED_LATER`] where a renderer
-/// appeared after the plugin was built, `Ok(Some(NO_RENDERER))` where there is none,
-/// `Ok(None)` where all is in order.
+/// What `PhongPlugin::finish` finds: `Err` with [`RENDERER_ADDED_LATER`] where the app has a
+/// renderer but `PhongPlugin` added no material plugin (its build found no renderer yet),
+/// `Ok(Some(NO_RENDERER))` where there is none, `Ok(None)` where all is in order.
 pub(crate) fn check_finish(app: &App) -> Result<Option<&'static str>, &'static str> {
-    let at_build = app
-        .world()
-        .get_resource::<RendererAtBuild>()
-        .is_some_and(|at_build| at_build.0);
-    let now = app.get_sub_app(RenderApp).is_some();
-    match (at_build, now) {
-        (false, true) => Err(RENDERER_ADDED_LATER),
-        (false, false) => Ok(Some(NO_RENDERER)),
-        (true, _) => Ok(None),
+    let drawn = app.is_plugin_added::<MaterialPlugin<PhongMaterial>>();
+    match (app.get_sub_app(RenderApp).is_some(), drawn) {
+        (true, false) => Err(RENDERER_ADDED_LATER),
+        (false, _) => Ok(Some(NO_RENDERER)),
+        (true, true) => Ok(None),
     }
 }
 
@@ -96,7 +86,7 @@ mod tests {
     fn a_renderer_added_after_the_plugin_stops_when_the_app_finishes() {
         let mut app = App::new();
         app.add_plugins((MinimalPlugins, AssetPlugin::default()));
-        check_build(&mut app);
+        check_build(&app);
         assert_eq!(check_finish(&app), Ok(Some(NO_RENDERER)));
         // A render sub-app inserted after the plugin was built, as a RenderPlugin added
         // later would.
