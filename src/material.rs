@@ -35,10 +35,13 @@ use bevy::{
     render::render_resource::{
         Face, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
     },
-    shader::ShaderRef,
+    shader::{ShaderDefVal, ShaderRef},
 };
 #[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
+
+/// The shader def of [`MaterialFeatures::MATERIAL_RECORDS`], which the vertex stage takes too.
+const MATERIAL_RECORDS_DEF: &str = "PHONG_MATERIAL_RECORDS";
 
 /// Path of the material's fragment shader among the crate's embedded assets.
 pub(crate) const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wesl";
@@ -410,6 +413,12 @@ pub struct PhongMaterial {
     #[doc(hidden)]
     #[reflect(ignore, clone)]
     pub scene_variants: SceneVariants,
+    /// Whether the shader reads the numbers from the array of every material's records, by
+    /// the mesh instance's tag, instead of this material's uniform: set only on the bind
+    /// group a class of materials shares (`render::batching`). Leave it at its default.
+    #[doc(hidden)]
+    #[reflect(ignore, clone)]
+    pub from_records: bool,
 }
 
 impl Default for PhongMaterial {
@@ -468,6 +477,7 @@ impl Default for PhongMaterial {
             environment_combine: EnvironmentCombine::Multiply,
             reflectivity: 1.0,
             refraction_ratio: None,
+            from_records: false,
             scene_variants: SceneVariants::default(),
         }
     }
@@ -679,6 +689,13 @@ impl Material for PhongMaterial {
             fragment
                 .shader_defs
                 .extend(defs.into_iter().map(Into::into));
+        }
+        // The crate's vertex stages (displaced, lit per vertex) read the material too.
+        let records: ShaderDefVal = MATERIAL_RECORDS_DEF.into();
+        if key.bind_group_data.has(MaterialFeatures::MATERIAL_RECORDS)
+            && !descriptor.vertex.shader_defs.contains(&records)
+        {
+            descriptor.vertex.shader_defs.push(records);
         }
         Ok(())
     }

@@ -166,6 +166,7 @@ impl Plugin for PhongPlugin {
             crate::render::announce_scene_data_path,
         );
         app.add_phong_material::<PhongMaterial>();
+        crate::render::add_material_batching(app);
         #[cfg(feature = "scene")]
         crate::scene::add_scene_files(app);
     }

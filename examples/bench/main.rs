@@ -15,10 +15,11 @@
 //! cargo run --example bench -- --materials  # only the material features (see features.rs)
 //! cargo run --example bench -- --stylized   # only the stylized modes (see features.rs)
 //! cargo run --example bench -- --lamps      # only the street lamps (see lamps.rs; --size N)
+//! cargo run --example bench -- --cubes      # only many meshes and materials (cubes.rs; --count N)
 //! ```
 //!
 //! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`,
-//! `--materials`, `--stylized`, `--lamps`)
+//! `--materials`, `--stylized`, `--lamps`, `--cubes`)
 //! combine: with any of them, the run measures those tables and no other.
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -52,6 +53,7 @@
 
 mod ablation;
 mod accuracy;
+mod cubes;
 mod features;
 mod growth;
 mod lamps;
@@ -73,6 +75,8 @@ struct Options {
     one_row: bool,
     /// The image size of the shadow table and the WebGL2 one, pixels.
     shadow_size: u32,
+    /// The grids of the many-materials table (`--cubes`).
+    cube_counts: Vec<usize>,
     /// The image size of the shader ablation, pixels.
     ablation_size: u32,
     /// The points of the table of how frame time grows.
@@ -112,6 +116,13 @@ impl Options {
                 "default" => options.culling = PhongLightCulling::default(),
                 other => eprintln!("unknown culling {other}: none, exact or default"),
             }
+        }
+        let counts: Vec<usize> = values("--count")
+            .iter()
+            .filter_map(|v| v.parse().ok())
+            .collect();
+        if !counts.is_empty() {
+            options.cube_counts = counts;
         }
         let sizes: Vec<u32> = values("--size")
             .iter()
@@ -162,6 +173,7 @@ impl Options {
                 tables: Tables::ALL,
                 one_row: false,
                 shadow_size: 128,
+                cube_counts: vec![100],
                 ablation_size: 128,
                 growth: growth::Sweep::quick(),
                 rounds: 1,
@@ -182,6 +194,7 @@ impl Options {
             tables: Tables::ALL,
             one_row: false,
             shadow_size: 1024,
+            cube_counts: vec![1_600, 10_000],
             ablation_size: 1024,
             growth: growth::Sweep::full(),
             rounds: 5,
@@ -224,6 +237,8 @@ struct Tables {
     stylized: bool,
     /// The street lamps with cookies and shadows, near and far.
     lamps: bool,
+    /// Many meshes and materials.
+    cubes: bool,
 }
 
 impl Tables {
@@ -236,6 +251,7 @@ impl Tables {
         materials: true,
         stylized: true,
         lamps: true,
+        cubes: true,
     };
 
     /// The tables whose flags are in `args`, or all of them when none is.
@@ -250,6 +266,7 @@ impl Tables {
             materials: named("--materials"),
             stylized: named("--stylized"),
             lamps: named("--lamps"),
+            cubes: named("--cubes"),
         };
         let any = picked.frame_times
             || picked.shadows
@@ -258,6 +275,7 @@ impl Tables {
             || picked.growth
             || picked.materials
             || picked.stylized
+            || picked.cubes
             || picked.lamps;
         if any { picked } else { Self::ALL }
     }
@@ -388,6 +406,18 @@ fn main() {
     }
     if tables.stylized {
         stylized_costs(&options, directory);
+    }
+    if tables.cubes {
+        cubes::table(
+            64,
+            &options.cube_counts,
+            Frames {
+                warmup: 1,
+                measured: options.frames.measured.min(15),
+                budget: options.frames.budget,
+            },
+            directory,
+        );
     }
     if tables.lamps {
         lamps::table(
@@ -733,6 +763,7 @@ fn frame_times(options: &Options, directory: &Path) {
                 Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
                 Scene::WideWorld { lights, far } => lights + far,
                 Scene::Lamps(lamps) => lamps.light_count(),
+                Scene::Cubes(_) => 9,
             };
             for (offset, time) in times.iter().enumerate() {
                 series[first_series + offset]

@@ -9,6 +9,7 @@ use bevy::{
 };
 use bevy_phong::prelude::*;
 
+use crate::cubes::{self, Cubes};
 use crate::features::{self, Features};
 use crate::lamps::{self, Lamps};
 
@@ -54,6 +55,8 @@ pub enum Scene {
     Featured(Features),
     /// Street lamps over the field (`lamps.rs`).
     Lamps(Lamps),
+    /// A grid of many meshes and materials (`cubes.rs`).
+    Cubes(Cubes),
 }
 
 impl Scene {
@@ -80,6 +83,7 @@ impl Scene {
             ),
             Scene::Featured(features) => format!("showcase, {}", features.name()),
             Scene::Lamps(lamps) => lamps.name(),
+            Scene::Cubes(cubes) => cubes.name(),
         }
     }
 
@@ -89,6 +93,7 @@ impl Scene {
             Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => {
                 Vec3::new(0.0, 1.0, 8.5)
             }
+            Scene::Cubes(cubes) => cubes.camera_position(),
             _ => Vec3::new(0.0, 14.0, 16.0),
         }
     }
@@ -129,6 +134,12 @@ pub const SHADOW_MAP_SIZE: u32 = 1024;
 pub struct ConstantColor {
     #[uniform(0)]
     color: LinearRgba,
+}
+
+impl ConstantColor {
+    pub fn new(color: LinearRgba) -> Self {
+        Self { color }
+    }
 }
 
 impl Material for ConstantColor {
@@ -250,7 +261,7 @@ fn point_lights(scene: Scene) -> Vec<Light> {
             near
         }
         Scene::FieldWithoutRanges { lights } => field(lights, Decay::quadratic(4.0), None),
-        Scene::Lamps(_) => Vec::new(),
+        Scene::Lamps(_) | Scene::Cubes(_) => Vec::new(),
     }
 }
 
@@ -276,6 +287,9 @@ fn far_lights(count: usize) -> Vec<Light> {
 
 /// Spawns the meshes and lights of `scene` drawn with `shading` (no camera).
 pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
+    if let Scene::Cubes(grid) = scene {
+        return cubes::spawn(world, grid, shading);
+    }
     let fine_floor = matches!(
         shading,
         Shading::PhongPerVertex {

@@ -92,6 +92,8 @@ struct Measured {
     target: Handle<Image>,
     /// The median frame time.
     median: Duration,
+    /// The median frame's split.
+    median_split: FrameSplit,
     /// The Phong fragment shader replaced by the ablation's, held so that it stays loaded
     /// as it is (an asset no handle holds is unloaded, and loads afresh when next asked
     /// for).
@@ -126,17 +128,19 @@ fn measured_app(
         frame(&mut app);
     }
     let start = Instant::now();
-    let mut times = Vec::new();
-    while times.len() < Frames::MIN_MEASURED
-        || (times.len() < frames.measured && start.elapsed() < frames.budget)
+    let mut splits = Vec::new();
+    while splits.len() < Frames::MIN_MEASURED
+        || (splits.len() < frames.measured && start.elapsed() < frames.budget)
     {
-        times.push(frame(&mut app));
+        splits.push(frame_split(&mut app));
     }
-    times.sort();
+    splits.sort_by(|a, b| a.frame_ms().total_cmp(&b.frame_ms()));
+    let median_split = splits[splits.len() / 2];
     Measured {
         app,
         target,
-        median: times[times.len() / 2],
+        median: Duration::from_secs_f64(median_split.frame_ms() / 1e3),
+        median_split,
         _changed_shader: changed_shader,
     }
 }
@@ -202,14 +206,67 @@ fn spawn_camera(world: &mut World, scene: Scene, size: u32) -> Handle<Image> {
     target
 }
 
-/// Runs one frame and waits for the device to finish it; returns how long that took.
-fn frame(app: &mut App) -> Duration {
+/// Where one frame's time went, ms.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FrameSplit {
+    /// The main world's schedule.
+    pub main_ms: f64,
+    /// The render world: extraction and its schedule (which submits the frame).
+    pub render_ms: f64,
+    /// The wait until the device finished the frame.
+    pub device_ms: f64,
+}
+
+impl FrameSplit {
+    /// The whole frame, ms.
+    pub fn frame_ms(self) -> f64 {
+        self.main_ms + self.render_ms + self.device_ms
+    }
+}
+
+/// Runs one frame as `App::update` does, timing the main world, the render world and the
+/// wait until the device finished the frame.
+fn frame_split(app: &mut App) -> FrameSplit {
+    let ms = |from: Instant| from.elapsed().as_secs_f64() * 1e3;
+    let sub_apps = app.sub_apps_mut();
     let start = Instant::now();
-    app.update();
+    sub_apps.main.run_default_schedule();
+    let main_ms = ms(start);
+    let start = Instant::now();
+    for sub_app in sub_apps.sub_apps.values_mut() {
+        sub_app.extract(sub_apps.main.world_mut());
+        sub_app.update();
+    }
+    sub_apps.main.world_mut().clear_trackers();
+    let render_ms = ms(start);
+    let start = Instant::now();
     app.sub_app(RenderApp)
         .world()
         .resource::<RenderDevice>()
         .poll(PollType::wait_indefinitely())
         .expect("the device finishes the frame");
-    start.elapsed()
+    FrameSplit {
+        main_ms,
+        render_ms,
+        device_ms: ms(start),
+    }
+}
+
+/// Runs one frame and waits for the device to finish it; returns how long that took.
+fn frame(app: &mut App) -> Duration {
+    Duration::from_secs_f64(frame_split(app).frame_ms() / 1e3)
+}
+
+/// The split of the median frame (by its whole time) of `scene` at `size`² drawn with
+/// `shading`, the Phong lights culled by default.
+pub fn median_frame_split(scene: Scene, size: u32, shading: Shading, frames: Frames) -> FrameSplit {
+    let measured = measured_app(
+        scene,
+        size,
+        shading,
+        PhongLightCulling::default(),
+        frames,
+        &[],
+    );
+    measured.median_split
 }

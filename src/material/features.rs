@@ -278,4 +278,9 @@ material_features! {
     /// Some light of the app has a `PhongLightCookie` (`PHONG_LIGHT_COOKIES`).
     LIGHT_COOKIES: "scene_variants", ["PHONG_LIGHT_COOKIES"], Nothing,
         |m, u| m.scene_variants.cookies;
+    /// The numbers read from the array of every material's records at the mesh instance's
+    /// tag, not from the material's uniform (`PHONG_MATERIAL_RECORDS`, in every stage): the
+    /// bind group a class of materials shares (`render::batching`).
+    MATERIAL_RECORDS: "from_records", ["PHONG_MATERIAL_RECORDS"], Nothing,
+        |m, u| m.from_records;
 }

@@ -2,6 +2,7 @@
 //! beside the plugin's scene data (the lights, their clusters and the shadow maps), which the
 //! bind group takes from the render world when Bevy prepares the material.
 
+use super::batching::{MaterialRecordBuffer, records_supported};
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
 use crate::displacement::DisplacementUniform;
 use crate::material::{
@@ -75,12 +76,15 @@ material_maps!(surface_bindings);
 /// world (the names are those of `bevy_phong::shaders::bindings`): 1 the light buffer (`lights`), 2
 /// the light clusters (`light_clusters`), 11 the shadow views (`shadow_views`), 12 the shadow map
 /// array (`shadow_maps`), 13 its comparison sampler (`shadow_sampler`), 28 the light cookie atlas
-/// (`cookie_atlas`, a 2D array read texel by texel). A material of its own that lights with the
-/// crate's shader functions adds these bindings the same way [`PhongMaterial`] does.
+/// (`cookie_atlas`, a 2D array read texel by texel), and where the device has a storage
+/// buffer per stage more than the scene data needs, 29 every `PhongMaterial`'s numbers
+/// (`material_records`, which only `PhongMaterial`'s own shaders read). A material of its
+/// own that lights with the crate's shader functions adds these bindings the same way
+/// [`PhongMaterial`] does.
 ///
 /// Where a shader stage has fewer than [`Self::STORAGE_BUFFERS_NEEDED`] storage buffers
 /// (WebGL2 has none), binding 1 is instead one `texture_2d<u32>` that holds the lights, the
-/// clusters and the shadow views (`scene_data`), and bindings 2, 11 and 28 are absent; the shaders
+/// clusters and the shadow views (`scene_data`), and bindings 2, 11, 28 and 29 are absent; the shaders
 /// follow the layout through the flag `PHONG_STORAGE_BUFFERS`, which every pipeline drawing
 /// with them sets from its material bind group's layout.
 #[derive(SystemParam)]
@@ -89,6 +93,7 @@ pub struct PhongSceneBindings<'w> {
     buffers: Res<'w, RenderAssets<GpuShaderBuffer>>,
     images: Res<'w, RenderAssets<GpuImage>>,
     shadow_maps: Option<Res<'w, ShadowAtlas>>,
+    material_records: Option<Res<'w, MaterialRecordBuffer>>,
 }
 
 impl PhongSceneBindings<'_> {
@@ -108,6 +113,10 @@ impl PhongSceneBindings<'_> {
     /// Binding index of the light cookie atlas (absent where the scene data is in the data
     /// texture).
     pub const COOKIE_ATLAS: u32 = 28;
+    /// Binding index of every `PhongMaterial`'s numbers, one record each (present where the
+    /// device has a storage buffer per stage more than [`Self::STORAGE_BUFFERS_NEEDED`];
+    /// read only by `PhongMaterial`'s own shaders).
+    pub const MATERIAL_RECORDS: u32 = 29;
     /// Storage buffers per shader stage the scene data needs to stay in buffers; with fewer
     /// it is read from the data texture.
     pub const STORAGE_BUFFERS_NEEDED: u32 = crate::render::STORAGE_BUFFERS_NEEDED;
@@ -115,12 +124,19 @@ impl PhongSceneBindings<'_> {
     /// The layout entries of the scene bindings (read in the vertex stage of a material lit
     /// per vertex, and in the fragment stage) on `render_device`.
     pub fn layout_entries(render_device: &RenderDevice) -> Vec<BindGroupLayoutEntry> {
-        Self::layout_entries_for(crate::render::needs_scene_texture(render_device))
+        Self::layout_entries_for(
+            crate::render::needs_scene_texture(render_device),
+            records_supported(render_device),
+        )
     }
 
     /// The layout entries of the scene bindings, with the scene data in storage buffers or,
-    /// when `scene_texture`, in the data texture.
-    pub fn layout_entries_for(scene_texture: bool) -> Vec<BindGroupLayoutEntry> {
+    /// when `scene_texture`, in the data texture; with `material_records` (and storage
+    /// buffers), the materials' records too.
+    pub fn layout_entries_for(
+        scene_texture: bool,
+        material_records: bool,
+    ) -> Vec<BindGroupLayoutEntry> {
         let entry = |binding, ty| BindGroupLayoutEntry {
             binding,
             visibility: ShaderStages::VERTEX_FRAGMENT,
@@ -156,6 +172,8 @@ impl PhongSceneBindings<'_> {
                 ),
             ]
         };
+        let records =
+            (material_records && !scene_texture).then(|| entry(Self::MATERIAL_RECORDS, storage));
         let shadows = [
             entry(
                 Self::SHADOW_MAPS,
@@ -170,7 +188,11 @@ impl PhongSceneBindings<'_> {
                 BindingType::Sampler(SamplerBindingType::Comparison),
             ),
         ];
-        scene_data.into_iter().chain(shadows).collect()
+        scene_data
+            .into_iter()
+            .chain(records)
+            .chain(shadows)
+            .collect()
     }
 
     /// The three storage buffers' bindings.
@@ -226,6 +248,12 @@ impl PhongSceneBindings<'_> {
                     cookies.texture_view.clone(),
                 ),
             ));
+            if let Some(records) = &self.material_records {
+                bindings.push((
+                    Self::MATERIAL_RECORDS,
+                    UnpreparedBindingResource::Buffer(records.buffer().clone()),
+                ));
+            }
             bindings
         };
         bindings.push((

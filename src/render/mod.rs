@@ -59,12 +59,15 @@ mod gpu_types;
 mod material_upkeep;
 // The render world's part: binding the uploaded buffers to each material.
 mod material_bindings;
+// Both: materials that differ only in their numbers drawn as one batch.
+mod batching;
 
 // That every validated input reaches the light buffer and the material uniform in range.
 #[cfg(test)]
 mod validated_inputs_tests;
 
 pub use crate::light_kind::GpuLight;
+pub(crate) use batching::add_material_batching;
 pub(crate) use cluster_views::ExtensionClusterSlots;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
 pub(crate) use clusters::{is_finite_sphere, sphere_bits};
@@ -87,6 +90,7 @@ pub(crate) use scene_texture::{
 /// For [`crate::testing`]: what the crate's own tests and benchmarks read.
 #[cfg(feature = "testing")]
 pub use {
+    batching::{MaterialBatching, material_batching},
     data_texture::DATA_TEXTURE_WIDTH,
     gpu_types::GpuCookie,
     material_bindings::{binds_every_map, material_map_bindings},

@@ -321,6 +321,7 @@ macro_rules! material_description {
                     refraction_ratio: self.refraction_ratio,
                     // The app's, which the plugin sets.
                     scene_variants: Default::default(),
+                    from_records: false,
                     $($($channel: self.$channel.to_channel(),)?)*
                     $($field: load_map(
                         load_context,

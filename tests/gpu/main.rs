@@ -49,6 +49,8 @@
 //! - `penumbra`: soft shadows (PCSS): the penumbra widens with the light's size and the
 //!   blocker's distance, and has the formula's width;
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel;
+//! - `many_materials`: materials that differ only in their numbers drawn as one class,
+//!   changed, added, removed and moved between frames, against the reference model;
 //! - `huge_vectors`: light directions of any scale and colors past the bound, against the
 //!   reference model;
 //! - `fuzzed_scenes`: a sample of the fuzzer's files (`tests/fuzz`), rendered: no NaN or
@@ -80,6 +82,7 @@ mod gltf;
 mod huge_vectors;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
+mod many_materials;
 mod morphs;
 #[path = "../fuzz/mutations.rs"]
 mod mutations;

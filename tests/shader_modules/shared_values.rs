@@ -162,15 +162,27 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
         ("cookie_atlas", PhongSceneBindings::COOKIE_ATLAS),
     ];
     let texture = [("scene_data", PhongSceneBindings::SCENE_DATA)];
+    let mut with_records = storage.to_vec();
+    with_records.push(("material_records", PhongSceneBindings::MATERIAL_RECORDS));
     // Bevy gives every shader the device's storage buffers per stage (and whether they are at
     // least 3 and 6), the crate's pipelines the flag `PHONG_STORAGE_BUFFERS` for the layout
     // the device gets: one fewer storage buffer than the scene data needs is the texture path,
     // as on the Rust side.
     let needed = PhongSceneBindings::STORAGE_BUFFERS_NEEDED;
-    for (storage_buffers, scene) in [(needed, &storage[..]), (needed - 1, &texture[..])] {
+    // With one storage buffer more, `PhongMaterial`'s shared bind groups hold every
+    // material's records (and its shaders read them, `PHONG_MATERIAL_RECORDS`).
+    for (storage_buffers, scene) in [
+        (needed + 1, &with_records[..]),
+        (needed, &storage[..]),
+        (needed - 1, &texture[..]),
+    ] {
         let scene_texture = storage_buffers < needed;
+        let records = storage_buffers > needed;
         let mut defs = variants::plain_material().swap_remove(0).defs;
         defs.extend(device_defs(storage_buffers));
+        if records {
+            defs.push("PHONG_MATERIAL_RECORDS".into());
+        }
         let bindings = library().module("bevy_phong::shaders::bindings", &defs);
         let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
         let variable = |name: &str| {
@@ -192,7 +204,7 @@ fn scene_bindings_have_the_wgsl_numbers_and_kinds() {
                 "{name}"
             );
         }
-        let entries = PhongSceneBindings::layout_entries_for(scene_texture);
+        let entries = PhongSceneBindings::layout_entries_for(scene_texture, records);
         assert_eq!(entries.len(), named.len());
         for entry in entries {
             let (name, _) = named

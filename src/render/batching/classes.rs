@@ -1,0 +1,301 @@
+//! The render world's part: each material's class (the materials that can share one bind
+//! group), the class's shared material, and the meshes pointed at it.
+
+use super::records::MaterialRecord;
+use super::slots::MaterialSlots;
+use crate::material::{PhongMaterial, PhongMaterialKey, material_maps};
+use bevy::asset::uuid::Uuid;
+use bevy::{
+    asset::{AssetEvent, AssetId, Assets},
+    camera::visibility::ViewVisibility,
+    ecs::{
+        entity::Entity,
+        message::MessageReader,
+        query::{Changed, Or},
+        resource::Resource,
+        system::{Query, Res, ResMut, StaticSystemParam},
+    },
+    image::Image,
+    pbr::{MeshMaterial3d, PreparedMaterial, RenderMaterialInstances},
+    platform::collections::{HashMap, HashSet},
+    prelude::AlphaMode,
+    render::{
+        Extract,
+        erased_render_asset::{ErasedRenderAsset, ErasedRenderAssets, PrepareAssetError},
+        sync_world::MainEntity,
+    },
+};
+
+/// Declares `map_ids`, the image of each map of a material, from the rows of
+/// `material_maps!`.
+macro_rules! map_ids {
+    ($(
+        $field:ident: texture $texture:tt $(sampler $sampler:tt)?,
+            $devices:ident, $file:ident, $(uv $channel:ident,)? $what:literal;
+    )*) => {
+        /// The image of each of `material`'s maps, in `material_maps!`'s order.
+        fn map_ids(material: &PhongMaterial) -> Vec<Option<AssetId<Image>>> {
+            vec![$(material.$field.as_ref().map(|handle| handle.id())),*]
+        }
+    };
+}
+material_maps!(map_ids);
+
+/// What materials of one class have alike: everything but the numbers of their records.
+/// Their shader variant (key), their alpha mode (it chooses the render phase) and their
+/// maps (the bind group's textures).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct ClassKey {
+    key: PhongMaterialKey,
+    /// The alpha mode's variant and its cutoff's bits (for `Mask`).
+    alpha_mode: (u8, u32),
+    maps: Vec<Option<AssetId<Image>>>,
+}
+
+impl From<&PhongMaterial> for ClassKey {
+    fn from(material: &PhongMaterial) -> Self {
+        let alpha_mode = match material.alpha_mode {
+            AlphaMode::Opaque => (0, 0),
+            AlphaMode::Mask(cutoff) => (1, cutoff.to_bits()),
+            AlphaMode::Blend => (2, 0),
+            AlphaMode::Premultiplied => (3, 0),
+            AlphaMode::AlphaToCoverage => (4, 0),
+            AlphaMode::Add => (5, 0),
+            AlphaMode::Multiply => (6, 0),
+        };
+        Self {
+            key: material.into(),
+            alpha_mode,
+            maps: map_ids(material),
+        }
+    }
+}
+
+/// A class: its shared material (one of its members' with `from_records` set, prepared
+/// under an id of its own) and how many materials it has.
+struct Class {
+    id: AssetId<PhongMaterial>,
+    material: PhongMaterial,
+    members: usize,
+    /// Whether its bind group is to be (made) again this frame.
+    to_prepare: bool,
+}
+
+/// The classes, each material's, and what the render world has yet to do for them.
+#[derive(Resource, Default)]
+pub(crate) struct MaterialClasses {
+    /// Each material's slot, as the main world gave them.
+    slots: HashMap<AssetId<PhongMaterial>, u32>,
+    classes: HashMap<ClassKey, Class>,
+    class_of: HashMap<AssetId<PhongMaterial>, ClassKey>,
+    /// Records to write this frame, by slot.
+    records: Vec<(u32, MaterialRecord)>,
+    /// Shared materials whose class has no member left, to unload.
+    to_unload: Vec<AssetId<PhongMaterial>>,
+    /// Classes made so far: each gets the next id.
+    made: u64,
+    /// Bind groups of shared materials made since the app started.
+    prepared: usize,
+}
+
+impl MaterialClasses {
+    /// The records extracted since the last call.
+    pub fn take_records(&mut self) -> Vec<(u32, MaterialRecord)> {
+        core::mem::take(&mut self.records)
+    }
+
+    /// Marks every class's bind group to be made again (the record buffer was replaced).
+    pub fn prepare_all_again(&mut self) {
+        for class in self.classes.values_mut() {
+            class.to_prepare = true;
+        }
+    }
+
+    /// The shared material that draws `material`, if it has a class.
+    fn shared_material_of(
+        &self,
+        material: AssetId<PhongMaterial>,
+    ) -> Option<AssetId<PhongMaterial>> {
+        let key = self.class_of.get(&material)?;
+        Some(self.classes.get(key)?.id)
+    }
+
+    /// Files `id` (a material now as `material`) in its class, making the class where it is
+    /// new; its class's bind group is made again. Returns whether its class changed.
+    fn file(&mut self, id: AssetId<PhongMaterial>, material: &PhongMaterial) -> bool {
+        let key = ClassKey::from(material);
+        let moved = self.class_of.get(&id) != Some(&key);
+        if moved {
+            self.leave(id);
+            let made = &mut self.made;
+            let class = self.classes.entry(key.clone()).or_insert_with(|| {
+                *made += 1;
+                Class {
+                    id: AssetId::Uuid {
+                        uuid: Uuid::from_u64_pair(SHARED_MATERIAL_IDS, *made),
+                    },
+                    material: PhongMaterial {
+                        from_records: true,
+                        ..material.clone()
+                    },
+                    members: 0,
+                    to_prepare: true,
+                }
+            });
+            class.members += 1;
+            self.class_of.insert(id, key.clone());
+        }
+        // Also where only numbers changed: a material is modified when the scene's buffers
+        // it binds were replaced, and its class binds them too.
+        if let Some(class) = self.classes.get_mut(&key) {
+            class.to_prepare = true;
+        }
+        moved
+    }
+
+    /// Takes `id` out of its class; a class left empty is unloaded.
+    fn leave(&mut self, id: AssetId<PhongMaterial>) {
+        let Some(key) = self.class_of.remove(&id) else {
+            return;
+        };
+        if let Some(class) = self.classes.get_mut(&key) {
+            class.members -= 1;
+            if class.members == 0 {
+                self.to_unload.push(class.id);
+                self.classes.remove(&key);
+            }
+        }
+    }
+
+    /// How many classes there are, and how many bind groups of shared materials were made
+    /// since the app started.
+    #[cfg(feature = "testing")]
+    pub fn counts(&self) -> (usize, usize) {
+        (self.classes.len(), self.prepared)
+    }
+}
+
+/// The high 64 bits of every shared material's id (the low ones count the classes made).
+const SHARED_MATERIAL_IDS: u64 = 0x6265_7679_5f70_686f;
+
+/// Whether `id` is a class's shared material.
+#[cfg(feature = "testing")]
+pub(crate) fn is_shared_material(id: bevy::asset::UntypedAssetId) -> bool {
+    matches!(id, bevy::asset::UntypedAssetId::Uuid { uuid, .. } if uuid.as_u64_pair().0 == SHARED_MATERIAL_IDS)
+}
+
+/// Extraction: the slots given and taken back, the records and classes of the materials
+/// added or changed this frame (removed ones leave theirs), and each mesh whose material
+/// instance Bevy extracted, or whose material moved to another class, pointed at its
+/// material's shared one.
+///
+/// Runs after Bevy extracts the material instances; iterates over every mesh only in frames
+/// where some material moved to a class (added, or changed in its key or maps).
+pub(crate) fn extract_material_classes(
+    mut classes: ResMut<MaterialClasses>,
+    mut instances: ResMut<RenderMaterialInstances>,
+    slots: Extract<Res<MaterialSlots>>,
+    materials: Extract<Res<Assets<PhongMaterial>>>,
+    mut events: Extract<MessageReader<AssetEvent<PhongMaterial>>>,
+    changed_meshes: Extract<Query<ExtractedMesh, MaterialInstanceExtracted>>,
+    meshes: Extract<Query<(Entity, &MeshMaterial3d<PhongMaterial>)>>,
+) {
+    for &(id, slot) in slots.changes() {
+        match slot {
+            Some(slot) => classes.slots.insert(id, slot),
+            None => classes.slots.remove(&id),
+        };
+    }
+    let mut moved = HashSet::new();
+    for event in events.read() {
+        match *event {
+            AssetEvent::Added { id } | AssetEvent::Modified { id } => {
+                let (Some(material), Some(&slot)) = (materials.get(id), classes.slots.get(&id))
+                else {
+                    continue;
+                };
+                classes.records.push((slot, MaterialRecord::from(material)));
+                if classes.file(id, material) {
+                    moved.insert(id);
+                }
+            }
+            AssetEvent::Removed { id } => classes.leave(id),
+            AssetEvent::Unused { .. } | AssetEvent::LoadedWithDependencies { .. } => {}
+        }
+    }
+    let mut point = |entity: Entity, material: AssetId<PhongMaterial>| {
+        if let (Some(instance), Some(shared)) = (
+            instances.instances.get_mut(&MainEntity::from(entity)),
+            classes.shared_material_of(material),
+        ) {
+            instance.asset_id = shared.untyped();
+        }
+    };
+    for (entity, visibility, material) in &changed_meshes {
+        if visibility.get() {
+            point(entity, material.id());
+        }
+    }
+    if !moved.is_empty() {
+        for (entity, material) in &meshes {
+            if moved.contains(&material.id()) {
+                point(entity, material.id());
+            }
+        }
+    }
+}
+
+/// A mesh drawn with a `PhongMaterial`: what Bevy's extraction of material instances reads.
+type ExtractedMesh = (
+    Entity,
+    &'static ViewVisibility,
+    &'static MeshMaterial3d<PhongMaterial>,
+);
+
+/// When Bevy extracts a mesh's material instance again.
+type MaterialInstanceExtracted = Or<(
+    Changed<ViewVisibility>,
+    Changed<MeshMaterial3d<PhongMaterial>>,
+)>;
+
+/// The parameters with which Bevy prepares a `PhongMaterial`.
+type PrepareParam = <MeshMaterial3d<PhongMaterial> as ErasedRenderAsset>::Param;
+
+/// Unloads the shared materials of classes left empty and prepares (again) those marked,
+/// through Bevy's own preparation of a material: a class that cannot be prepared yet
+/// (the scene's buffers not uploaded) is tried again next frame.
+///
+/// Runs after Bevy prepares the materials of the frame and the records are written.
+pub(crate) fn prepare_material_classes(
+    mut classes: ResMut<MaterialClasses>,
+    mut prepared: ResMut<ErasedRenderAssets<PreparedMaterial>>,
+    mut param: StaticSystemParam<PrepareParam>,
+) {
+    let classes = &mut *classes;
+    for id in classes.to_unload.drain(..) {
+        prepared.remove(id);
+        <MeshMaterial3d<PhongMaterial> as ErasedRenderAsset>::unload_asset(id, &mut param);
+    }
+    for class in classes
+        .classes
+        .values_mut()
+        .filter(|class| class.to_prepare)
+    {
+        match <MeshMaterial3d<PhongMaterial> as ErasedRenderAsset>::prepare_asset(
+            class.material.clone(),
+            class.id,
+            &mut param,
+        ) {
+            Ok(material) => {
+                prepared.insert(class.id, material);
+                class.to_prepare = false;
+                classes.prepared += 1;
+            }
+            Err(PrepareAssetError::RetryNextUpdate(_)) => {}
+            Err(error) => {
+                bevy::log::error!("bevy_phong: a shared material was not prepared: {error}");
+                class.to_prepare = false;
+            }
+        }
+    }
+}
