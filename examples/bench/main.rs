@@ -16,7 +16,11 @@
 //! cargo run --example bench -- --stylized   # only the stylized modes (see features.rs)
 //! cargo run --example bench -- --lamps      # only the street lamps (see lamps.rs; --size N)
 //! cargo run --example bench -- --cubes      # only many meshes and materials (cubes.rs; --count N)
+//! cargo run --example bench -- --frame-times --scene field256 --scene wide60000 --size 32 --orbit
+//!                                           # far lights under a camera that moves every frame
 //! ```
+//!
+//! `--orbit` turns every camera half a degree around the scene's middle before each frame.
 //!
 //! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`,
 //! `--materials`, `--stylized`, `--lamps`, `--cubes`)
@@ -369,6 +373,9 @@ fn ms(duration: Duration) -> f64 {
 
 fn main() {
     let options = Options::from_args();
+    if std::env::args().any(|arg| arg == "--orbit") {
+        timing::orbit_cameras();
+    }
     if options.one_row {
         return one_row(&options);
     }

@@ -17,7 +17,20 @@ use bevy_phong::PhongLightCulling;
 use bevy_phong_headless::{
     assert_no_failed_pipelines, headless_app, read_back_frame, run_until_settled,
 };
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+
+/// Whether every camera orbits the scene's middle by [`ORBIT_STEP`] before each frame
+/// (`--orbit`), so that every view changes every frame, as a game's camera does.
+static ORBIT: AtomicBool = AtomicBool::new(false);
+
+/// How far the cameras orbit between two frames, radians (half a degree).
+const ORBIT_STEP: f32 = 0.5 * core::f32::consts::PI / 180.0;
+
+/// Makes every measured app's cameras orbit (see [`ORBIT`]).
+pub fn orbit_cameras() {
+    ORBIT.store(true, Ordering::Relaxed);
+}
 
 /// The asset path of `PhongMaterial`'s fragment shader (`src/shaders/phong_material.wesl`).
 const PHONG_MATERIAL_SHADER: &str = "embedded://bevy_phong/shaders/phong_material.wesl";
@@ -228,6 +241,13 @@ impl FrameSplit {
 /// wait until the device finished the frame.
 fn frame_split(app: &mut App) -> FrameSplit {
     let ms = |from: Instant| from.elapsed().as_secs_f64() * 1e3;
+    if ORBIT.load(Ordering::Relaxed) {
+        let world = app.world_mut();
+        let mut cameras = world.query_filtered::<&mut Transform, With<Camera3d>>();
+        for mut transform in cameras.iter_mut(world) {
+            transform.rotate_around(Vec3::ZERO, Quat::from_rotation_y(ORBIT_STEP));
+        }
+    }
     let sub_apps = app.sub_apps_mut();
     let start = Instant::now();
     sub_apps.main.run_default_schedule();

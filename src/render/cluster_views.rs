@@ -213,12 +213,22 @@ pub fn assign_lights_to_clusters(
     }
 
     // The lights' records are rewritten only in frames where a light changed: otherwise only
-    // the views can have changed the clusters.
-    let unchanged = !lights.is_changed()
-        && !extension_lights.is_changed()
-        && state.clusters.was_built_for(&state.views)
-        && state.buffer.capacity() > 0;
-    if unchanged {
+    // the views can have changed the clusters, which are then built from the spheres of the
+    // last build (only the lights near each view are looked at).
+    let lights_unchanged =
+        !lights.is_changed() && !extension_lights.is_changed() && state.buffer.capacity() > 0;
+    if lights_unchanged {
+        let PhongLightClusters {
+            buffer,
+            clusters,
+            views,
+            ..
+        } = state;
+        if clusters.build_views(views)
+            && buffer.write(&mut buffers, clusters.header(), clusters.data())
+        {
+            resized.write(LightBufferResized);
+        }
         return;
     }
     let header = lights.header();

@@ -24,6 +24,7 @@
 use super::gpu_types::GpuClustersHeader;
 use crate::light_kind::GpuLight;
 use bevy::math::{DMat4, DVec3, DVec4, Mat4, UVec2, Vec3};
+use sphere_tree::{LightAt, SphereTree};
 use std::ops::RangeInclusive;
 
 /// `u32` words per view record.
@@ -213,6 +214,18 @@ impl ViewBounds {
     }
 }
 
+impl ViewBounds {
+    /// Whether a node of the light tree, a sphere at `center` of `radius` holding the
+    /// spheres of the lights below it, may hold a light that meets a cluster: its sphere,
+    /// widened by 1 % and a thousandth of a unit (more than the rounding margin of
+    /// [`Self::clusters_met`] grows by between a light and a sphere around it, and the `f32`
+    /// rounding of the node's centre), meets one.
+    fn may_meet(&self, center: DVec3, radius: f64) -> bool {
+        let radius = radius * 1.01 + 1e-3 + 1e-6 * center.length();
+        self.clusters_met(center.as_vec3(), radius as f32).is_some()
+    }
+}
+
 /// The planes of `ndc[axis] = -1 + 2i / tiles` in view space, for `i` in `0..=tiles`,
 /// normalized (a plane of zero normal stays zero, and meets every sphere).
 fn boundary_planes(clip_from_view: &DMat4, axis: usize, tiles: u32) -> Vec<DVec4> {
@@ -287,6 +300,10 @@ pub struct LightClusters {
     /// (the word of a cluster record that counts, then places, a slot's entries; the entry).
     pairs: Vec<(u32, u32)>,
     built_from: BuiltFrom,
+    /// The lights' spheres in a tree, to find those near a view.
+    tree: SphereTree,
+    /// The lights near the view being built.
+    near: Vec<LightAt>,
 }
 
 /// The input of a build, compared with the next one: the same input gives the same
@@ -302,9 +319,13 @@ struct BuiltFrom {
 
 impl BuiltFrom {
     fn is(&self, views: &[ClusterView], slots: &[ClusterSlot]) -> bool {
+        self.views == views && self.has_spheres_of(slots)
+    }
+
+    /// Whether `slots` are the spheres of the last build.
+    fn has_spheres_of(&self, slots: &[ClusterSlot]) -> bool {
         let mut spheres = self.spheres.as_slice();
-        self.views == views
-            && self.slots.len() == slots.len()
+        self.slots.len() == slots.len()
             && self.slots.iter().zip(slots).all(|(&(first, count), slot)| {
                 let (these, rest) = spheres.split_at(count.min(spheres.len()));
                 spheres = rest;
@@ -312,15 +333,37 @@ impl BuiltFrom {
             })
     }
 
-    fn set(&mut self, views: &[ClusterView], slots: &[ClusterSlot]) {
+    fn set_views(&mut self, views: &[ClusterView]) {
         self.views.clear();
         self.views.extend_from_slice(views);
+    }
+
+    fn set_spheres(&mut self, slots: &[ClusterSlot]) {
         self.spheres.clear();
         self.slots.clear();
         for slot in slots {
             self.spheres.extend_from_slice(slot.spheres);
             self.slots.push((slot.first, slot.spheres.len()));
         }
+    }
+
+    /// Every light's place, centre and radius (in `f64`), slot after slot.
+    fn lights(&self) -> impl Iterator<Item = (LightAt, DVec3, f64)> + '_ {
+        self.slots
+            .iter()
+            .enumerate()
+            .flat_map(move |(slot, &(_, count))| {
+                (0..count as u32).map(move |index| (slot as u32, index))
+            })
+            .zip(&self.spheres)
+            .map(|((slot, index), bits)| {
+                let (center, radius) = sphere(bits);
+                (
+                    LightAt { slot, index },
+                    center.as_dvec3(),
+                    f64::from(radius),
+                )
+            })
     }
 }
 
@@ -358,11 +401,6 @@ impl LightClusters {
         &self.header
     }
 
-    /// Whether the last build was for `views`.
-    pub fn was_built_for(&self, views: &[ClusterView]) -> bool {
-        self.built_from.views == views
-    }
-
     /// The view records, the cluster records, then the light indices they point into.
     pub fn data(&self) -> &[u32] {
         &self.data
@@ -376,13 +414,40 @@ impl LightClusters {
         if self.built_from.is(views, slots) {
             return false;
         }
-        self.built_from.set(views, slots);
+        if !self.built_from.has_spheres_of(slots) {
+            self.built_from.set_spheres(slots);
+            self.tree.build(self.built_from.lights());
+        }
+        self.built_from.set_views(views);
+        self.fill();
+        true
+    }
+
+    /// [`Self::build`] for `views` with the spheres of the last build (the lights did not
+    /// change): only the views are compared, and only the lights that the tree finds near
+    /// each view are tested against its clusters.
+    pub fn build_views(&mut self, views: &[ClusterView]) -> bool {
+        if self.built_from.views == views {
+            return false;
+        }
+        self.built_from.set_views(views);
+        self.fill();
+        true
+    }
+
+    /// Builds the clusters of the views and spheres in `built_from`.
+    fn fill(&mut self) {
         self.data.clear();
         self.pairs.clear();
+        let BuiltFrom {
+            views,
+            spheres,
+            slots,
+        } = &self.built_from;
         let words = cluster_words(slots.len());
-        if slots.iter().all(|slot| slot.spheres.is_empty()) || views.is_empty() {
+        if spheres.is_empty() || views.is_empty() {
             self.header = GpuClustersHeader::EMPTY;
-            return true;
+            return;
         }
         self.header = GpuClustersHeader {
             view_count: views.len() as u32,
@@ -400,34 +465,48 @@ impl LightClusters {
         self.data.resize(records_end, 0);
 
         // Count each cluster's entries of slot k in its word k, and note every (that word,
-        // entry) pair: per view, slot by slot, each slot's lights in order.
-        let (data, pairs) = (&mut self.data, &mut self.pairs);
+        // entry) pair: per view, slot by slot, each slot's lights in order (those the tree
+        // finds near the view).
+        let slot_starts: Vec<usize> = slots
+            .iter()
+            .scan(0, |start, &(_, count)| {
+                let this = *start;
+                *start += count;
+                Some(this)
+            })
+            .collect();
+        let (data, pairs, near) = (&mut self.data, &mut self.pairs, &mut self.near);
         for (view_index, view) in views.iter().enumerate() {
             let bounds = ViewBounds::new(view);
+            near.clear();
+            self.tree.visit(
+                |center, radius| bounds.may_meet(center, radius),
+                |at| near.push(at),
+            );
+            near.sort_unstable();
             let view_first = data[view_index * VIEW_WORDS + 1] as usize;
             let (columns, rows) = (view.tiles.x as usize, view.tiles.y as usize);
-            for (k, slot) in slots.iter().enumerate() {
-                for (index, bits) in slot.spheres.iter().enumerate() {
-                    let entry = slot.first + index as u32;
-                    let (center, radius) = sphere(bits);
-                    let Some([xs, ys, slices]) = bounds.clusters_met(center, radius) else {
-                        continue;
-                    };
-                    for slice in slices {
-                        for y in ys.clone() {
-                            let row = (slice as usize * rows + y as usize) * columns;
-                            for x in xs.clone() {
-                                let word = view_first + words * (row + x as usize) + k;
-                                data[word] += 1;
-                                pairs.push((word as u32, entry));
-                            }
+            for &LightAt { slot: k, index } in near.iter() {
+                let (k, index) = (k as usize, index as usize);
+                let entry = slots[k].0 + index as u32;
+                let (center, radius) = sphere(&spheres[slot_starts[k] + index]);
+                let Some([xs, ys, slices]) = bounds.clusters_met(center, radius) else {
+                    continue;
+                };
+                for slice in slices {
+                    for y in ys.clone() {
+                        let row = (slice as usize * rows + y as usize) * columns;
+                        for x in xs.clone() {
+                            let word = view_first + words * (row + x as usize) + k;
+                            data[word] += 1;
+                            pairs.push((word as u32, entry));
                         }
                     }
                 }
             }
         }
-        // Turn each count into a write cursor at its slot's start; word K holds the end.
         let slot_count = slots.len();
+        // Turn each count into a write cursor at its slot's start; word K holds the end.
         let mut next = records_end as u32;
         for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(words) {
             for word in &mut record[..slot_count] {
@@ -451,9 +530,10 @@ impl LightClusters {
             record[0] = start;
             start = record[slot_count];
         }
-        true
     }
 }
+
+mod sphere_tree;
 
 #[cfg(test)]
 mod tests;

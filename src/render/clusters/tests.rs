@@ -442,6 +442,23 @@ fn the_same_input_keeps_the_clusters_and_any_change_rebuilds_them() {
 }
 
 #[test]
+fn a_moved_view_over_unchanged_lights_gets_what_a_whole_build_gives() {
+    // `build_views` reuses the last build's spheres and their tree: the same data as a
+    // build from scratch for the moved view, from lights near and far (a world 400 across).
+    let lights = scattered_lights(3000, 200.0, Vec3::ZERO);
+    let view = perspective_view(Vec3::new(0.0, 5.0, 30.0), Vec3::ZERO, 0.8, 1.6, 0.1, 300.0);
+    let moved = perspective_view(Vec3::new(20.0, 5.0, 20.0), Vec3::ZERO, 0.8, 1.6, 0.1, 300.0);
+    let mut reused = LightClusters::default();
+    reused.build_lights(&[view], &lights, 0..2000, 2000..3000);
+    assert!(reused.build_views(&[moved]));
+    assert!(!reused.build_views(&[moved]), "the same view again: kept");
+    let mut whole = LightClusters::default();
+    whole.build_lights(&[moved], &lights, 0..2000, 2000..3000);
+    assert!(listed_anywhere(&whole).len() > 10, "some lights are in the view");
+    assert_eq!(reused.data(), whole.data());
+}
+
+#[test]
 fn no_lights_or_no_views_make_no_clusters() {
     let view = perspective_view(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 0.8, 1.0, 0.1, 100.0);
     let mut clusters = LightClusters::default();
