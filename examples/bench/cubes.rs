@@ -9,7 +9,7 @@ use crate::scene::{ConstantColor, Scene, Shading, scatter};
 use crate::timing::{Frames, median_frame_split};
 use crate::write;
 use bevy::prelude::*;
-use bevy_phong::prelude::*;
+use bevy_phong::{PhongLightCulling, prelude::*};
 use std::{fmt::Write as _, path::Path};
 
 /// A grid of meshes.
@@ -220,7 +220,13 @@ pub fn table(size: u32, counts: &[usize], frames: Frames, directory: &Path) {
                 totals.push(f64::NAN);
                 continue;
             }
-            let split = median_frame_split(Scene::Cubes(grid), size, shading, frames);
+            let split = median_frame_split(
+                Scene::Cubes(grid),
+                size,
+                shading,
+                PhongLightCulling::default(),
+                frames,
+            );
             let total = split.frame_ms();
             eprintln!("{} {size}² {name}: {total:.1} ms", grid.name());
             let _ = writeln!(

@@ -59,6 +59,7 @@ mod ablation;
 mod accuracy;
 mod cubes;
 mod features;
+mod frame_times;
 mod growth;
 mod lamps;
 mod plot;
@@ -385,7 +386,7 @@ fn main() {
     }
     let tables = options.tables;
     if tables.frame_times {
-        frame_times(&options, directory);
+        frame_times::table(&options, directory);
         if options.variants {
             time_against_error(&options, directory);
         }
@@ -725,79 +726,6 @@ fn stylized_costs(options: &Options, directory: &Path) {
         options.rounds
     );
     write(&directory.join("stylized.csv"), &csv);
-}
-
-/// Phong beside Standard and the constant-color floor, each scene at each size.
-fn frame_times(options: &Options, directory: &Path) {
-    let default_culling = options.culling;
-    let mut table = String::from(
-        "| scene | size | Phong ms | Standard ms | constant ms | Phong/Standard | Phong/constant | Phong error |\n|---|---|---|---|---|---|---|---|\n",
-    );
-    let mut csv = String::from("scene,size,shading,median_ms\n");
-    let mut series: Vec<plot::Series> = Vec::new();
-    for &size in &options.sizes {
-        let shadings = [
-            ("Phong", Shading::Phong(Some(SpecularModel::Phong))),
-            ("Standard", Shading::Standard),
-            ("constant", Shading::Constant),
-        ];
-        let first_series = series.len();
-        series.extend(shadings.iter().map(|(name, _)| plot::Series {
-            label: format!("{name} {size}x{size}"),
-            points: Vec::new(),
-        }));
-        for &scene in &options.scenes {
-            let times = shadings.map(|(name, shading)| {
-                let median = ms(median_frame_time(
-                    scene,
-                    size,
-                    shading,
-                    default_culling,
-                    options.frames,
-                ));
-                let _ = writeln!(csv, "{},{size},{name},{median:.3}", scene.name());
-                eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
-                median
-            });
-            let error = accuracy::measure(
-                scene,
-                Shading::Phong(Some(SpecularModel::Phong)),
-                default_culling,
-            )
-            .max;
-            let lights = match scene {
-                Scene::Showcase | Scene::ShowcaseOnFloor { .. } | Scene::Featured(_) => 3,
-                Scene::Field { lights } | Scene::FieldWithoutRanges { lights } => lights,
-                Scene::WideWorld { lights, far } => lights + far,
-                Scene::Lamps(lamps) => lamps.light_count(),
-                Scene::Cubes(_) => 9,
-            };
-            for (offset, time) in times.iter().enumerate() {
-                series[first_series + offset]
-                    .points
-                    .push((lights as f64, *time));
-            }
-            let _ = writeln!(
-                table,
-                "| {} | {size}² | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {error:.1e} |",
-                scene.name(),
-                times[0],
-                times[1],
-                times[2],
-                times[0] / times[1],
-                times[0] / times[2],
-            );
-        }
-    }
-    println!("\nFrame time, median ms (Phong with the default PhongLightCulling):\n\n{table}");
-    write(&directory.join("frame_times.csv"), &csv);
-    plot::lines(
-        &directory.join("frame_times.png"),
-        "Frame time on lavapipe: Phong, StandardMaterial, constant color",
-        "point lights in the scene",
-        "median frame time, ms",
-        &series,
-    );
 }
 
 /// Each variant's frame time next to its error against the reference model.

@@ -278,15 +278,13 @@ fn frame(app: &mut App) -> Duration {
 }
 
 /// The split of the median frame (by its whole time) of `scene` at `size`² drawn with
-/// `shading`, the Phong lights culled by default.
-pub fn median_frame_split(scene: Scene, size: u32, shading: Shading, frames: Frames) -> FrameSplit {
-    let measured = measured_app(
-        scene,
-        size,
-        shading,
-        PhongLightCulling::default(),
-        frames,
-        &[],
-    );
-    measured.median_split
+/// `shading`, the Phong lights culled by `culling`.
+pub fn median_frame_split(
+    scene: Scene,
+    size: u32,
+    shading: Shading,
+    culling: PhongLightCulling,
+    frames: Frames,
+) -> FrameSplit {
+    measured_app(scene, size, shading, culling, frames, &[]).median_split
 }

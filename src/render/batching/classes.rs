@@ -299,3 +299,85 @@ pub(crate) fn prepare_material_classes(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bevy::{asset::Handle, color::Color};
+
+    fn id(index: u128) -> AssetId<PhongMaterial> {
+        AssetId::Uuid {
+            uuid: Uuid::from_u128(index),
+        }
+    }
+
+    #[test]
+    fn materials_that_differ_in_numbers_share_a_class_and_others_do_not() {
+        let mut classes = MaterialClasses::default();
+        let red = PhongMaterial {
+            base_color: Color::linear_rgb(1.0, 0.0, 0.0),
+            shininess: 10.0,
+            ..Default::default()
+        };
+        let blue = PhongMaterial {
+            base_color: Color::linear_rgb(0.0, 0.0, 1.0),
+            shininess: 70.0,
+            specular_model: crate::SpecularModel::BlinnPhong,
+            ..Default::default()
+        };
+        let textured = PhongMaterial {
+            base_color_texture: Some(Handle::default()),
+            ..red.clone()
+        };
+        let masked = PhongMaterial {
+            alpha_mode: AlphaMode::Mask(0.5),
+            ..red.clone()
+        };
+        let other_texture = PhongMaterial {
+            base_color_texture: Some(Handle::Uuid(Uuid::from_u128(7), Default::default())),
+            ..red.clone()
+        };
+        assert!(
+            classes.file(id(1), &red),
+            "a new material moves into a class"
+        );
+        assert!(classes.file(id(2), &blue));
+        assert_eq!(classes.classes.len(), 1, "numbers only: one class");
+        assert_eq!(
+            classes.shared_material_of(id(1)),
+            classes.shared_material_of(id(2))
+        );
+        assert!(classes.file(id(3), &textured));
+        assert!(classes.file(id(4), &masked));
+        assert!(classes.file(id(5), &other_texture));
+        assert_eq!(
+            classes.classes.len(),
+            4,
+            "a map, another image in it and an alpha mode: a class each"
+        );
+        assert!(
+            !classes.file(id(2), &red),
+            "changed numbers: the same class, no mesh to re-point"
+        );
+        assert!(
+            classes.file(id(2), &masked),
+            "another alpha mode: another class"
+        );
+        assert_eq!(classes.classes.len(), 4);
+    }
+
+    #[test]
+    fn a_class_left_without_materials_is_unloaded() {
+        let mut classes = MaterialClasses::default();
+        let material = PhongMaterial::default();
+        classes.file(id(1), &material);
+        classes.file(id(2), &material);
+        let shared = classes.shared_material_of(id(1)).unwrap();
+        classes.leave(id(1));
+        assert!(classes.to_unload.is_empty(), "one material left");
+        classes.leave(id(2));
+        assert_eq!(classes.to_unload, vec![shared]);
+        assert!(classes.classes.is_empty());
+        assert_eq!(classes.shared_material_of(id(2)), None);
+    }
+}

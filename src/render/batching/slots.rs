@@ -114,3 +114,36 @@ pub(crate) fn tag_phong_meshes(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bevy::asset::uuid::Uuid;
+
+    fn id(index: u128) -> AssetId<PhongMaterial> {
+        AssetId::Uuid {
+            uuid: Uuid::from_u128(index),
+        }
+    }
+
+    #[test]
+    fn a_material_keeps_its_slot_and_a_removed_ones_slot_is_given_again() {
+        let mut slots = MaterialSlots::default();
+        assert_eq!(slots.slot_of(id(1)), 0);
+        assert_eq!(slots.slot_of(id(2)), 1);
+        assert_eq!(slots.slot_of(id(1)), 0, "asked again: the same slot");
+        slots.release(id(1));
+        assert_eq!(slots.slot_of(id(3)), 0, "the freed slot, not a new one");
+        assert_eq!(slots.slot_of(id(4)), 2);
+        assert_eq!(
+            slots.changes(),
+            &[
+                (id(1), Some(0)),
+                (id(2), Some(1)),
+                (id(1), None),
+                (id(3), Some(0)),
+                (id(4), Some(2)),
+            ]
+        );
+    }
+}

@@ -454,7 +454,10 @@ fn a_moved_view_over_unchanged_lights_gets_what_a_whole_build_gives() {
     assert!(!reused.build_views(&[moved]), "the same view again: kept");
     let mut whole = LightClusters::default();
     whole.build_lights(&[moved], &lights, 0..2000, 2000..3000);
-    assert!(listed_anywhere(&whole).len() > 10, "some lights are in the view");
+    assert!(
+        listed_anywhere(&whole).len() > 10,
+        "some lights are in the view"
+    );
     assert_eq!(reused.data(), whole.data());
 }
 
