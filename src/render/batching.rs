@@ -120,3 +120,16 @@ pub(crate) fn add_material_batching(app: &mut App) {
                 .after(prepare_erased_assets::<MeshMaterial3d<PhongMaterial>>),
         );
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::material::PhongMaterial;
+    use bevy::asset::{AssetId, uuid::Uuid};
+
+    /// A material's id for the tests of slots and classes (no asset behind it).
+    pub fn material_id(index: u128) -> AssetId<PhongMaterial> {
+        AssetId::Uuid {
+            uuid: Uuid::from_u128(index),
+        }
+    }
+}

@@ -74,6 +74,17 @@ fn grid(harness: &mut Harness) -> Vec<Entity> {
         .collect()
 }
 
+/// Changes the material of `cube` in place (its asset, which every mesh that holds it draws).
+fn edit_material(world: &mut World, cube: Entity, edit: impl FnOnce(&mut PhongMaterial)) {
+    let handle = world
+        .get::<MeshMaterial3d<PhongMaterial>>(cube)
+        .expect("the cube has a Phong material")
+        .0
+        .clone();
+    let mut materials = world.resource_mut::<Assets<PhongMaterial>>();
+    edit(&mut materials.get_mut(&handle).expect("the material exists"));
+}
+
 /// Renders a frame and compares every pixel with the reference model.
 fn assert_matches_reference(harness: &mut Harness, what: &str) {
     harness.settle();
@@ -112,17 +123,9 @@ fn materials_changed_added_removed_and_moved_between_frames_draw_as_the_referenc
 
     // One material's numbers changed: its record, and its class's one bind group again
     // (not the other class's, nor one per material).
-    let world = harness.world_mut();
-    let handle = world
-        .get::<MeshMaterial3d<PhongMaterial>>(cubes[9])
-        .unwrap()
-        .0
-        .clone();
-    world
-        .resource_mut::<Assets<PhongMaterial>>()
-        .get_mut(&handle)
-        .unwrap()
-        .base_color = Color::linear_rgb(0.1, 0.2, 0.95);
+    edit_material(harness.world_mut(), cubes[9], |material| {
+        material.base_color = Color::linear_rgb(0.1, 0.2, 0.95);
+    });
     let rendered = harness.render_next_frame();
     harness
         .compare_with_reference(&rendered)
@@ -141,16 +144,9 @@ fn materials_changed_added_removed_and_moved_between_frames_draw_as_the_referenc
     for &cube in &cubes[..SIDE] {
         world.despawn(cube);
     }
-    let handle = world
-        .get::<MeshMaterial3d<PhongMaterial>>(cubes[20])
-        .unwrap()
-        .0
-        .clone();
-    world
-        .resource_mut::<Assets<PhongMaterial>>()
-        .get_mut(&handle)
-        .unwrap()
-        .specular_model = SpecularModel::NormalizedBlinnPhong;
+    edit_material(world, cubes[20], |material| {
+        material.specular_model = SpecularModel::NormalizedBlinnPhong;
+    });
     let cube = world
         .resource_mut::<Assets<Mesh>>()
         .add(Sphere::new(0.4).mesh().uv(24, 12));

@@ -303,13 +303,8 @@ pub(crate) fn prepare_material_classes(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::batching::tests::material_id as id;
     use bevy::{asset::Handle, color::Color};
-
-    fn id(index: u128) -> AssetId<PhongMaterial> {
-        AssetId::Uuid {
-            uuid: Uuid::from_u128(index),
-        }
-    }
 
     #[test]
     fn materials_that_differ_in_numbers_share_a_class_and_others_do_not() {

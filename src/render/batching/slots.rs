@@ -118,13 +118,7 @@ pub(crate) fn tag_phong_meshes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bevy::asset::uuid::Uuid;
-
-    fn id(index: u128) -> AssetId<PhongMaterial> {
-        AssetId::Uuid {
-            uuid: Uuid::from_u128(index),
-        }
-    }
+    use crate::render::batching::tests::material_id as id;
 
     #[test]
     fn a_material_keeps_its_slot_and_a_removed_ones_slot_is_given_again() {
