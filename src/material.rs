@@ -13,7 +13,7 @@ pub(crate) use from_standard::phong_material_from_standard;
 pub use key::PhongMaterialKey;
 #[cfg(feature = "testing")]
 pub(crate) use key::culled_in_view;
-pub(crate) use maps::{MapDevices, material_maps};
+pub(crate) use maps::{MapDevices, map_images, material_maps};
 pub(crate) use metallic_roughness::MetallicRoughness;
 pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};
 

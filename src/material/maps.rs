@@ -55,3 +55,20 @@ macro_rules! material_maps {
     };
 }
 pub(crate) use material_maps;
+
+use bevy::{asset::Handle, image::Image};
+
+/// Declares [`map_images`] from the rows of [`material_maps!`].
+macro_rules! map_images {
+    ($(
+        $field:ident: texture $texture:tt $(sampler $sampler:tt)?,
+            $devices:ident, $file:ident, $(uv $channel:ident,)? $what:literal;
+    )*) => {
+        /// The image of each of `material`'s maps (`None` where it has none), in
+        /// [`material_maps!`]'s order: the bind group's maps and a material's class read them.
+        pub(crate) fn map_images(material: &super::PhongMaterial) -> Vec<Option<&Handle<Image>>> {
+            vec![$(material.$field.as_ref()),*]
+        }
+    };
+}
+material_maps!(map_images);

@@ -212,9 +212,7 @@ impl ViewBounds {
         let slices = self.slices.slice_of(depth - reach)..=self.slices.slice_of(depth + reach);
         Some([columns, rows, slices])
     }
-}
 
-impl ViewBounds {
     /// Whether a node of the light tree, a sphere at `center` of `radius` holding the
     /// spheres of the lights below it, may hold a light that meets a cluster: its sphere,
     /// widened by 1 % and a thousandth of a unit (more than the rounding margin of

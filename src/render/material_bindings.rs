@@ -6,7 +6,7 @@ use super::batching::{MaterialRecordBuffer, records_supported};
 use super::{PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER};
 use crate::displacement::DisplacementUniform;
 use crate::material::{
-    MapDevices, PhongMaterial, PhongMaterialKey, PhongMaterialUniform, material_maps,
+    MapDevices, PhongMaterial, PhongMaterialKey, PhongMaterialUniform, map_images, material_maps,
 };
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
@@ -62,11 +62,6 @@ macro_rules! surface_bindings {
         /// Each map: its field, the devices that bind it, and its bindings.
         const MAP_BINDINGS: &[(&str, MapDevices, &[u32])] =
             &[$((stringify!($field), MapDevices::$devices, &[$texture $(, $sampler)?])),*];
-
-        /// The fields of the maps `material` has.
-        fn maps_of(material: &PhongMaterial) -> [(&'static str, bool); MAP_BINDINGS.len()] {
-            [$((stringify!($field), material.$field.is_some())),*]
-        }
     };
 }
 
@@ -353,11 +348,11 @@ impl AsBindGroup for PhongMaterial {
                 index += 1;
                 keep
             });
-            let left_out: Vec<&str> = maps_of(self)
+            let left_out: Vec<&str> = map_images(self)
                 .into_iter()
                 .zip(MAP_BINDINGS)
-                .filter(|((_, set), (_, devices, _))| *set && *devices == MapDevices::Full)
-                .map(|((field, _), _)| field)
+                .filter(|(image, (_, devices, _))| image.is_some() && *devices == MapDevices::Full)
+                .map(|(_, (field, ..))| *field)
                 .collect();
             if !left_out.is_empty() {
                 bevy::log::warn_once!(

@@ -3,10 +3,10 @@
 
 use super::records::MaterialRecord;
 use super::slots::MaterialSlots;
-use crate::material::{PhongMaterial, PhongMaterialKey, material_maps};
+use crate::material::{PhongMaterial, PhongMaterialKey, map_images};
 use bevy::asset::uuid::Uuid;
 use bevy::{
-    asset::{AssetEvent, AssetId, Assets},
+    asset::{AssetEvent, AssetId, Assets, Handle},
     camera::visibility::ViewVisibility,
     ecs::{
         entity::Entity,
@@ -25,21 +25,6 @@ use bevy::{
         sync_world::MainEntity,
     },
 };
-
-/// Declares `map_ids`, the image of each map of a material, from the rows of
-/// `material_maps!`.
-macro_rules! map_ids {
-    ($(
-        $field:ident: texture $texture:tt $(sampler $sampler:tt)?,
-            $devices:ident, $file:ident, $(uv $channel:ident,)? $what:literal;
-    )*) => {
-        /// The image of each of `material`'s maps, in `material_maps!`'s order.
-        fn map_ids(material: &PhongMaterial) -> Vec<Option<AssetId<Image>>> {
-            vec![$(material.$field.as_ref().map(|handle| handle.id())),*]
-        }
-    };
-}
-material_maps!(map_ids);
 
 /// What materials of one class have alike: everything but the numbers of their records.
 /// Their shader variant (key), their alpha mode (it chooses the render phase) and their
@@ -66,7 +51,10 @@ impl From<&PhongMaterial> for ClassKey {
         Self {
             key: material.into(),
             alpha_mode,
-            maps: map_ids(material),
+            maps: map_images(material)
+                .into_iter()
+                .map(|image| image.map(Handle::id))
+                .collect(),
         }
     }
 }
@@ -304,7 +292,7 @@ pub(crate) fn prepare_material_classes(
 mod tests {
     use super::*;
     use crate::render::batching::tests::material_id as id;
-    use bevy::{asset::Handle, color::Color};
+    use bevy::color::Color;
 
     #[test]
     fn materials_that_differ_in_numbers_share_a_class_and_others_do_not() {
