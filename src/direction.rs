@@ -4,7 +4,9 @@
 //! its direction on the way. The shader's `normalize_or_zero` and the reference model's
 //! follow the same rule (SPEC.md, "Numerical rules").
 
-use bevy::math::{DVec3, Vec3};
+#[cfg(any(feature = "scene", feature = "reference", test))]
+use bevy::math::DVec3;
+use bevy::math::Vec3;
 
 /// A vector whose largest component (in absolute value) is below this has no direction:
 /// `f32`'s smallest normal number, about 1.2e-38. GPUs may flush smaller (subnormal) numbers
@@ -22,7 +24,9 @@ pub(crate) fn normalize_or_zero(v: Vec3) -> Vec3 {
     scaled / scaled.length()
 }
 
-/// [`normalize_or_zero`] in `f64`, with the same threshold.
+/// [`normalize_or_zero`] in `f64`, with the same threshold (for scene files' cameras and the
+/// reference model).
+#[cfg(any(feature = "scene", feature = "reference", test))]
 pub(crate) fn normalize_or_zero_f64(v: DVec3) -> DVec3 {
     let largest = v.abs().max_element();
     if !v.is_finite() || largest < f64::from(MIN_COMPONENT) {

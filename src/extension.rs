@@ -179,14 +179,14 @@
 //!
 //! ## 5. The reference
 //!
-//! [`reference::phong_light`](crate::reference::phong_light) is the same term in `f64`:
-//! the searchlight example's reference model is built on it. A kind gives each light's term
-//! to the model through [`PhongLightKind::reference_light`] (a
-//! [`ReferenceLight`](crate::reference::ReferenceLight)); [`reference_lights`] collects every
-//! kind's lights for [`reference::Lights::others`](crate::reference::Lights::others), whose
-//! terms [`reference::shade`](crate::reference::shade) adds. The crate's test harness does
-//! so, and the searchlight's render tests compare the extended material with the model
-//! pixel by pixel, as the crate's own tests do.
+//! With the `reference` feature, `bevy_phong::reference` is the lighting model in `f64`, and
+//! `reference::phong_light` is the same term as the shader's: the searchlight example's
+//! reference model is built on it. A kind gives each light's term to the model through
+//! `PhongLightKind::reference_light` (a `reference::ReferenceLight`); `reference_lights`
+//! collects every kind's lights for `reference::Lights::others`, whose terms
+//! `reference::shade` adds. The crate's test harness does so, and the searchlight's render
+//! tests compare the extended material with the model pixel by pixel, as the crate's own
+//! tests do.
 //!
 //! ## 6. Shadows
 //!
@@ -304,18 +304,19 @@
 //! share smaller (`n` counts its lights too).
 
 pub use crate::light_kind::{PhongLightKind, linear_rgb};
-pub use crate::lights::{PhongCookieProjection, light_direction};
+pub use crate::lights::{PhongCookieProjection, influence_radius, light_direction};
 pub use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 
-pub use crate::culling::influence_radius;
 pub use crate::validation::Checker;
 pub use bevy::shape::BoundingSphere;
 
 mod gather;
+#[cfg(feature = "reference")]
 mod reference_lights;
 mod shadow_sources;
 mod systems;
 
+#[cfg(feature = "reference")]
 pub use reference_lights::reference_lights;
 pub(crate) use systems::add_light_kind;
 
@@ -448,6 +449,7 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
         let cluster_slot = world
             .get_resource_or_init::<ExtensionClusterSlots>()
             .add_slot();
+        #[cfg(feature = "reference")]
         world
             .get_resource_or_init::<reference_lights::ReferenceLightKinds>()
             .add::<L>();

@@ -45,8 +45,9 @@
 //!
 //! - **The lighting model** is SPEC.md's equation: ambient, plus for each light a Lambert
 //!   diffuse term and a Phong or Blinn-Phong highlight, scaled by distance fall-off
-//!   ([`Decay`]) and a spot cone. [`reference`](mod@reference) evaluates it in `f64`; it is the
-//!   specification in code, and the tests compare the shader with it pixel by pixel.
+//!   ([`Decay`]) and a spot cone. `bevy_phong::reference` (feature `reference`) evaluates it
+//!   in `f64`; it is the specification in code, and the tests compare the shader with it
+//!   pixel by pixel.
 //! - **Lights** are components: [`PhongDirectionalLight`], [`PhongPointLight`],
 //!   [`PhongSpotLight`]; the ambient light is the resource [`PhongAmbientLight`]. They
 //!   light only [`PhongMaterial`]s; Bevy's own `PointLight` & co. light them too once
@@ -94,7 +95,9 @@
 //!
 //! - `gltf` (default): [`PhongGltfPlugin`] and Bevy's glTF loader.
 //! - `scene` (default): scene and material files ([`scene`]), with `ron` and `serde`.
-//! - `testing`: `bevy_phong::testing`, the internals the crate's own tests, benchmarks and
+//! - `reference`: `bevy_phong::reference`, the lighting model in `f64`, for a light kind's
+//!   tests and for tools that check frames (the crate's tests compare every pixel with it).
+//! - `testing` (with `reference`): `bevy_phong::testing`, the internals the crate's own tests, benchmarks and
 //!   render harness read (GPU layouts, gather systems, the limits table, a material that
 //!   renders each pixel's world position and normal). Not for games; not a stable API.
 //!
@@ -159,6 +162,7 @@ mod limits;
 mod material;
 mod plugin;
 mod quoting;
+#[cfg(feature = "reference")]
 pub mod reference;
 mod render;
 #[cfg(feature = "scene")]

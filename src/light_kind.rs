@@ -10,6 +10,7 @@ pub use built_in::linear_rgb;
 pub use gpu_light::GpuLight;
 
 use crate::lights::PhongCookieProjection;
+#[cfg(feature = "reference")]
 use crate::reference::ReferenceLight;
 use crate::shadows::PhongShadowRequest;
 use crate::validation::Checker;
@@ -19,6 +20,7 @@ use bevy::{
     transform::components::GlobalTransform,
 };
 use bytemuck::Pod;
+#[cfg(feature = "reference")]
 use std::sync::Arc;
 
 /// A kind of light: what the crate needs to know of it, from its GPU record to its shadows.
@@ -56,7 +58,7 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
     /// [`PhongLightCulling::epsilon`](crate::PhongLightCulling::epsilon) (linear RGB; `0` for the
     /// exact model, and for a kind without [`Self::SHARES_EPSILON`]): a light that fades may stop
     /// where it falls below it, as the built-in lights do
-    /// ([`influence_radius`](crate::culling::influence_radius)). `f32::INFINITY` (the default)
+    /// ([`influence_radius`](crate::extension::influence_radius)). `f32::INFINITY` (the default)
     /// reaches everywhere; `0` leaves the light out of the buffer.
     fn reach(record: &Self::Gpu, epsilon: f32) -> f32 {
         let _ = (record, epsilon);
@@ -122,10 +124,12 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
         let _ = (record, cookie);
     }
 
-    /// This light in the crate's reference model ([`crate::reference`]), placed by its entity's
-    /// transform: its term in `f64`, as its shader adds it, for tests that compare a frame with the
-    /// model ([`reference_lights`](crate::extension::reference_lights) collects every kind's).
+    /// This light in the crate's reference model ([`crate::reference`], feature `reference`),
+    /// placed by its entity's transform: its term in `f64`, as its shader adds it, for tests
+    /// that compare a frame with the model
+    /// ([`reference_lights`](crate::extension::reference_lights) collects every kind's).
     /// `None` (the default): the model leaves the light out.
+    #[cfg(feature = "reference")]
     fn reference_light(&self, transform: &GlobalTransform) -> Option<Arc<dyn ReferenceLight>> {
         let _ = transform;
         None

@@ -6,12 +6,13 @@
 //! ([`PhongLightKindPlugin`](crate::extension::PhongLightKindPlugin)).
 
 use super::{GpuLight, PhongLightKind};
-use crate::culling::influence_radius;
+use crate::lights::influence_radius;
 use crate::lights::{
     ConeEdge, PhongCookieProjection, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
     light_direction,
 };
 use crate::limits;
+#[cfg(feature = "reference")]
 use crate::reference::{Light, ReferenceLight};
 use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 use crate::validation::Checker;
@@ -19,6 +20,7 @@ use bevy::{
     color::Color, math::Vec3, shape::BoundingSphere, transform::components::GlobalTransform,
 };
 use core::any::TypeId;
+#[cfg(feature = "reference")]
 use std::sync::Arc;
 
 /// Whether `L` is one of the built-in kinds, which `PhongPlugin` gathers itself.
@@ -63,6 +65,7 @@ macro_rules! built_in_record {
             self.shadows.enabled
         }
 
+        #[cfg(feature = "reference")]
         fn reference_light(&self, transform: &GlobalTransform) -> Option<Arc<dyn ReferenceLight>> {
             Some(Arc::new(Self::REFERENCE(self, transform)))
         }
@@ -183,6 +186,7 @@ fn spot_cone_terms(inner_angle: f32, outer_angle: f32, edge: ConeEdge) -> (f32, 
 
 impl PhongDirectionalLight {
     /// Its light in the reference model.
+    #[cfg(feature = "reference")]
     const REFERENCE: fn(&Self, &GlobalTransform) -> Light = Light::directional;
 
     /// A cookie lies on its local XY plane.
@@ -209,6 +213,7 @@ impl PhongDirectionalLight {
 
 impl PhongPointLight {
     /// Its light in the reference model.
+    #[cfg(feature = "reference")]
     const REFERENCE: fn(&Self, &GlobalTransform) -> Light = Light::point;
 
     /// A cookie is a cube map around it.
@@ -237,6 +242,7 @@ impl PhongPointLight {
 
 impl PhongSpotLight {
     /// Its light in the reference model.
+    #[cfg(feature = "reference")]
     const REFERENCE: fn(&Self, &GlobalTransform) -> Light = Light::spot;
 
     /// A cookie spans its cone.

@@ -13,6 +13,9 @@ mod directional;
 mod hemisphere;
 mod lit;
 mod point;
+mod reach;
+#[cfg(test)]
+mod reach_tests;
 mod shadows;
 mod spot;
 
@@ -21,10 +24,11 @@ pub use cookie::{PhongCookieProjection, PhongLightCookie, cookie_layer_texels};
 pub use decay::Decay;
 pub use directional::PhongDirectionalLight;
 pub use hemisphere::PhongHemisphereLight;
-pub(crate) use lit::{
-    LightQuery, TrackedLightQuery, gives_light, lit_light, lit_lights, lit_tracked_lights,
-};
+#[cfg(feature = "reference")]
+pub(crate) use lit::gives_light;
+pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights};
 pub use lit::{is_finite_transform, light_direction};
 pub use point::PhongPointLight;
+pub use reach::influence_radius;
 pub use shadows::{PhongCascades, PhongShadows};
 pub use spot::{ConeEdge, PhongSpotLight};

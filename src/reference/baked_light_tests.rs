@@ -1,6 +1,8 @@
 //! The baked maps' terms (SPEC.md, "Baked light").
 
 use super::*;
+use crate::material::SpecularModel;
+use glam::DVec3;
 
 #[test]
 fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {

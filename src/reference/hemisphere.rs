@@ -1,6 +1,6 @@
 //! The hemisphere light in the reference model (SPEC.md, "Hemisphere light").
 
-use super::{linear_rgb, normalize_or_zero};
+use super::{normalize_or_zero, rgb};
 use crate::lights::PhongHemisphereLight;
 use glam::DVec3;
 
@@ -32,8 +32,8 @@ impl Hemisphere {
 impl From<&PhongHemisphereLight> for Hemisphere {
     fn from(light: &PhongHemisphereLight) -> Self {
         Self {
-            sky: linear_rgb(light.sky_color),
-            ground: linear_rgb(light.ground_color),
+            sky: rgb(light.sky_color),
+            ground: rgb(light.ground_color),
             up: light.up.as_dvec3(),
         }
     }
