@@ -17,7 +17,7 @@ use bevy::{
     ecs::{
         change_detection::DetectChanges,
         message::MessageWriter,
-        system::{Res, ResMut},
+        system::{Res, ResMut, SystemParam},
     },
     image::Image,
     log::warn_once,
@@ -45,83 +45,119 @@ pub(super) fn count_sharing_lights<L: PhongLightKind>(
     }
 }
 
+/// What an extension kind's gather reads besides its lights: this frame's shadow and cookie
+/// slots, the culling, and the built-in gather (its per-light ε and its cookies' indices).
+#[derive(SystemParam)]
+pub(super) struct KindGatherInputs<'w> {
+    slots: Res<'w, ShadowSlots>,
+    cookies: Res<'w, PhongCookies>,
+    culling: Res<'w, PhongLightCulling>,
+    built_in: Res<'w, PhongLightBuffer>,
+}
+
+/// Where an extension kind's gather writes: its buffer and data texture (a message when
+/// either grows) and its cluster slot.
+#[derive(SystemParam)]
+pub(super) struct KindGatherWrites<'w, L: PhongLightKind> {
+    state: ResMut<'w, PhongLightKindBuffer<L>>,
+    cluster_slots: ResMut<'w, ExtensionClusterSlots>,
+    buffers: ResMut<'w, Assets<ShaderBuffer>>,
+    images: ResMut<'w, Assets<Image>>,
+    resized: MessageWriter<'w, LightBufferResized>,
+}
+
 /// Writes every visible `L` into its buffer when any of them, their shadow or cookie slots,
 /// the culling or the per-light ε changed (and on the first run): each light's record with
-/// its shadow slot, its cookie's index (see [`PhongLightBuffer::cookie_index`]) and its [`PhongLightKind::reach`] for the per-light ε (left out where that
-/// is 0); the lights without a bounding sphere first, then those with one, whose spheres go
-/// to [`ExtensionClusterSlots`].
-#[allow(clippy::too_many_arguments)]
+/// its shadow slot, its cookie's index (see [`PhongLightBuffer::cookie_index`]) and its
+/// [`PhongLightKind::reach`] for the per-light ε (left out where that is 0); the lights
+/// without a bounding sphere first, then those with one, whose spheres go to
+/// [`ExtensionClusterSlots`].
 pub(super) fn gather_light_kind<L: PhongLightKind>(
     lights: LightQuery<L>,
-    slots: Res<ShadowSlots>,
-    cookies: Res<PhongCookies>,
-    culling: Res<PhongLightCulling>,
-    built_in: Res<PhongLightBuffer>,
     mut changes: LightChanges<L>,
-    mut state: ResMut<PhongLightKindBuffer<L>>,
-    mut cluster_slots: ResMut<ExtensionClusterSlots>,
-    mut buffers: ResMut<Assets<ShaderBuffer>>,
-    mut images: ResMut<Assets<Image>>,
-    mut resized: MessageWriter<LightBufferResized>,
+    inputs: KindGatherInputs,
+    mut writes: KindGatherWrites<L>,
 ) {
     // A kind that does not share ε is given none: its lights reach as far as they light.
     let epsilon = if L::SHARES_EPSILON {
-        built_in.per_light_epsilon()
+        inputs.built_in.per_light_epsilon()
     } else {
         0.0
     };
-    let gathered_with = Some((epsilon.to_bits(), *culling, built_in.cookie_index(1)));
+    let gathered_with = Some((
+        epsilon.to_bits(),
+        *inputs.culling,
+        inputs.built_in.cookie_index(1),
+    ));
     let changed = changes.any()
-        || slots.is_changed()
-        || cookies.is_changed()
-        || state.gathered_with != gathered_with;
-    if !changed && state.buffer.capacity() > 0 {
+        || inputs.slots.is_changed()
+        || inputs.cookies.is_changed()
+        || writes.state.gathered_with != gathered_with;
+    if !changed && writes.state.buffer.capacity() > 0 {
         return;
     }
-    let state = &mut *state;
+    let state = &mut *writes.state;
     state.gathered_with = gathered_with;
-    state.records.clear();
-    state.clustered.clear();
-    let slot = cluster_slots.slot_mut(state.cluster_slot);
-    slot.spheres.clear();
-    for (entity, light, transform) in lit_lights(&lights) {
-        let mut record = light.to_gpu(transform);
-        L::set_shadow(&mut record, slots.get(entity));
-        L::set_cookie(&mut record, built_in.cookie_index(cookies.slot_of(entity)));
-        let reach = L::reach(&record, epsilon);
-        if reach == 0.0 {
-            continue;
-        }
-        // A NaN reach is no reach limit.
-        let reach = if reach.is_nan() { f32::INFINITY } else { reach };
-        L::set_reach(&mut record, reach);
-        let sphere = (culling.clusters && reach.is_finite())
-            .then(|| L::bounding_sphere(&record, reach))
-            .flatten()
-            .map(|sphere| (Vec3::from(sphere.center), sphere.radius()))
-            .filter(|&(center, radius)| is_finite_sphere(center, radius));
-        match sphere {
-            Some((center, radius)) => {
-                state.clustered.push(record);
-                slot.spheres.push(sphere_bits(center, radius));
-            }
-            None => state.records.push(record),
-        }
-    }
-    let clustered_first = state.records.len() as u32;
-    state.records.append(&mut state.clustered);
-    slot.first = clustered_first;
-    state.header = GpuLightCount {
-        count: state.records.len() as u32,
-        clustered_first,
-        cluster_slot: state.cluster_slot,
-        padding: 0,
-    };
+    state.push_lit(&lights, &inputs, epsilon, &mut writes.cluster_slots);
     let header = state.header;
-    let buffer_resized = state.buffer.write(&mut buffers, &header, &state.records);
-    let texture_resized = write_texture::<L>(state, &mut images, header);
+    let buffer_resized = state
+        .buffer
+        .write(&mut writes.buffers, &header, &state.records);
+    let texture_resized = write_texture::<L>(state, &mut writes.images, header);
     if buffer_resized || texture_resized {
-        resized.write(LightBufferResized);
+        writes.resized.write(LightBufferResized);
+    }
+}
+
+impl<L: PhongLightKind> PhongLightKindBuffer<L> {
+    /// Makes the records and the header of the lit `lights` that reach somewhere for
+    /// `epsilon`: those without a bounding sphere first, then the clustered ones, whose
+    /// spheres go to the kind's cluster slot.
+    fn push_lit(
+        &mut self,
+        lights: &LightQuery<L>,
+        inputs: &KindGatherInputs,
+        epsilon: f32,
+        cluster_slots: &mut ExtensionClusterSlots,
+    ) {
+        self.records.clear();
+        self.clustered.clear();
+        let slot = cluster_slots.slot_mut(self.cluster_slot);
+        slot.spheres.clear();
+        for (entity, light, transform) in lit_lights(lights) {
+            let mut record = light.to_gpu(transform);
+            L::set_shadow(&mut record, inputs.slots.get(entity));
+            let cookie = inputs.cookies.slot_of(entity);
+            L::set_cookie(&mut record, inputs.built_in.cookie_index(cookie));
+            let reach = L::reach(&record, epsilon);
+            if reach == 0.0 {
+                continue;
+            }
+            // A NaN reach is no reach limit.
+            let reach = if reach.is_nan() { f32::INFINITY } else { reach };
+            L::set_reach(&mut record, reach);
+            let sphere = (inputs.culling.clusters && reach.is_finite())
+                .then(|| L::bounding_sphere(&record, reach))
+                .flatten()
+                .map(|sphere| (Vec3::from(sphere.center), sphere.radius()))
+                .filter(|&(center, radius)| is_finite_sphere(center, radius));
+            match sphere {
+                Some((center, radius)) => {
+                    self.clustered.push(record);
+                    slot.spheres.push(sphere_bits(center, radius));
+                }
+                None => self.records.push(record),
+            }
+        }
+        let clustered_first = self.records.len() as u32;
+        self.records.append(&mut self.clustered);
+        slot.first = clustered_first;
+        self.header = GpuLightCount {
+            count: self.records.len() as u32,
+            clustered_first,
+            cluster_slot: self.cluster_slot,
+            padding: 0,
+        };
     }
 }
 

@@ -4,7 +4,7 @@
 use super::{
     MAX_SHADOW_VIEWS,
     cameras::{PhongLit, ShadowCamera, ShadowCameraQuery, shadow_cameras},
-    deformed::Poses,
+    casters::{Caster, CasterSet},
     displaced::CasterDisplacement,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
     masked::CasterMask,
@@ -16,29 +16,22 @@ use super::{
 };
 use crate::lights::PhongShadows;
 use crate::limits;
-use crate::material::PhongMaterial;
 use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::{AssetId, Assets, Handle, uuid_handle},
-    camera::{
-        primitives::{Aabb, Frustum, Sphere},
-        visibility::InheritedVisibility,
-    },
+    camera::primitives::{Frustum, Sphere},
     ecs::{
         entity::{Entity, EntityHashMap, EntityHashSet},
         message::MessageWriter,
-        query::{Has, With, Without},
+        query::With,
         resource::Resource,
-        system::{Query, Res, ResMut},
+        system::{Query, ResMut, SystemParam},
     },
-    light::NotShadowCaster,
     log::warn,
-    math::{Mat4, Vec3, Vec3A, Vec4},
-    mesh::{Mesh, Mesh3d, morph::MeshMorphWeights, skinning::SkinnedMesh},
-    pbr::MeshMaterial3d,
+    math::{Mat4, Vec3A, Vec4},
+    mesh::Mesh,
     render::storage::ShaderBuffer,
-    transform::components::GlobalTransform,
 };
 use core::ops::Range;
 
@@ -120,15 +113,6 @@ pub(crate) struct ShadowFrame {
     pub instances: Vec<ShadowInstance>,
 }
 
-/// A visible mesh that casts shadows.
-struct Caster {
-    source: CasterSource,
-    world_from_local: Mat4,
-    bounds: Bounds,
-    displacement: Option<CasterDisplacement>,
-    mask: Option<CasterMask>,
-}
-
 /// The shadow views of the current frame (one per shadow map, as the shader reads them),
 /// with the gather's buffers and scratch space, kept between frames.
 #[derive(Resource)]
@@ -162,167 +146,44 @@ impl Default for PhongShadowViews {
     }
 }
 
-/// What the gather reads of each mesh that may cast, and whether it is skinned or morphed.
-type CasterData = (
-    Entity,
-    &'static Mesh3d,
-    &'static GlobalTransform,
-    Option<&'static Aabb>,
-    &'static InheritedVisibility,
-    Has<SkinnedMesh>,
-    Has<MeshMorphWeights>,
-    Option<&'static MeshMaterial3d<PhongMaterial>>,
-);
+/// The cameras the shadow maps serve: each active camera that sees Phong-lit meshes.
+#[derive(SystemParam)]
+pub(crate) struct ShadowViewers<'w, 's> {
+    cameras: ShadowCameraQuery<'w, 's>,
+    phong_lit: Query<'w, 's, (), With<PhongLit>>,
+}
+
+/// Where the shadow gather writes: the views and their GPU buffer (a message when it grows
+/// or the array's layout changes), the frame the render world draws, each light's slot, and
+/// the scene's shadow variants.
+#[derive(SystemParam)]
+pub(crate) struct ShadowWrites<'w> {
+    state: ResMut<'w, PhongShadowViews>,
+    frame: ResMut<'w, ShadowFrame>,
+    slots: ResMut<'w, ShadowSlots>,
+    buffers: ResMut<'w, Assets<ShaderBuffer>>,
+    resized: MessageWriter<'w, LightBufferResized>,
+    variants: ResMut<'w, SceneVariants>,
+}
 
 /// Lays out every requested shadow map of this frame: the maps' views (written into the
 /// shadow view buffer), their casters (for the render world), and each light's first view
 /// (for its light record).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn gather_shadows(
     mut requests: ResMut<ShadowRequests>,
-    cameras: ShadowCameraQuery,
-    phong_lit: Query<(), With<PhongLit>>,
-    casters: Query<CasterData, Without<NotShadowCaster>>,
-    materials: Res<Assets<PhongMaterial>>,
-    mut state: ResMut<PhongShadowViews>,
-    mut frame: ResMut<ShadowFrame>,
-    mut slots: ResMut<ShadowSlots>,
-    mut buffers: ResMut<Assets<ShaderBuffer>>,
-    mut resized: MessageWriter<LightBufferResized>,
-    mut variants: ResMut<SceneVariants>,
-    poses: Poses,
+    viewers: ShadowViewers,
+    casters: CasterSet,
+    mut writes: ShadowWrites,
 ) {
-    let cameras = shadow_cameras(&cameras, &phong_lit);
-    let mut requests = core::mem::take(&mut requests.0);
-    if !cameras.is_empty() {
-        requests.retain(|request| {
-            cameras
-                .iter()
-                .any(|camera| reaches_view(request, &camera.frustum))
-        });
-    }
-    requests.sort_by(|a, b| priority(a, &cameras).total_cmp(&priority(b, &cameras)));
-
-    let state = &mut *state;
+    let cameras = shadow_cameras(&viewers.cameras, &viewers.phong_lit);
+    let requests = in_priority_order(core::mem::take(&mut requests.0), &cameras);
+    let state = &mut *writes.state;
     state.records.clear();
     state.casters.clear();
     if !requests.is_empty() {
-        for (entity, mesh, transform, aabb, visibility, skinned, morphed, material) in &casters {
-            if !visibility.get() {
-                continue;
-            }
-            let material = material.and_then(|material| materials.get(&material.0));
-            let displacement = material.and_then(CasterDisplacement::of);
-            let mask = material.and_then(CasterMask::of);
-            // Bounds grown by the farthest the displacement moves a vertex.
-            let reach = displacement.as_ref().map_or(0.0, |displacement| {
-                displacement.reach() * largest_scale(transform)
-            });
-            if !(skinned || morphed) {
-                // A mesh without bounds (`NoFrustumCulling`) is not placed in any map.
-                let Some(aabb) = aabb else {
-                    continue;
-                };
-                let mut bounds = bounds(transform, aabb);
-                bounds.radius += reach;
-                state.casters.push(Caster {
-                    source: CasterSource::Mesh(mesh.id()),
-                    world_from_local: transform.to_matrix(),
-                    bounds,
-                    displacement,
-                    mask,
-                });
-                continue;
-            }
-            match poses.pose(entity, mesh.id(), transform.to_matrix(), aabb) {
-                Ok(pose) => {
-                    state.unposed.remove(&entity);
-                    state.casters.push(Caster {
-                        source: CasterSource::Posed {
-                            entity,
-                            mesh: mesh.id(),
-                            skinned: pose.skinned,
-                        },
-                        world_from_local: if pose.skinned {
-                            Mat4::IDENTITY
-                        } else {
-                            transform.to_matrix()
-                        },
-                        bounds: Bounds {
-                            radius: pose.bounds.radius + reach,
-                            ..pose.bounds
-                        },
-                        displacement,
-                        mask,
-                    });
-                }
-                // Still loading: it casts once its assets are loaded.
-                Err(error) if error.is_loading() => {}
-                Err(error) => {
-                    if state.unposed.insert(entity) {
-                        warn!("skinned or morphed mesh {entity} casts no Phong shadow: {error}");
-                    }
-                }
-            }
-        }
+        casters.collect(&mut state.casters, &mut state.unposed);
     }
-    let caster_bounds: Vec<Bounds> = state.casters.iter().map(|caster| caster.bounds).collect();
-
-    let mut new_slots = EntityHashMap::default();
-    let mut next = ShadowFrame::default();
-    for request in &requests {
-        let resolution = request
-            .settings
-            .resolution
-            .clamp(PhongShadows::MIN_RESOLUTION, PhongShadows::MAX_RESOLUTION);
-        let sets = light_views(request, &cameras, resolution, &caster_bounds);
-        let view_count: usize = sets.iter().map(|set| set.views.len()).sum();
-        if view_count == 0 {
-            continue;
-        }
-        if state.records.len() + view_count > MAX_SHADOW_VIEWS {
-            if !state.warned_over_capacity {
-                warn!(
-                    "more than {MAX_SHADOW_VIEWS} shadow maps requested: light {} and the lights \
-                     farther from the cameras cast no shadow",
-                    request.entity
-                );
-                state.warned_over_capacity = true;
-            }
-            break;
-        }
-        new_slots.insert(request.entity, state.records.len() as u32 + 1);
-        for set in &sets {
-            let first = state.records.len();
-            for view in &set.views {
-                let layer = state.records.len() as u32;
-                let start = next.instances.len();
-                next.instances.extend(
-                    state
-                        .casters
-                        .iter()
-                        .filter(|caster| in_view(&view.clip_from_world, &caster.bounds))
-                        .map(|caster| ShadowInstance {
-                            source: caster.source.clone(),
-                            clip_from_local: view.clip_from_world * caster.world_from_local,
-                            displacement: caster.displacement.clone(),
-                            mask: caster.mask.clone(),
-                        }),
-                );
-                next.passes.push(ShadowPass {
-                    layer,
-                    resolution,
-                    instances: start..next.instances.len(),
-                });
-                let mut record = view_record(view, layer, resolution, &request.settings);
-                record.camera_key = set.camera_key;
-                state.records.push(record);
-            }
-            state.records[first].view_count = set.views.len() as u32;
-            state.records[first].camera_count = sets.len() as u32;
-        }
-    }
-
+    let (mut next, slots) = state.lay_out(&requests, &cameras);
     let size = next
         .passes
         .iter()
@@ -332,26 +193,119 @@ pub(crate) fn gather_shadows(
     for record in &mut state.records {
         record.uv_scale /= size as f32;
     }
-    next.layout = atlas_layout(frame.layout, size, state.records.len() as u32);
+    next.layout = atlas_layout(writes.frame.layout, size, state.records.len() as u32);
     let header = GpuShadowViewsHeader {
         count: state.records.len() as u32,
         padding: [0; 3],
     };
     let buffer_resized = state
         .views_buffer
-        .write(&mut buffers, &header, &state.records);
+        .write(&mut writes.buffers, &header, &state.records);
     let casts_shadows = !state.records.is_empty();
     let soft_shadows = state.records.iter().any(|view| view.light_size > 0.0);
+    let variants = &mut writes.variants;
     if (variants.shadows, variants.soft_shadows) != (casts_shadows, soft_shadows) {
         variants.shadows = casts_shadows;
         variants.soft_shadows = soft_shadows;
     }
-    if buffer_resized || next.layout != frame.layout {
-        resized.write(LightBufferResized);
+    if buffer_resized || next.layout != writes.frame.layout {
+        writes.resized.write(LightBufferResized);
     }
-    *frame = next;
-    if slots.0 != new_slots {
-        slots.0 = new_slots;
+    *writes.frame = next;
+    if writes.slots.0 != slots {
+        writes.slots.0 = slots;
+    }
+}
+
+/// The requests of lights that reach a camera's view (all of them without a camera), in
+/// the order they get maps ([`priority`]).
+fn in_priority_order(
+    mut requests: Vec<ShadowRequest>,
+    cameras: &[ShadowCamera],
+) -> Vec<ShadowRequest> {
+    if !cameras.is_empty() {
+        requests.retain(|request| {
+            cameras
+                .iter()
+                .any(|camera| reaches_view(request, &camera.frustum))
+        });
+    }
+    requests.sort_by(|a, b| priority(a, cameras).total_cmp(&priority(b, cameras)));
+    requests
+}
+
+impl PhongShadowViews {
+    /// Gives each request's maps their layers and records (until [`MAX_SHADOW_VIEWS`]) and
+    /// each map its casters (from the casters, gathered first). Returns the frame's
+    /// passes (its layout still to be set) and each light's slot.
+    fn lay_out(
+        &mut self,
+        requests: &[ShadowRequest],
+        cameras: &[ShadowCamera],
+    ) -> (ShadowFrame, EntityHashMap<u32>) {
+        let caster_bounds: Vec<Bounds> = self.casters.iter().map(|caster| caster.bounds).collect();
+        let mut slots = EntityHashMap::default();
+        let mut next = ShadowFrame::default();
+        for request in requests {
+            let resolution = request
+                .settings
+                .resolution
+                .clamp(PhongShadows::MIN_RESOLUTION, PhongShadows::MAX_RESOLUTION);
+            let sets = light_views(request, cameras, resolution, &caster_bounds);
+            let view_count: usize = sets.iter().map(|set| set.views.len()).sum();
+            if view_count == 0 {
+                continue;
+            }
+            if self.records.len() + view_count > MAX_SHADOW_VIEWS {
+                if !self.warned_over_capacity {
+                    warn!(
+                        "more than {MAX_SHADOW_VIEWS} shadow maps requested: light {} and the \
+                         lights farther from the cameras cast no shadow",
+                        request.entity
+                    );
+                    self.warned_over_capacity = true;
+                }
+                break;
+            }
+            slots.insert(request.entity, self.records.len() as u32 + 1);
+            for set in &sets {
+                self.push_set(set, sets.len(), resolution, &request.settings, &mut next);
+            }
+        }
+        (next, slots)
+    }
+
+    /// Appends the records and passes of one set of a light's views (`set_count` sets in
+    /// all), each pass drawing the casters whose bounds meet its view.
+    fn push_set(
+        &mut self,
+        set: &ViewSet,
+        set_count: usize,
+        resolution: u32,
+        settings: &PhongShadows,
+        next: &mut ShadowFrame,
+    ) {
+        let first = self.records.len();
+        for view in &set.views {
+            let layer = self.records.len() as u32;
+            let start = next.instances.len();
+            next.instances.extend(
+                self.casters
+                    .iter()
+                    .filter(|caster| in_view(&view.clip_from_world, &caster.bounds))
+                    .map(|caster| caster.instance(view.clip_from_world)),
+            );
+            next.passes.push(ShadowPass {
+                layer,
+                resolution,
+                instances: start..next.instances.len(),
+            });
+            let mut record = view_record(view, layer, resolution, settings);
+            record.camera_key = set.camera_key;
+            self.records.push(record);
+        }
+        self.records[first].view_count = set.views.len() as u32;
+        self.records[first].camera_count = set_count as u32;
     }
 }
 
@@ -506,24 +460,6 @@ fn atlas_layout(current: AtlasLayout, size: u32, layers: u32) -> AtlasLayout {
     }
 }
 
-/// The largest factor by which `transform` stretches a length.
-fn largest_scale(transform: &GlobalTransform) -> f32 {
-    let matrix = transform.affine().matrix3;
-    matrix
-        .x_axis
-        .length()
-        .max(matrix.y_axis.length())
-        .max(matrix.z_axis.length())
-}
-
-/// A sphere around a mesh's bounding box, in world space.
-fn bounds(transform: &GlobalTransform, aabb: &Aabb) -> Bounds {
-    Bounds {
-        center: transform.transform_point(Vec3::from(aabb.center)),
-        radius: Vec3::from(aabb.half_extents).length() * largest_scale(transform),
-    }
-}
-
 /// Whether a sphere meets the view volume of `clip_from_world` (reversed depth: the near
 /// plane at depth 1, the far plane at 0).
 fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
@@ -543,7 +479,13 @@ mod tests {
     use crate::{lights::PhongPointLight, test_app::test_app};
     use bevy::{
         asset::{AssetApp, Handle},
-        mesh::{MeshBuilder, Meshable, skinning::SkinnedMeshInverseBindposes},
+        camera::primitives::Aabb,
+        math::Vec3,
+        mesh::{
+            Mesh3d, MeshBuilder, Meshable,
+            morph::MeshMorphWeights,
+            skinning::{SkinnedMesh, SkinnedMeshInverseBindposes},
+        },
         prelude::{Cuboid, Transform, Visibility},
     };
 

@@ -43,7 +43,10 @@
 //! prepared this frame casts from the next. A mesh without bounds (`Aabb`, absent under
 //! `NoFrustumCulling`) casts only if it is skinned or morphed.
 
+mod atlas;
 mod cameras;
+mod caster_pipeline;
+mod casters;
 mod deformed;
 mod displaced;
 mod gather;
@@ -54,15 +57,16 @@ mod render;
 mod request;
 mod views;
 
+pub(crate) use atlas::{ShadowAtlas, prepare_shadow_atlas};
 pub use cameras::PhongLit;
+pub(crate) use caster_pipeline::ShadowCasterPipeline;
 pub(crate) use gather::{PHONG_SHADOW_VIEW_BUFFER, ShadowFrame, gather_shadows};
 pub use gather::{PhongShadowViews, ShadowSlots};
 /// For [`crate::testing`].
 #[cfg(feature = "testing")]
 pub use gpu_types::{GpuShadowView, GpuShadowViewsHeader};
 pub(crate) use render::{
-    ShadowAtlas, ShadowCasterPipeline, ShadowDraws, extract_shadow_frame, prepare_shadow_atlas,
-    prepare_shadow_draws, render_shadow_maps,
+    ShadowDraws, extract_shadow_frame, prepare_shadow_draws, render_shadow_maps,
 };
 pub(crate) use request::ShadowRequests;
 pub use request::{PhongShadowProjection, PhongShadowRequest};

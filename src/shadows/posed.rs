@@ -131,6 +131,17 @@ impl PosedLayouts {
     }
 }
 
+/// A caster that Bevy poses: its entity, its mesh whose vertices start at `first_vertex` of
+/// its vertex buffer, and whether joints, morph targets or both pose it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PosedCaster {
+    pub entity: MainEntity,
+    pub mesh: AssetId<Mesh>,
+    pub first_vertex: u32,
+    pub skinned: bool,
+    pub morphed: bool,
+}
+
 /// What Bevy prepared for posing this frame. Absent in an app that does not draw meshes
 /// with Bevy's mesh pipeline (no posed caster is drawn there).
 #[derive(SystemParam)]
@@ -142,20 +153,21 @@ pub(crate) struct BevyDeformation<'w> {
 }
 
 impl BevyDeformation<'_> {
-    /// Where `entity`'s deformation is this frame, drawn with `mesh` whose vertices start at
-    /// `first_vertex` of its vertex buffer, in the pipeline whose bind groups are `layouts`;
-    /// `None` where Bevy has not prepared what it needs.
-    #[allow(clippy::too_many_arguments)]
+    /// Where `caster`'s deformation is this frame, in the pipeline whose bind groups are
+    /// `layouts`; `None` where Bevy has not prepared what it needs.
     pub fn draw(
         &self,
-        entity: MainEntity,
-        mesh: AssetId<Mesh>,
-        first_vertex: u32,
-        skinned: bool,
-        morphed: bool,
+        caster: PosedCaster,
         layouts: &PosedLayouts,
         allocator: &MeshAllocator,
     ) -> Option<PosedDraw> {
+        let PosedCaster {
+            entity,
+            mesh,
+            first_vertex,
+            skinned,
+            morphed,
+        } = caster;
         let mut draw = PosedDraw {
             deform: [0, 0, first_vertex, 0],
             joints_offset: 0,

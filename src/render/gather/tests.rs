@@ -1,0 +1,403 @@
+//! The gather against records made afresh, frame after frame, and its order of the lights.
+
+use super::*;
+use crate::test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame};
+use bevy::prelude::{App, Entity, Transform, Vec3, Visibility, World};
+
+#[test]
+fn lights_are_uploaded_only_in_frames_where_they_change() {
+    let mut app = test_app(|_| {});
+    let light = app
+        .world_mut()
+        .spawn((
+            PhongPointLight::default(),
+            Transform::from_xyz(1.0, 2.0, 3.0),
+        ))
+        .id();
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        1,
+        "a new light is uploaded"
+    );
+    let state = app.world().resource::<PhongLightBuffer>();
+    assert_eq!(state.header().point_count, 1);
+    assert_eq!(state.records()[0].position, [1.0, 2.0, 3.0]);
+
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        0,
+        "nothing changed: no upload"
+    );
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        0,
+        "nothing changed: no upload"
+    );
+
+    app.world_mut()
+        .get_mut::<Transform>(light)
+        .unwrap()
+        .translation = Vec3::X;
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        1,
+        "a moved light is uploaded"
+    );
+    let state = app.world().resource::<PhongLightBuffer>();
+    assert_eq!(state.records()[0].position, [1.0, 0.0, 0.0]);
+
+    *app.world_mut().get_mut::<Visibility>(light).unwrap() = Visibility::Hidden;
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        1,
+        "a hidden light is removed"
+    );
+    assert_eq!(
+        app.world()
+            .resource::<PhongLightBuffer>()
+            .header()
+            .light_count(),
+        0
+    );
+
+    *app.world_mut().get_mut::<Visibility>(light).unwrap() = Visibility::Inherited;
+    assert_eq!(uploads_in_next_frame(&mut app), 1, "a shown light is back");
+    app.world_mut().despawn(light);
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        1,
+        "a despawned light is removed"
+    );
+    assert_eq!(
+        app.world()
+            .resource::<PhongLightBuffer>()
+            .header()
+            .light_count(),
+        0
+    );
+
+    app.world_mut().resource_mut::<PhongAmbientLight>().color = bevy::color::Color::BLACK;
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        1,
+        "a changed ambient light is uploaded"
+    );
+    assert_eq!(
+        app.world().resource::<PhongLightBuffer>().header().ambient,
+        [0.0; 3]
+    );
+    assert!(!built_in_buffer_bytes(&app).is_empty());
+}
+
+#[test]
+fn a_hemisphere_light_adds_its_mean_to_the_ambient_and_its_half_difference_along_up() {
+    let mut app = test_app(|_| {});
+    app.world_mut().resource_mut::<PhongAmbientLight>().color =
+        bevy::color::Color::linear_rgb(0.1, 0.1, 0.1);
+    uploads_in_next_frame(&mut app);
+    app.world_mut().insert_resource(PhongHemisphereLight {
+        sky_color: bevy::color::Color::linear_rgb(0.5, 0.25, 1.0),
+        ground_color: bevy::color::Color::linear_rgb(0.25, 0.5, 0.0),
+        up: Vec3::new(0.0, 0.0, -4.0),
+    });
+    assert_eq!(uploads_in_next_frame(&mut app), 1, "inserted: uploaded");
+    let header = *app.world().resource::<PhongLightBuffer>().header();
+    // Exact in binary: 0.1 + 0.375 and the others are each rounded once.
+    assert_eq!(header.ambient, [0.475, 0.475, 0.6].map(|x: f64| x as f32));
+    assert_eq!(header.hemisphere_up, [0.0, 0.0, -1.0]);
+    assert_eq!(header.hemisphere_half_difference, [0.125, -0.125, 0.5]);
+    assert_eq!(uploads_in_next_frame(&mut app), 0, "unchanged: no upload");
+
+    app.world_mut().remove_resource::<PhongHemisphereLight>();
+    assert_eq!(uploads_in_next_frame(&mut app), 1, "removed: uploaded");
+    let header = *app.world().resource::<PhongLightBuffer>().header();
+    assert_eq!(header.ambient, [0.1; 3]);
+    assert_eq!(header.hemisphere_up, [0.0; 3]);
+    assert_eq!(header.hemisphere_half_difference, [0.0; 3]);
+}
+
+/// The records a gather must write for the lights in `app`, made afresh (no cache):
+/// sorted by their bits, as the gather's own are by [`sorted_records`].
+fn fresh_records(app: &mut App) -> Vec<[u32; 20]> {
+    let world = app.world_mut();
+    let epsilon = world.resource::<PhongLightCulling>().epsilon;
+    let mut records: Vec<GpuLight> = Vec::new();
+    push_fresh::<PhongPointLight>(world, &mut records);
+    push_fresh::<PhongSpotLight>(world, &mut records);
+    let per_light_epsilon = epsilon / records.len().max(1) as f32;
+    records.retain_mut(|record| {
+        // Point and spot lights alike: the point light's reach is the spot light's.
+        let reach = PhongPointLight::reach(record, per_light_epsilon);
+        PhongPointLight::set_reach(record, reach);
+        reach > 0.0
+    });
+    let mut bits: Vec<[u32; 20]> = records.iter().map(|r| bytemuck::cast(*r)).collect();
+    bits.sort();
+    bits
+}
+
+/// Appends the whole record of every visible light of kind `L`, made afresh.
+fn push_fresh<L: PhongLightKind<Gpu = GpuLight>>(world: &mut World, records: &mut Vec<GpuLight>) {
+    let mut lights = world.query::<(&L, &GlobalTransform, &InheritedVisibility)>();
+    for (light, transform, visibility) in lights.iter(world) {
+        if visibility.get() {
+            records.push(light.to_gpu(transform));
+        }
+    }
+}
+
+/// The records the gather wrote, sorted by their bits.
+fn sorted_records(app: &App) -> Vec<[u32; 20]> {
+    let state = app.world().resource::<PhongLightBuffer>();
+    let mut bits: Vec<[u32; 20]> = state.records().iter().map(|r| bytemuck::cast(*r)).collect();
+    bits.sort();
+    bits
+}
+
+#[test]
+fn kept_constants_never_outlive_a_change() {
+    let mut app = test_app(|app| {
+        app.insert_resource(PhongLightCulling {
+            epsilon: 1e-2,
+            clusters: true,
+        });
+    });
+    let decay = crate::Decay::DISTANCE_50;
+    let mut lights: Vec<Entity> = (0..6)
+        .map(|i| {
+            let position = Transform::from_xyz(i as f32, 1.0, 0.0);
+            let world = app.world_mut();
+            if i % 3 == 0 {
+                world.spawn((
+                    PhongSpotLight {
+                        decay,
+                        ..Default::default()
+                    },
+                    position,
+                ))
+            } else {
+                world.spawn((
+                    PhongPointLight {
+                        decay,
+                        ..Default::default()
+                    },
+                    position,
+                ))
+            }
+            .id()
+        })
+        .collect();
+    app.update();
+    assert_eq!(
+        sorted_records(&app),
+        fresh_records(&mut app),
+        "first gather"
+    );
+
+    type Step = fn(&mut World, &mut Vec<Entity>);
+    let steps: [(&str, Step); 9] = [
+        ("a point light recolored", |world, lights| {
+            world.get_mut::<PhongPointLight>(lights[1]).unwrap().color =
+                bevy::color::Color::srgb(0.2, 0.4, 0.9);
+        }),
+        ("a spot light's cone narrowed", |world, lights| {
+            world
+                .get_mut::<PhongSpotLight>(lights[0])
+                .unwrap()
+                .outer_angle = 0.2;
+        }),
+        ("a light moved", |world, lights| {
+            world.get_mut::<Transform>(lights[2]).unwrap().translation.y = 4.0;
+        }),
+        ("a spot light turned", |world, lights| {
+            world.get_mut::<Transform>(lights[3]).unwrap().rotate_x(0.5);
+        }),
+        ("a light despawned from the middle", |world, lights| {
+            world.despawn(lights.remove(1));
+        }),
+        ("a light hidden", |world, lights| {
+            *world.get_mut::<Visibility>(lights[1]).unwrap() = Visibility::Hidden;
+        }),
+        ("a light spawned: ε per light shrinks", |world, lights| {
+            let light = PhongPointLight {
+                decay: crate::Decay::DISTANCE_50,
+                color: bevy::color::Color::srgb(3.0, 3.0, 3.0),
+                ..Default::default()
+            };
+            lights.push(
+                world
+                    .spawn((light, Transform::from_xyz(0.0, 0.0, 2.0)))
+                    .id(),
+            );
+        }),
+        ("the hidden light shown", |world, lights| {
+            *world.get_mut::<Visibility>(lights[1]).unwrap() = Visibility::Inherited;
+        }),
+        ("ε changed", |world, _| {
+            world.resource_mut::<PhongLightCulling>().epsilon = 1e-3;
+        }),
+    ];
+    for (name, step) in steps {
+        step(app.world_mut(), &mut lights);
+        app.update();
+        assert_eq!(
+            sorted_records(&app),
+            fresh_records(&mut app),
+            "after {name}"
+        );
+    }
+}
+
+#[test]
+fn cookied_and_shadow_casting_lights_are_listed_only_in_the_clusters_they_reach() {
+    use crate::render::PhongLightClusters;
+    use crate::{PhongShadows, test_app::white_cookie};
+    use bevy::{asset::AssetApp, image::Image, prelude::Camera3d};
+    let mut app = test_app(|app| {
+        app.init_asset::<Image>();
+    });
+    let cookie = white_cookie(&mut app);
+    let world = app.world_mut();
+    world.spawn((
+        Camera3d::default(),
+        Transform::from_xyz(0.0, 2.0, 10.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let spot = |x: f32| {
+        (
+            PhongSpotLight {
+                range: Some(2.0),
+                ..Default::default()
+            },
+            cookie.clone(),
+            Transform::from_xyz(x, 1.0, 0.0).looking_at(Vec3::new(x, 0.0, 0.0), Vec3::Z),
+        )
+    };
+    world.spawn(spot(-3.0));
+    world.spawn(spot(1000.0));
+    world.spawn((
+        PhongPointLight {
+            range: Some(2.0),
+            shadows: PhongShadows::ON,
+            ..Default::default()
+        },
+        Transform::from_xyz(3.0, 1.0, 0.0),
+    ));
+    app.update();
+
+    let state = app.world().resource::<PhongLightBuffer>();
+    let header = *state.header();
+    assert_eq!(
+        [
+            header.point_count,
+            header.spot_count,
+            header.clustered_point_count,
+            header.clustered_spot_count
+        ],
+        [0, 0, 1, 2],
+        "no light is looped over by every fragment: all three are clustered"
+    );
+    let index_at = |x: f32| {
+        state
+            .records()
+            .iter()
+            .position(|record| record.position[0] == x)
+            .unwrap() as u32
+    };
+    let (shadowed, near, far) = (index_at(3.0), index_at(-3.0), index_at(1000.0));
+    let records = state.records();
+    assert_eq!(
+        records[shadowed as usize].shadow, 1,
+        "its first view, plus one"
+    );
+    assert_ne!(records[near as usize].shadow >> GpuLight::COOKIE_SHIFT, 0);
+
+    let clusters = app.world().resource::<PhongLightClusters>();
+    assert_eq!(clusters.view_count(), 1);
+    // Each cluster's point and spot lights (slots 0 and 1).
+    let entries = clusters.first_view_entries(0..2);
+    let cluster_count = entries.len();
+    let clusters_listing = |light: u32| {
+        entries
+            .iter()
+            .filter(|entries| entries.contains(&light))
+            .count()
+    };
+    let (near_clusters, shadowed_clusters) = (clusters_listing(near), clusters_listing(shadowed));
+    assert!(
+        0 < near_clusters && near_clusters < cluster_count / 4,
+        "the cookied lamp in view is listed in the few clusters it reaches: {near_clusters} of \
+         {cluster_count}"
+    );
+    assert!(
+        0 < shadowed_clusters && shadowed_clusters < cluster_count / 4,
+        "the shadow-casting light too: {shadowed_clusters} of {cluster_count}"
+    );
+    assert_eq!(clusters_listing(far), 0, "the far cookied lamp in none");
+}
+
+#[test]
+fn mixed_lights_are_ordered_unlimited_then_clustered_each_kind_in_its_order() {
+    // Points 1 and 3 then spots 4 and 5 after one directional light (0); `shadow` marks
+    // the unlimited ones.
+    let light = |id: f32, shadow: u32| GpuLight {
+        position: [id, 0.0, 0.0],
+        shadow,
+        ..Default::default()
+    };
+    let mut records = vec![light(0.0, 0), light(1.0, 0), light(3.0, 1), light(4.0, 1)];
+    records.push(light(5.0, 0));
+    let clustered = |light: &GpuLight| light.shadow == 0;
+    let pushed = |kept: usize, clustered: usize| Pushed {
+        lit: kept,
+        kept,
+        clustered,
+    };
+    let mut scratch = Vec::new();
+    let counts = order_by_reach(
+        &mut records,
+        1,
+        [pushed(2, 1), pushed(2, 1)],
+        &mut scratch,
+        clustered,
+    );
+    assert_eq!(counts, [1, 1, 1, 1]);
+    let order: Vec<f32> = records.iter().map(|light| light.position[0]).collect();
+    assert_eq!(order, [0.0, 3.0, 4.0, 1.0, 5.0]);
+
+    // All of one sort: left where they are.
+    let counts = order_by_reach(
+        &mut records,
+        1,
+        [pushed(2, 2), pushed(2, 2)],
+        &mut scratch,
+        |_| true,
+    );
+    assert_eq!(counts, [0, 0, 2, 2]);
+    let again: Vec<f32> = records.iter().map(|light| light.position[0]).collect();
+    assert_eq!(again, order);
+}
+
+#[test]
+fn lights_are_ordered_directional_point_spot() {
+    let mut app = test_app(|_| {});
+    let world = app.world_mut();
+    world.spawn(PhongSpotLight::default());
+    world.spawn(PhongPointLight::default());
+    world.spawn(PhongDirectionalLight::default());
+    world.spawn(PhongPointLight::default());
+    app.update();
+    let state = app.world().resource::<PhongLightBuffer>();
+    let header = state.header();
+    assert_eq!(
+        (
+            header.directional_count,
+            header.point_count,
+            header.spot_count
+        ),
+        (1, 2, 1)
+    );
+    // A directional light has no range; point and spot lights keep "unlimited".
+    assert_eq!(state.records()[0].range, 0.0);
+    assert_eq!(state.records()[1].range, f32::MAX);
+    assert!(state.records()[3].cone_scale > 0.0);
+}
