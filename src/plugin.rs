@@ -53,122 +53,16 @@ impl Plugin for PhongPlugin {
         order::check_build(app);
         init_shader_buffers(app);
         configure_phong_systems(app);
-        app.init_resource::<PhongAmbientLight>()
-            .init_resource::<SceneVariants>()
-            .init_resource::<PhongLightCulling>()
-            .init_resource::<PhongLightBuffer>()
-            .init_resource::<PhongCookies>()
-            .init_resource::<PhongLightClusters>()
-            .init_resource::<ExtensionClusterSlots>()
-            .init_resource::<SharedEpsilonLights>()
-            .add_message::<LightBufferResized>()
-            .register_type::<PhongAmbientLight>()
-            .register_type::<PhongHemisphereLight>()
-            .register_type::<PhongLightCookie>()
-            .register_type::<PhongLightCulling>()
-            .register_type::<PhongViewClusters>()
-            .register_type::<PhongDirectionalLight>()
-            .register_type::<PhongPointLight>()
-            .register_type::<PhongSpotLight>()
-            .register_type::<Decay>()
-            .register_type::<PhongShadows>()
-            .register_type::<PhongCascades>()
-            .register_type::<SpecularModel>()
-            .register_asset_reflect::<PhongMaterial>()
-            .add_message::<InvalidInput>()
-            .add_systems(
-                PostUpdate,
-                (
-                    validate_ambient_light,
-                    validate_hemisphere_light,
-                    validate_materials,
-                )
-                    .in_set(PhongSystems::Validate),
-            )
-            .add_systems(
-                PostUpdate,
-                (
-                    gather_cookies.run_if(resource_exists::<Assets<Image>>),
-                    gather_lights,
-                    assign_lights_to_clusters,
-                )
-                    .chain()
-                    .after(VisibilitySystems::UpdateFrusta)
-                    .in_set(PhongSystems::GatherLights),
-            );
+        add_resources(app);
+        register_types(app);
+        add_validation_and_gathers(app);
         crate::shadows::add_shadow_gather(app);
         // The built-in kinds of light, through the path every kind takes.
         add_light_kind::<PhongDirectionalLight>(app);
         add_light_kind::<PhongPointLight>(app);
         add_light_kind::<PhongSpotLight>(app);
-
-        // The shaders are registered wherever Bevy's renderer is added, also without a render
-        // device (`WgpuSettings::backends: None`), as Bevy's own plugins do: tools can then
-        // compose them without a GPU. ECS-only apps (`MinimalPlugins`) have no shader assets.
-        if app.world().contains_resource::<Assets<Shader>>() {
-            load_shader_library!(app, "shaders/types.wesl");
-            load_shader_library!(app, "shaders/lighting.wesl");
-            load_shader_library!(app, "shaders/bindings.wesl");
-            load_shader_library!(app, "shaders/data_texture.wesl");
-            load_shader_library!(app, "shaders/scene.wesl");
-            load_shader_library!(app, "shaders/view_key.wesl");
-            load_shader_library!(app, "shaders/clusters.wesl");
-            load_shader_library!(app, "shaders/shading.wesl");
-            load_shader_library!(app, "shaders/normals.wesl");
-            load_shader_library!(app, "shaders/uv.wesl");
-            load_shader_library!(app, "shaders/environment.wesl");
-            load_shader_library!(app, "shaders/texture_maps.wesl");
-            load_shader_library!(app, "shaders/shadows.wesl");
-            load_shader_library!(app, "shaders/camera_effects.wesl");
-            load_shader_library!(app, "shaders/per_vertex.wesl");
-            load_shader_library!(app, "shaders/fragment.wesl");
-            embedded_asset!(app, "shaders/phong_material.wesl");
-            embedded_asset!(app, "shaders/phong_prepass.wesl");
-            embedded_asset!(app, "shaders/shadow_caster.wesl");
-            load_shader_library!(app, "shaders/displacement.wesl");
-            load_shader_library!(app, "shaders/toon_ramp.wesl");
-            load_shader_library!(app, "shaders/cookies.wesl");
-            load_internal_asset!(
-                app,
-                crate::displacement::PHONG_VERTEX_SHADER,
-                "shaders/phong_vertex.wesl",
-                |source, _path| Shader::from_wesl(
-                    source,
-                    "embedded://bevy_phong/shaders/phong_vertex.wesl"
-                )
-            );
-            load_internal_asset!(
-                app,
-                crate::displacement::PHONG_PREPASS_VERTEX_SHADER,
-                "shaders/phong_prepass_vertex.wesl",
-                |source, _path| Shader::from_wesl(
-                    source,
-                    "embedded://bevy_phong/shaders/phong_prepass_vertex.wesl"
-                )
-            );
-        }
-        if app.get_sub_app(RenderApp).is_none() {
-            app.init_asset::<PhongMaterial>();
-            #[cfg(feature = "scene")]
-            crate::scene::add_scene_files(app);
-            return;
-        }
-        crate::shadows::add_shadow_rendering(app);
-        // Where the device lacks storage buffers, the scene data also goes into a texture.
-        app.add_systems(
-            PostUpdate,
-            crate::render::pack_scene_texture
-                .after(assign_lights_to_clusters)
-                .in_set(PhongSystems::GatherLights),
-        );
-        app.sub_app_mut(RenderApp).add_systems(
-            bevy::render::RenderStartup,
-            crate::render::announce_scene_data_path,
-        );
-        app.add_phong_material::<PhongMaterial>();
-        crate::render::add_material_batching(app);
-        #[cfg(feature = "scene")]
-        crate::scene::add_scene_files(app);
+        load_shaders(app);
+        add_rendering(app);
     }
 
     fn finish(&self, app: &mut App) {
@@ -178,6 +72,137 @@ impl Plugin for PhongPlugin {
             Err(message) => panic!("{message}"),
         }
     }
+}
+
+/// The plugin's resources and messages.
+fn add_resources(app: &mut App) {
+    app.init_resource::<PhongAmbientLight>()
+        .init_resource::<SceneVariants>()
+        .init_resource::<PhongLightCulling>()
+        .init_resource::<PhongLightBuffer>()
+        .init_resource::<PhongCookies>()
+        .init_resource::<PhongLightClusters>()
+        .init_resource::<ExtensionClusterSlots>()
+        .init_resource::<SharedEpsilonLights>()
+        .add_message::<LightBufferResized>()
+        .add_message::<InvalidInput>();
+}
+
+/// The reflection of the light components, the culling and the material.
+fn register_types(app: &mut App) {
+    app.register_type::<PhongAmbientLight>()
+        .register_type::<PhongHemisphereLight>()
+        .register_type::<PhongLightCookie>()
+        .register_type::<PhongLightCulling>()
+        .register_type::<PhongViewClusters>()
+        .register_type::<PhongDirectionalLight>()
+        .register_type::<PhongPointLight>()
+        .register_type::<PhongSpotLight>()
+        .register_type::<Decay>()
+        .register_type::<PhongShadows>()
+        .register_type::<PhongCascades>()
+        .register_type::<SpecularModel>()
+        .register_asset_reflect::<PhongMaterial>();
+}
+
+/// The validation of the ambient and hemisphere lights and the materials, and the gathers of
+/// the cookies, the built-in lights and the clusters, in their sets.
+fn add_validation_and_gathers(app: &mut App) {
+    app.add_systems(
+        PostUpdate,
+        (
+            validate_ambient_light,
+            validate_hemisphere_light,
+            validate_materials,
+        )
+            .in_set(PhongSystems::Validate),
+    )
+    .add_systems(
+        PostUpdate,
+        (
+            gather_cookies.run_if(resource_exists::<Assets<Image>>),
+            gather_lights,
+            assign_lights_to_clusters,
+        )
+            .chain()
+            .after(VisibilitySystems::UpdateFrusta)
+            .in_set(PhongSystems::GatherLights),
+    );
+}
+
+/// The shaders, registered wherever Bevy's renderer is added, also without a render device
+/// (`WgpuSettings::backends: None`), as Bevy's own plugins do: tools can then compose them
+/// without a GPU. ECS-only apps (`MinimalPlugins`) have no shader assets.
+fn load_shaders(app: &mut App) {
+    if app.world().contains_resource::<Assets<Shader>>() {
+        load_shader_library!(app, "shaders/types.wesl");
+        load_shader_library!(app, "shaders/lighting.wesl");
+        load_shader_library!(app, "shaders/bindings.wesl");
+        load_shader_library!(app, "shaders/data_texture.wesl");
+        load_shader_library!(app, "shaders/scene.wesl");
+        load_shader_library!(app, "shaders/view_key.wesl");
+        load_shader_library!(app, "shaders/clusters.wesl");
+        load_shader_library!(app, "shaders/shading.wesl");
+        load_shader_library!(app, "shaders/normals.wesl");
+        load_shader_library!(app, "shaders/uv.wesl");
+        load_shader_library!(app, "shaders/environment.wesl");
+        load_shader_library!(app, "shaders/texture_maps.wesl");
+        load_shader_library!(app, "shaders/shadows.wesl");
+        load_shader_library!(app, "shaders/camera_effects.wesl");
+        load_shader_library!(app, "shaders/per_vertex.wesl");
+        load_shader_library!(app, "shaders/fragment.wesl");
+        embedded_asset!(app, "shaders/phong_material.wesl");
+        embedded_asset!(app, "shaders/phong_prepass.wesl");
+        embedded_asset!(app, "shaders/shadow_caster.wesl");
+        load_shader_library!(app, "shaders/displacement.wesl");
+        load_shader_library!(app, "shaders/toon_ramp.wesl");
+        load_shader_library!(app, "shaders/cookies.wesl");
+        load_internal_asset!(
+            app,
+            crate::displacement::PHONG_VERTEX_SHADER,
+            "shaders/phong_vertex.wesl",
+            |source, _path| Shader::from_wesl(
+                source,
+                "embedded://bevy_phong/shaders/phong_vertex.wesl"
+            )
+        );
+        load_internal_asset!(
+            app,
+            crate::displacement::PHONG_PREPASS_VERTEX_SHADER,
+            "shaders/phong_prepass_vertex.wesl",
+            |source, _path| Shader::from_wesl(
+                source,
+                "embedded://bevy_phong/shaders/phong_prepass_vertex.wesl"
+            )
+        );
+    }
+}
+
+/// The render world's part (the shadow passes, the scene texture, the material and its
+/// batching) where a renderer is added; the scene files everywhere.
+fn add_rendering(app: &mut App) {
+    if app.get_sub_app(RenderApp).is_none() {
+        app.init_asset::<PhongMaterial>();
+        #[cfg(feature = "scene")]
+        crate::scene::add_scene_files(app);
+        return;
+    }
+    crate::shadows::add_shadow_rendering(app);
+    // Where the device lacks storage buffers, the scene data also goes into a texture.
+    app.add_systems(
+        PostUpdate,
+        crate::render::pack_scene_texture
+            .after(assign_lights_to_clusters)
+            .in_set(PhongSystems::GatherLights),
+    );
+    app.sub_app_mut(RenderApp).add_systems(
+        bevy::render::RenderStartup,
+        crate::render::announce_scene_data_path,
+    );
+    app.add_phong_material::<PhongMaterial>();
+    crate::render::add_material_batching(app);
+    #[cfg(feature = "scene")]
+    crate::scene::add_scene_files(app);
 }
 
 /// Registers a material that binds the plugin's scene data (see

@@ -188,87 +188,91 @@ pub fn assign_lights_to_clusters(
     mut collisions_said: Local<usize>,
 ) {
     let state = state.bypass_change_detection();
-    let views = &mut state.views;
-    views.clear();
-    views.extend(cameras.iter().filter(|(camera, ..)| camera.is_active).map(
-        |(camera, transform, frustum, projection, cut)| {
-            cluster_view(
-                camera,
-                transform,
-                frustum,
-                projection,
-                cut.copied().unwrap_or_default(),
-            )
-        },
-    ));
-    let collisions = keep_distinct_views(views);
-    if collisions != *collisions_said {
-        if collisions > 0 {
-            warn!(
-                "bevy_phong: {collisions} camera views have frusta whose keys collide; their \
-                 fragments loop over every light of finite reach (exact, but slower)"
-            );
-        }
-        *collisions_said = collisions;
-    }
-
+    state.set_views(&cameras, &mut collisions_said);
     // The lights' records are rewritten only in frames where a light changed: otherwise only
     // the views can have changed the clusters, which are then built from the spheres of the
     // last build (only the lights near each view are looked at).
     let lights_unchanged =
         !lights.is_changed() && !extension_lights.is_changed() && state.buffer.capacity() > 0;
-    if lights_unchanged {
-        let PhongLightClusters {
-            buffer,
-            clusters,
-            views,
-            ..
-        } = state;
-        if clusters.build_views(views)
-            && buffer.write(&mut buffers, clusters.header(), clusters.data())
-        {
-            resized.write(LightBufferResized);
-        }
-        return;
+    let rebuilt = if lights_unchanged {
+        state.clusters.build_views(&state.views)
+    } else {
+        state.build(&lights, &extension_lights) || state.buffer.capacity() == 0
+    };
+    if rebuilt
+        && state
+            .buffer
+            .write(&mut buffers, state.clusters.header(), state.clusters.data())
+    {
+        resized.write(LightBufferResized);
     }
-    let header = lights.header();
-    let first = (header.directional_count + header.point_count + header.spot_count) as usize;
-    let spots = first + header.clustered_point_count as usize;
-    let end = spots + header.clustered_spot_count as usize;
-    let records = lights.records();
-    let PhongLightClusters {
-        buffer,
-        clusters,
-        views,
-        point_spheres,
-        spot_spheres,
-    } = state;
-    point_spheres.clear();
-    point_spheres.extend(records[first..spots].iter().map(light_sphere_bits));
-    spot_spheres.clear();
-    spot_spheres.extend(records[spots..end].iter().map(light_sphere_bits));
-    let built_in = [
-        ClusterSlot {
-            first: first as u32,
-            spheres: point_spheres,
-        },
-        ClusterSlot {
-            first: spots as u32,
-            spheres: spot_spheres,
-        },
-    ];
-    let slots: Vec<ClusterSlot> = built_in
-        .into_iter()
-        .chain(extension_lights.slots.iter().map(|slot| ClusterSlot {
-            first: slot.first,
-            spheres: &slot.spheres,
-        }))
-        .collect();
-    let rebuilt = clusters.build(views, &slots);
-    if rebuilt || buffer.capacity() == 0 {
-        let was_resized = buffer.write(&mut buffers, clusters.header(), clusters.data());
-        if was_resized {
-            resized.write(LightBufferResized);
+}
+
+impl PhongLightClusters {
+    /// This frame's views: every active 3D camera's, those whose keys collide left out (a
+    /// warning each time their number changes; `collisions_said` is the last number said).
+    fn set_views(&mut self, cameras: &CameraQuery, collisions_said: &mut usize) {
+        self.views.clear();
+        self.views
+            .extend(cameras.iter().filter(|(camera, ..)| camera.is_active).map(
+                |(camera, transform, frustum, projection, cut)| {
+                    cluster_view(
+                        camera,
+                        transform,
+                        frustum,
+                        projection,
+                        cut.copied().unwrap_or_default(),
+                    )
+                },
+            ));
+        let collisions = keep_distinct_views(&mut self.views);
+        if collisions != *collisions_said {
+            if collisions > 0 {
+                warn!(
+                    "bevy_phong: {collisions} camera views have frusta whose keys collide; their \
+                     fragments loop over every light of finite reach (exact, but slower)"
+                );
+            }
+            *collisions_said = collisions;
         }
+    }
+
+    /// Builds the clusters from the spheres of the built-in clustered point and spot lights
+    /// (the last sections of `lights`' records) and of every extension kind's; returns
+    /// whether they changed.
+    fn build(
+        &mut self,
+        lights: &PhongLightBuffer,
+        extension_lights: &ExtensionClusterSlots,
+    ) -> bool {
+        let header = lights.header();
+        let first = (header.directional_count + header.point_count + header.spot_count) as usize;
+        let spots = first + header.clustered_point_count as usize;
+        let end = spots + header.clustered_spot_count as usize;
+        let records = lights.records();
+        self.point_spheres.clear();
+        self.point_spheres
+            .extend(records[first..spots].iter().map(light_sphere_bits));
+        self.spot_spheres.clear();
+        self.spot_spheres
+            .extend(records[spots..end].iter().map(light_sphere_bits));
+        let built_in = [
+            ClusterSlot {
+                first: first as u32,
+                spheres: &self.point_spheres,
+            },
+            ClusterSlot {
+                first: spots as u32,
+                spheres: &self.spot_spheres,
+            },
+        ];
+        let slots: Vec<ClusterSlot> = built_in
+            .into_iter()
+            .chain(extension_lights.slots.iter().map(|slot| ClusterSlot {
+                first: slot.first,
+                spheres: &slot.spheres,
+            }))
+            .collect();
+        self.clusters.build(&self.views, &slots)
     }
 }

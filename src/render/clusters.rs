@@ -25,7 +25,7 @@ use super::gpu_types::GpuClustersHeader;
 use crate::light_kind::GpuLight;
 use bevy::math::{DMat4, DVec3, DVec4, Mat4, UVec2, Vec3};
 use sphere_tree::{LightAt, SphereTree};
-use std::ops::RangeInclusive;
+use std::ops::{Range, RangeInclusive};
 
 /// `u32` words per view record.
 pub const VIEW_WORDS: usize = GpuClustersHeader::VIEW_WORDS as usize;
@@ -462,9 +462,21 @@ impl LightClusters {
         let records_end = first;
         self.data.resize(records_end, 0);
 
-        // Count each cluster's entries of slot k in its word k, and note every (that word,
-        // entry) pair: per view, slot by slot, each slot's lights in order (those the tree
-        // finds near the view).
+        let records = views.len() * VIEW_WORDS..records_end;
+        let slot_count = slots.len();
+        self.count_entries(words);
+        place_entries(&mut self.data, &self.pairs, records, words, slot_count);
+    }
+
+    /// Counts each cluster's entries of slot k in its word k of [`Self::data`], and notes
+    /// every (that word, entry) pair: per view, slot by slot, each slot's lights in order
+    /// (those the tree finds near the view).
+    fn count_entries(&mut self, words: usize) {
+        let BuiltFrom {
+            views,
+            spheres,
+            slots,
+        } = &self.built_from;
         let slot_starts: Vec<usize> = slots
             .iter()
             .scan(0, |start, &(_, count)| {
@@ -503,31 +515,43 @@ impl LightClusters {
                 }
             }
         }
-        let slot_count = slots.len();
-        // Turn each count into a write cursor at its slot's start; word K holds the end.
-        let mut next = records_end as u32;
-        for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(words) {
-            for word in &mut record[..slot_count] {
-                let count = *word;
-                *word = next;
-                next += count;
-            }
-            record[slot_count] = next;
+    }
+}
+
+/// Writes the entries of `pairs` after the cluster records (`data[records]`, `words` words
+/// each, whose first `slot_count` words hold their slots' counts), each cluster's slot by
+/// slot (a counting sort), and leaves in each record its slots' starts and its end.
+fn place_entries(
+    data: &mut Vec<u32>,
+    pairs: &[(u32, u32)],
+    records: Range<usize>,
+    words: usize,
+    slot_count: usize,
+) {
+    let records_end = records.end;
+    // Turn each count into a write cursor at its slot's start; word K holds the end.
+    let mut next = records_end as u32;
+    for record in data[records.clone()].chunks_exact_mut(words) {
+        for word in &mut record[..slot_count] {
+            let count = *word;
+            *word = next;
+            next += count;
         }
-        data.resize(next as usize, 0);
-        for &(word, entry) in pairs.iter() {
-            let cursor = &mut data[word as usize];
-            let slot = *cursor as usize;
-            *cursor += 1;
-            data[slot] = entry;
-        }
-        // Each cursor has moved to the end of its slot, the start of the next: move them back.
-        let mut start = records_end as u32;
-        for record in data[views.len() * VIEW_WORDS..records_end].chunks_exact_mut(words) {
-            record.copy_within(0..slot_count - 1, 1);
-            record[0] = start;
-            start = record[slot_count];
-        }
+        record[slot_count] = next;
+    }
+    data.resize(next as usize, 0);
+    for &(word, entry) in pairs {
+        let cursor = &mut data[word as usize];
+        let slot = *cursor as usize;
+        *cursor += 1;
+        data[slot] = entry;
+    }
+    // Each cursor has moved to the end of its slot, the start of the next: move them back.
+    let mut start = records_end as u32;
+    for record in data[records].chunks_exact_mut(words) {
+        record.copy_within(0..slot_count - 1, 1);
+        record[0] = start;
+        start = record[slot_count];
     }
 }
 

@@ -59,13 +59,16 @@ impl PhongCookies {
 /// transform and projection. [`gather_cookies`] empties it.
 #[derive(Resource, Debug, Default)]
 pub struct CookieRequests {
-    requests: Vec<(
-        Entity,
-        PhongLightCookie,
-        GlobalTransform,
-        PhongCookieProjection,
-    )>,
+    requests: Vec<CookieRequest>,
 }
+
+/// A light that asks for its cookie: its entity, cookie, transform and projection.
+type CookieRequest = (
+    Entity,
+    PhongLightCookie,
+    GlobalTransform,
+    PhongCookieProjection,
+);
 
 /// Asks for the cookie of every light of kind `L` that has one and takes it
 /// ([`PhongLightKind::cookie_projection`]); runs before [`gather_cookies`].
@@ -110,32 +113,62 @@ pub fn gather_cookies(
     let state = cookies.bypass_change_detection();
     // An image that could not be read may be readable once it changed.
     state.unreadable.retain(|id| !modified.contains(id));
-    // The images the atlas should hold: each loaded, readable cookie image once.
-    let mut layers: Vec<AssetId<Image>> = Vec::new();
-    for (entity, cookie, _, _) in &lights {
-        let entity = *entity;
-        let id = cookie.image.id();
-        if layers.contains(&id) || state.unreadable.contains(&id) || !images.contains(id) {
-            continue;
-        }
-        if layers.len() == MAX_COOKIE_IMAGES {
-            if state.warned.insert(id) {
-                warn!(
-                    "entity {entity}: PhongLightCookie.image is the {}th distinct cookie \
-                     image; the atlas holds {MAX_COOKIE_IMAGES}: the light is drawn without it",
-                    MAX_COOKIE_IMAGES + 1
-                );
-            }
-            continue;
-        }
-        layers.push(id);
-    }
+    let layers = state.wanted_layers(&lights, &images);
     let rebuild = layers != state.layers
         || layers.iter().any(|id| modified.contains(id))
         || !images.contains(&PHONG_COOKIE_ATLAS);
-    let mut changed = false;
     if rebuild {
-        // The images' texels are read only here, when the atlas changes.
+        state.rebuild_atlas(layers, &mut images);
+    }
+    let records_changed = state.update_records(&lights);
+    lights.clear();
+    requests.bypass_change_detection().requests = lights;
+    let any = !state.records.is_empty();
+    if variants.cookies != any {
+        variants.cookies = any;
+    }
+    if rebuild || records_changed {
+        cookies.set_changed();
+    }
+    if rebuild {
+        // A new atlas texture: the materials' bind groups are made again.
+        resized.write(LightBufferResized);
+    }
+}
+
+impl PhongCookies {
+    /// The images the atlas should hold: each loaded, readable cookie image of `lights` once,
+    /// at most [`MAX_COOKIE_IMAGES`] (a light past them is drawn without its cookie, with a
+    /// warning once per image).
+    fn wanted_layers(
+        &mut self,
+        lights: &[CookieRequest],
+        images: &Assets<Image>,
+    ) -> Vec<AssetId<Image>> {
+        let mut layers: Vec<AssetId<Image>> = Vec::new();
+        for (entity, cookie, _, _) in lights {
+            let id = cookie.image.id();
+            if layers.contains(&id) || self.unreadable.contains(&id) || !images.contains(id) {
+                continue;
+            }
+            if layers.len() == MAX_COOKIE_IMAGES {
+                if self.warned.insert(id) {
+                    warn!(
+                        "entity {entity}: PhongLightCookie.image is the {}th distinct cookie \
+                         image; the atlas holds {MAX_COOKIE_IMAGES}: the light is drawn without it",
+                        MAX_COOKIE_IMAGES + 1
+                    );
+                }
+                continue;
+            }
+            layers.push(id);
+        }
+        layers
+    }
+
+    /// Makes the atlas of `layers` again, leaving out (with a warning) the images whose
+    /// texels cannot be read. The images' texels are read only here, when the atlas changes.
+    fn rebuild_atlas(&mut self, mut layers: Vec<AssetId<Image>>, images: &mut Assets<Image>) {
         let mut texels = Vec::new();
         layers.retain(|id| {
             let image = images.get(*id).expect("a loaded image");
@@ -150,7 +183,7 @@ pub fn gather_cookies(
                          ({:?}) or no texels: its lights are drawn without their cookie",
                         image.texture_descriptor.format
                     );
-                    state.unreadable.insert(*id);
+                    self.unreadable.insert(*id);
                     false
                 }
             }
@@ -158,39 +191,30 @@ pub fn gather_cookies(
         images
             .insert(&PHONG_COOKIE_ATLAS, atlas_image(&texels))
             .expect("the atlas handle accepts an image");
-        state.layers = layers;
-        changed = true;
+        self.layers = layers;
     }
 
-    let mut records = Vec::new();
-    let mut slots = EntityHashMap::default();
-    for (entity, cookie, transform, projection) in &lights {
-        let Some(layer) = state.layers.iter().position(|id| *id == cookie.image.id()) else {
-            continue;
-        };
-        let Some(record) = cookie_record(cookie, transform, *projection, layer as u32) else {
-            continue;
-        };
-        slots.insert(*entity, records.len() as u32);
-        records.push(record);
-    }
-    if records != state.records || slots != state.slots {
-        state.records = records;
-        state.slots = slots;
-        changed = true;
-    }
-    lights.clear();
-    requests.bypass_change_detection().requests = lights;
-    let any = !state.records.is_empty();
-    if variants.cookies != any {
-        variants.cookies = any;
-    }
-    if changed {
-        cookies.set_changed();
-    }
-    if rebuild {
-        // A new atlas texture: the materials' bind groups are made again.
-        resized.write(LightBufferResized);
+    /// Makes the records and slots of the `lights` whose image is in the atlas; returns
+    /// whether they differ from the last ones.
+    fn update_records(&mut self, lights: &[CookieRequest]) -> bool {
+        let mut records = Vec::new();
+        let mut slots = EntityHashMap::default();
+        for (entity, cookie, transform, projection) in lights {
+            let Some(layer) = self.layers.iter().position(|id| *id == cookie.image.id()) else {
+                continue;
+            };
+            let Some(record) = cookie_record(cookie, transform, *projection, layer as u32) else {
+                continue;
+            };
+            slots.insert(*entity, records.len() as u32);
+            records.push(record);
+        }
+        let changed = records != self.records || slots != self.slots;
+        if changed {
+            self.records = records;
+            self.slots = slots;
+        }
+        changed
     }
 }
 

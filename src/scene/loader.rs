@@ -169,38 +169,55 @@ fn scene_light(
     Ok((light, transform, cookie))
 }
 
-/// The light component of `light` and where it is.
-fn scene_light_alone(
-    light: &LightDescription,
-    field: &str,
-    load_context: &LoadContext,
-) -> Result<(SceneLight, Transform), SceneFileError> {
-    let color = |name: &str, color: &super::SceneColor| {
-        scene_color(load_context, color, format!("{field}.{name}"))
-    };
-    let placed = |position: Vec3| {
+/// Reads the fields of the light described at `field`, each error naming its field.
+struct LightFields<'a, 'c> {
+    field: &'a str,
+    load_context: &'a LoadContext<'c>,
+}
+
+impl LightFields<'_, '_> {
+    /// The color of field `name`.
+    fn color(
+        &self,
+        name: &str,
+        color: &super::SceneColor,
+    ) -> Result<bevy::color::Color, SceneFileError> {
+        scene_color(self.load_context, color, format!("{}.{name}", self.field))
+    }
+
+    /// The specular color, if the light has its own.
+    fn specular(
+        &self,
+        color: &Option<super::SceneColor>,
+    ) -> Result<Option<bevy::color::Color>, SceneFileError> {
+        color
+            .as_ref()
+            .map(|specular| self.color("specular", specular))
+            .transpose()
+    }
+
+    /// A light at `position`, which must be finite.
+    fn placed(&self, position: Vec3) -> Result<Transform, SceneFileError> {
         if position.is_finite() {
             Ok(Transform::from_translation(position))
         } else {
             Err(SceneFileError::invalid(
-                load_context,
-                format!("{field}.position"),
+                self.load_context,
+                format!("{}.position", self.field),
                 format!("must be finite, got {position}"),
             ))
         }
-    };
-    let specular = |color_of: &Option<super::SceneColor>| match color_of {
-        None => Ok(None),
-        Some(specular) => color("specular", specular).map(Some),
-    };
-    let aimed = |position: Vec3, direction: Vec3| {
-        let position = placed(position)?;
+    }
+
+    /// A light at `position` pointing along `direction`, which must be finite and not zero.
+    fn aimed(&self, position: Vec3, direction: Vec3) -> Result<Transform, SceneFileError> {
+        let position = self.placed(position)?;
         // Normalized by its largest component first: huge and tiny directions keep theirs.
         let unit = direction::normalize_or_zero(direction);
         if unit == Vec3::ZERO {
             return Err(SceneFileError::invalid(
-                load_context,
-                format!("{field}.direction"),
+                self.load_context,
+                format!("{}.direction", self.field),
                 format!(
                     "must be finite and non-zero (its largest component at least {:e}), got {direction}",
                     direction::MIN_COMPONENT
@@ -208,7 +225,23 @@ fn scene_light_alone(
             ));
         }
         Ok(position.looking_to(unit, any_up(unit)))
+    }
+}
+
+/// The light component of `light` and where it is.
+fn scene_light_alone(
+    light: &LightDescription,
+    field: &str,
+    load_context: &LoadContext,
+) -> Result<(SceneLight, Transform), SceneFileError> {
+    let fields = LightFields {
+        field,
+        load_context,
     };
+    let color = |name: &str, color: &super::SceneColor| fields.color(name, color);
+    let specular = |color: &Option<super::SceneColor>| fields.specular(color);
+    let placed = |position: Vec3| fields.placed(position);
+    let aimed = |position: Vec3, direction: Vec3| fields.aimed(position, direction);
     Ok(match light {
         LightDescription::Directional {
             color: diffuse,
