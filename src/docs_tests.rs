@@ -50,6 +50,7 @@ fn assert_documented<T: Typed>(file: &str) {
 
 #[test]
 fn every_field_of_every_light_and_its_settings_has_a_row_in_the_lights_page() {
+    use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
     use crate::lights::*;
     assert_documented::<PhongAmbientLight>("docs/lights.md");
     assert_documented::<PhongHemisphereLight>("docs/lights.md");

@@ -49,11 +49,9 @@ mod standard_material;
 
 pub use standard_material::PhongStandardMaterialPlugin;
 
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use crate::{
-    lights::{
-        ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongLightCookie,
-        PhongPointLight, PhongShadows, PhongSpotLight,
-    },
+    lights::{ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongLightCookie, PhongShadows},
     schedule::PhongSystems,
 };
 use bevy::{

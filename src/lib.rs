@@ -112,13 +112,15 @@
 //!    `schedule` (the [`PhongSystems`] sets), `scene_variants` (the scene's shader
 //!    variants: shadows, the hemisphere light, cookies; each app's, carried by its materials), `storage_buffer` (the growable GPU buffer),
 //!    `view_key` (how a fragment finds its view's clusters and cascades);
-//! 2. the data model: `lights` (with the rule of which lights give light), `material`,
-//!    `culling`;
+//! 2. the data model: `lights` (what every light shares: fall-off, reach, shadow settings,
+//!    cookies, the rule of which lights give light; the ambient and hemisphere lights),
+//!    `material`, `culling`;
 //! 3. rules over the model: `validation`, `reference`;
 //! 4. `shadows`, which lays out and draws the shadow maps;
 //! 5. `light_kind`, what the crate needs of each kind of light (the trait every kind,
-//!    built-in or an extension's, implements: record, reach, validation, shadows, reference
-//!    light);
+//!    built-in or an extension's, implements: record, reach, validation, shadows, cookie,
+//!    reference light), and the built-in kinds, one folder each (`light_kind/spot/`: the
+//!    component, its kind, its cone, its reference light);
 //! 6. `render`, which gathers the lights and binds them, with the shadow maps, to materials;
 //! 7. features on top of those: `scene`, `interop`, `from_three`, `extension`,
 //!    `surface_inputs`;
@@ -140,7 +142,7 @@
 //!
 //! | module | main world | render world |
 //! |---|---|---|
-//! | `lights`, `light_kind`, `culling`, `validation`, `scene`, `interop`, `gltf`, `schedule` | all of it | |
+//! | `lights`, `light_kind` (and its kinds' folders), `culling`, `validation`, `scene`, `interop`, `gltf`, `schedule` | all of it | |
 //! | `render` | the gathers: light records, clusters, cookies, the data texture (`gather`, `cluster_views`, `clusters`, `cookies`, `light_records`, `record_cache`, `scene_texture`) | the material bind groups (`material_bindings`) and their order after the uploads (`material_upkeep`, which also marks materials in the main world) |
 //! | `shadows` | which lights cast, the views and casters (`gather`, `sources`, `request`, `cameras`, `views`) | the shadow passes (`render`, `posed`, `deformed`, `displaced`) |
 //! | `material`, `scene_variants` | the asset and the scene's variants | the key and the pipeline (`specialize`) |
@@ -189,9 +191,10 @@ pub use culling::{PhongLightCulling, PhongViewClusters};
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin, PhongStandardMaterialPlugin};
+pub use light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 pub use lights::{
-    ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
-    PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
+    ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongLightCookie,
+    PhongShadows,
 };
 pub use material::{
     DiffuseMode, EnvironmentCombine, MaterialFeatures, PhongMaterial, PhongMaterialKey,

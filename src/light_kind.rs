@@ -3,11 +3,17 @@
 //! ([`built_in`]) as an extension's kind does (`bevy_phong::extension`).
 
 mod built_in;
+mod directional;
 mod gpu_light;
+mod point;
+mod spot;
 
 pub(crate) use built_in::is_built_in;
 pub use built_in::linear_rgb;
+pub use directional::PhongDirectionalLight;
 pub use gpu_light::GpuLight;
+pub use point::PhongPointLight;
+pub use spot::PhongSpotLight;
 
 use crate::lights::PhongCookieProjection;
 #[cfg(feature = "reference")]

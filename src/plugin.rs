@@ -3,12 +3,13 @@
 
 mod order;
 
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     extension::add_light_kind,
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
-        PhongLightCookie, PhongPointLight, PhongShadows, PhongSpotLight,
+        Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongLightCookie,
+        PhongShadows,
     },
     material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
     render::{

@@ -39,9 +39,7 @@
 //! value is quoted at most 80 characters long.
 
 use crate::{
-    lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongShadows, PhongSpotLight,
-    },
+    lights::{Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongShadows},
     limits::{self, Limits},
     material::{NumberVisitor, PhongMaterial, visit_color, visit_numbers},
     quoting::bounded,
@@ -280,19 +278,6 @@ impl Checker {
         }
     }
 
-    pub(crate) fn spot_angles(&mut self, light: &mut PhongSpotLight) {
-        self.scalar("inner_angle", &mut light.inner_angle, limits::SPOT_ANGLE);
-        self.scalar("outer_angle", &mut light.outer_angle, limits::SPOT_ANGLE);
-        if light.inner_angle > light.outer_angle {
-            self.replace(
-                "inner_angle",
-                format!("{} (> outer_angle)", light.inner_angle),
-                format!("{} (= outer_angle: a hard edge)", light.outer_angle),
-            );
-            light.inner_angle = light.outer_angle;
-        }
-    }
-
     /// Every number of a material, as [`visit_numbers`] lists them.
     fn material(&mut self, material: &mut PhongMaterial) {
         visit_numbers(material, self);
@@ -417,7 +402,7 @@ pub fn validate_materials(
 mod tests {
     use super::*;
     use crate::{
-        PhongDirectionalLight, PhongPointLight,
+        PhongDirectionalLight, PhongPointLight, PhongSpotLight,
         test_app::{invalid_inputs, test_app},
     };
 

@@ -3,10 +3,8 @@
 //! three.js's fall-off and spot edge.
 
 use super::{ThreeError, linear_color, scaled};
-use crate::lights::{
-    ConeEdge, Decay, PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight,
-    PhongPointLight, PhongSpotLight,
-};
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::lights::{ConeEdge, Decay, PhongAmbientLight, PhongHemisphereLight};
 use bevy::{color::Color, math::Vec3, transform::components::Transform};
 #[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};

@@ -1,4 +1,6 @@
-//! The light entities and the ambient and hemisphere light resources.
+//! What every light shares (fall-off and reach, shadow settings, cookies, the cone edge, which
+//! lights give light and which way they point), and the ambient and hemisphere light
+//! resources. Each kind of light entity is in its own folder under `light_kind` (`spot/`).
 //!
 //! Each light is a component that requires [`Transform`](bevy::prelude::Transform) and
 //! [`Visibility`](bevy::prelude::Visibility): spawn it with a transform and it lights every
@@ -7,28 +9,24 @@
 //! (`lit`).
 
 mod ambient;
+mod cone_edge;
 mod cookie;
 mod decay;
-mod directional;
 mod hemisphere;
 mod lit;
-mod point;
 mod reach;
 #[cfg(test)]
 mod reach_tests;
 mod shadows;
-mod spot;
 
 pub use ambient::PhongAmbientLight;
+pub use cone_edge::ConeEdge;
 pub use cookie::{PhongCookieProjection, PhongLightCookie, cookie_layer_texels};
 pub use decay::Decay;
-pub use directional::PhongDirectionalLight;
 pub use hemisphere::PhongHemisphereLight;
 #[cfg(feature = "reference")]
 pub(crate) use lit::gives_light;
 pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights};
 pub use lit::{is_finite_transform, light_direction};
-pub use point::PhongPointLight;
 pub use reach::influence_radius;
 pub use shadows::{PhongCascades, PhongShadows};
-pub use spot::{ConeEdge, PhongSpotLight};

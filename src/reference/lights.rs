@@ -1,16 +1,11 @@
 //! The lights of the model: each built-in kind, the kinds of extensions, the ambient and
 //! hemisphere lights, distance fall-off and the spot cone (SPEC.md, "Light types" and "The
-//! equation").
+//! equation"). Each built-in kind's constructor from its entity (`Light::spot` and the
+//! others) is in the kind's folder (`light_kind/spot/reference.rs`).
 
 use super::{Hemisphere, Material, SurfacePoint, light_contribution, power};
-use crate::{
-    lights::{
-        ConeEdge, PhongAmbientLight, PhongDirectionalLight, PhongPointLight, PhongSpotLight,
-        influence_radius, light_direction,
-    },
-    limits,
-};
-use bevy::{color::Color, transform::components::GlobalTransform};
+use crate::lights::{ConeEdge, PhongAmbientLight, influence_radius};
+use bevy::color::Color;
 use core::fmt;
 use glam::DVec3;
 use std::sync::Arc;
@@ -227,18 +222,10 @@ pub fn rgb(color: Color) -> DVec3 {
     DVec3::new(linear.red.into(), linear.green.into(), linear.blue.into())
 }
 
-fn position(transform: &GlobalTransform) -> DVec3 {
-    transform.translation().as_dvec3()
-}
-
 impl From<&PhongAmbientLight> for DVec3 {
     fn from(ambient: &PhongAmbientLight) -> Self {
         rgb(ambient.color)
     }
-}
-
-fn decay_of(decay: crate::Decay) -> [f64; 3] {
-    decay.to_array().map(f64::from)
 }
 
 impl Light {
@@ -286,42 +273,5 @@ impl Light {
             }
         }
         self
-    }
-
-    /// The reference form of a directional light entity.
-    pub fn directional(light: &PhongDirectionalLight, transform: &GlobalTransform) -> Self {
-        Light::Directional {
-            direction: light_direction(transform).as_dvec3(),
-            color: rgb(light.color),
-            specular: rgb(light.specular.unwrap_or(light.color)),
-        }
-    }
-
-    /// The reference form of a point light entity.
-    pub fn point(light: &PhongPointLight, transform: &GlobalTransform) -> Self {
-        Light::Point {
-            position: position(transform),
-            color: rgb(light.color),
-            specular: rgb(light.specular.unwrap_or(light.color)),
-            decay: decay_of(light.decay),
-            range: light.range.map(f64::from),
-        }
-    }
-
-    /// The reference form of a spot light entity, its angles brought into `[0, π]` as its
-    /// light record's are (`crate::limits::SPOT_ANGLE`).
-    pub fn spot(light: &PhongSpotLight, transform: &GlobalTransform) -> Self {
-        Light::Spot {
-            position: position(transform),
-            direction: light_direction(transform).as_dvec3(),
-            color: rgb(light.color),
-            specular: rgb(light.specular.unwrap_or(light.color)),
-            decay: decay_of(light.decay),
-            range: light.range.map(f64::from),
-            inner_angle: limits::SPOT_ANGLE.apply(light.inner_angle).into(),
-            outer_angle: limits::SPOT_ANGLE.apply(light.outer_angle).into(),
-            exponent: light.exponent.into(),
-            edge: light.cone_edge,
-        }
     }
 }

@@ -7,9 +7,10 @@ use super::{
 };
 use crate::culling::PhongLightCulling;
 use crate::light_kind::{GpuLight, PhongLightKind};
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use crate::lights::{
-    LightQuery, PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongPointLight,
-    PhongSpotLight, TrackedLightQuery, lit_lights, lit_tracked_lights,
+    LightQuery, PhongAmbientLight, PhongHemisphereLight, TrackedLightQuery, lit_lights,
+    lit_tracked_lights,
 };
 use crate::scene_variants::SceneVariants;
 use crate::shadows::ShadowSlots;

@@ -6,12 +6,10 @@ use super::{
     SceneFileError, TransformDescription, material_file::load_texture, read_ron, relative_path,
     scene_color,
 };
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use crate::{
     direction,
-    lights::{
-        PhongAmbientLight, PhongDirectionalLight, PhongHemisphereLight, PhongLightCookie,
-        PhongPointLight, PhongSpotLight,
-    },
+    lights::{PhongAmbientLight, PhongHemisphereLight, PhongLightCookie},
     material::PhongMaterial,
 };
 use bevy::{

@@ -113,7 +113,8 @@ fn cascade_camera(transform: &GlobalTransform, projection: &Projection) -> Casca
 mod tests {
     use super::*;
     use crate::{
-        lights::{PhongCascades, PhongDirectionalLight, PhongShadows},
+        PhongDirectionalLight,
+        lights::{PhongCascades, PhongShadows},
         shadows::PhongShadowViews,
         test_app::test_app,
     };

@@ -476,7 +476,7 @@ fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{lights::PhongPointLight, test_app::test_app};
+    use crate::{PhongPointLight, test_app::test_app};
     use bevy::{
         asset::{AssetApp, Handle},
         camera::primitives::Aabb,

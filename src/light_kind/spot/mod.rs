@@ -1,6 +1,18 @@
-//! Spot lights: a point light limited to a cone.
+//! The spot light: a point light limited to a cone.
+//!
+//! Everything particular to the kind is in this folder: the component (this file); the kind
+//! (`kind.rs`, [`PhongLightKind`](crate::extension::PhongLightKind)): its record (with the cone's terms, `cone.rs`), reach and validation, its shadow (one perspective map over its cone) and its cookie projection (across its cone); and its light
+//! in the reference model (`reference.rs`, feature `reference`). Its scene-file form is one
+//! case of `scene::LightDescription`, beside every kind's (one file format), and the
+//! conversions from Bevy's and three.js's lights are in `interop` and `from_three`.
+//! Registered by one line of `PhongPlugin` (`add_light_kind`).
 
-use super::{Decay, PhongShadows};
+mod cone;
+mod kind;
+#[cfg(feature = "reference")]
+mod reference;
+
+use crate::lights::{ConeEdge, Decay, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,
@@ -53,21 +65,6 @@ pub struct PhongSpotLight {
     /// How the light fades between `inner_angle` and `outer_angle`. Default
     /// [`ConeEdge::Linear`].
     pub cone_edge: ConeEdge,
-}
-
-/// How a spot light fades from its inner cone to its outer one, as a function of
-/// `t = (cos θ − cos outer) / (cos inner − cos outer)` clamped to `[0, 1]` (SPEC.md, "The
-/// equation", the spot cone).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
-#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
-#[reflect(Default, Debug, PartialEq, Clone)]
-pub enum ConeEdge {
-    /// `t` itself.
-    #[default]
-    Linear,
-    /// `t² (3 − 2t)`: GLSL's `smoothstep(cos outer, cos inner, cos θ)`, three.js's spot edge
-    /// (its `angle` is the outer angle, `angle · (1 − penumbra)` the inner one).
-    Smooth,
 }
 
 impl Default for PhongSpotLight {

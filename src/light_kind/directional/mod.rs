@@ -1,6 +1,17 @@
-//! Directional lights: parallel rays from infinitely far away.
+//! The directional light: parallel rays from infinitely far away.
+//!
+//! Everything particular to the kind is in this folder: the component (this file); the kind
+//! (`kind.rs`, [`PhongLightKind`](crate::extension::PhongLightKind)): its record and validation, its shadow (cascades per camera along its rays) and its cookie projection (on its local XY plane); and its light
+//! in the reference model (`reference.rs`, feature `reference`). Its scene-file form is one
+//! case of `scene::LightDescription`, beside every kind's (one file format), and the
+//! conversions from Bevy's and three.js's lights are in `interop` and `from_three`.
+//! Registered by one line of `PhongPlugin` (`add_light_kind`).
 
-use super::{PhongCascades, PhongShadows};
+mod kind;
+#[cfg(feature = "reference")]
+mod reference;
+
+use crate::lights::{PhongCascades, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,

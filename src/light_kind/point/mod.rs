@@ -1,6 +1,17 @@
-//! Point lights: light from one position in every direction.
+//! The point light: light from one position in every direction.
+//!
+//! Everything particular to the kind is in this folder: the component (this file); the kind
+//! (`kind.rs`, [`PhongLightKind`](crate::extension::PhongLightKind)): its record, reach and validation, its shadow (a cube map) and its cookie projection (a cube map around it); and its light
+//! in the reference model (`reference.rs`, feature `reference`). Its scene-file form is one
+//! case of `scene::LightDescription`, beside every kind's (one file format), and the
+//! conversions from Bevy's and three.js's lights are in `interop` and `from_three`.
+//! Registered by one line of `PhongPlugin` (`add_light_kind`).
 
-use super::{Decay, PhongShadows};
+mod kind;
+#[cfg(feature = "reference")]
+mod reference;
+
+use crate::lights::{Decay, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,

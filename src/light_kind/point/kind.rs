@@ -1,0 +1,67 @@
+//! The point light as a kind of light ([`PhongLightKind`]): its record, reach, validation,
+//! shadow and cookie projection.
+
+use super::PhongPointLight;
+use crate::light_kind::built_in::{
+    Placed, built_in_record, fading_reach_kind, intensities, stored_range,
+};
+use crate::light_kind::{GpuLight, PhongLightKind};
+use crate::lights::PhongCookieProjection;
+#[cfg(feature = "reference")]
+use crate::reference::Light;
+use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
+use crate::validation::Checker;
+use bevy::transform::components::GlobalTransform;
+
+impl PhongPointLight {
+    /// Its light in the reference model.
+    #[cfg(feature = "reference")]
+    const REFERENCE: fn(&Self, &GlobalTransform) -> Light = Light::point;
+
+    /// A cookie is a cube map around it.
+    fn cookie_mapping(&self) -> PhongCookieProjection {
+        PhongCookieProjection::Point
+    }
+
+    /// Its transform sets the position only.
+    const PLACED: Placed = Placed {
+        position: true,
+        direction: false,
+    };
+
+    /// The record without its position or shadow slot: intensities, range and decay.
+    fn constants(&self) -> GpuLight {
+        let (color, specular) = intensities(self.color, self.specular);
+        GpuLight {
+            range: stored_range(self.range),
+            color,
+            specular,
+            decay: self.decay.to_array(),
+            ..GpuLight::default()
+        }
+    }
+}
+
+/// The point light as a kind: its record, reach, validation and shadow (a cube map).
+impl PhongLightKind for PhongPointLight {
+    built_in_record!();
+    fading_reach_kind!();
+
+    fn validate(&mut self, checker: &mut Checker) {
+        checker.color("color", &mut self.color);
+        checker.optional_color("specular", &mut self.specular);
+        checker.decay(&mut self.decay);
+        checker.range(&mut self.range);
+        checker.shadows(&mut self.shadows);
+    }
+
+    fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
+        Some(PhongShadowRequest {
+            projection: PhongShadowProjection::Omni {
+                position: transform.translation(),
+            },
+            settings: self.shadows,
+            reach: self.range.unwrap_or(f32::INFINITY),
+        })
+    }
+}

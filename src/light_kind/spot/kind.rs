@@ -1,0 +1,96 @@
+//! The spot light as a kind of light ([`PhongLightKind`]): its record, reach, validation,
+//! shadow and cookie projection.
+
+use super::{PhongSpotLight, cone::spot_cone_terms};
+use crate::light_kind::built_in::{
+    Placed, built_in_record, fading_reach_kind, intensities, stored_range,
+};
+use crate::light_kind::{GpuLight, PhongLightKind};
+use crate::lights::{PhongCookieProjection, light_direction};
+use crate::limits;
+#[cfg(feature = "reference")]
+use crate::reference::Light;
+use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
+use crate::validation::Checker;
+use bevy::transform::components::GlobalTransform;
+
+impl PhongSpotLight {
+    /// Its light in the reference model.
+    #[cfg(feature = "reference")]
+    const REFERENCE: fn(&Self, &GlobalTransform) -> Light = Light::spot;
+
+    /// A cookie spans its cone.
+    fn cookie_mapping(&self) -> PhongCookieProjection {
+        PhongCookieProjection::Spot {
+            outer_angle: self.outer_angle,
+        }
+    }
+
+    /// Its transform sets the position and the direction.
+    const PLACED: Placed = Placed {
+        position: true,
+        direction: true,
+    };
+
+    /// The record without its placement or shadow slot: intensities, range, decay and the
+    /// cone's terms.
+    fn constants(&self) -> GpuLight {
+        let (color, specular) = intensities(self.color, self.specular);
+        let (outer_versine, cone_scale) =
+            spot_cone_terms(self.inner_angle, self.outer_angle, self.cone_edge);
+        GpuLight {
+            range: stored_range(self.range),
+            outer_versine,
+            color,
+            cone_scale,
+            specular,
+            spot_exponent: self.exponent,
+            decay: self.decay.to_array(),
+            ..GpuLight::default()
+        }
+    }
+}
+
+/// The spot light as a kind: its record, reach, validation and shadow (one perspective map
+/// over its cone).
+impl PhongLightKind for PhongSpotLight {
+    built_in_record!();
+    fading_reach_kind!();
+
+    fn validate(&mut self, checker: &mut Checker) {
+        checker.color("color", &mut self.color);
+        checker.optional_color("specular", &mut self.specular);
+        checker.decay(&mut self.decay);
+        checker.range(&mut self.range);
+        validate_angles(checker, self);
+        checker.scalar("exponent", &mut self.exponent, limits::EXPONENT);
+        checker.shadows(&mut self.shadows);
+    }
+
+    fn shadow(&self, transform: &GlobalTransform) -> Option<PhongShadowRequest> {
+        Some(PhongShadowRequest {
+            projection: PhongShadowProjection::Cone {
+                position: transform.translation(),
+                direction: light_direction(transform),
+                half_angle: self.outer_angle,
+            },
+            settings: self.shadows,
+            reach: self.range.unwrap_or(f32::INFINITY),
+        })
+    }
+}
+
+/// Brings the cone's angles into `[0, π]` and the inner one to at most the outer one (a hard
+/// edge), each replacement reported by `checker`.
+fn validate_angles(checker: &mut Checker, light: &mut PhongSpotLight) {
+    checker.scalar("inner_angle", &mut light.inner_angle, limits::SPOT_ANGLE);
+    checker.scalar("outer_angle", &mut light.outer_angle, limits::SPOT_ANGLE);
+    if light.inner_angle > light.outer_angle {
+        checker.replace(
+            "inner_angle",
+            format!("{} (> outer_angle)", light.inner_angle),
+            format!("{} (= outer_angle: a hard edge)", light.outer_angle),
+        );
+        light.inner_angle = light.outer_angle;
+    }
+}
