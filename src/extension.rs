@@ -638,7 +638,7 @@ mod tests {
         ));
         app.update();
         let header = app.world().resource::<PhongLightBuffer>().header();
-        assert_eq!(header.point_count, 1, "gathered once, by the plugin");
+        assert_eq!(header.local_count, 1, "gathered once, by the plugin");
     }
 
     #[test]
@@ -710,7 +710,7 @@ mod tests {
         assert_eq!((header.clustered_first, unlimited), (1, 0));
         assert!(far >= header.clustered_first && near >= header.clustered_first);
         assert_eq!(
-            header.cluster_slot, 3,
+            header.cluster_slot, 2,
             "after the built-in slots and the Lamp's"
         );
 
@@ -718,8 +718,8 @@ mod tests {
         assert_eq!(clusters.view_count(), 1);
         assert_eq!(
             clusters.cluster_words(),
-            8,
-            "slots 0 to 3 and the end of the last: two texels"
+            4,
+            "slots 0 to 2 and the end of the last: one texel"
         );
         let slot = header.cluster_slot as usize;
         let listed = clusters.first_view_entries(slot..slot + 1).concat();

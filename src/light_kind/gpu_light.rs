@@ -6,8 +6,10 @@ use bytemuck::{Pod, Zeroable};
 /// One light as the shader reads it (`PhongLight` in WGSL): 80 bytes.
 ///
 /// Every kind uses the same record; the fields a kind does not use are zero. Colors are
-/// linear RGB, positions world-space; the spot cone is stored as `1 - cos`, which keeps its
-/// precision for narrow cones where the cosine rounds to 1.
+/// linear RGB, positions world-space. The local lights (point and spot) are one kind to the
+/// shader: each has a cone, stored as `1 - cos` (which keeps its precision for narrow cones
+/// where the cosine rounds to 1); a point light's is the whole sphere ([`Self::WHOLE_SPHERE`]
+/// around a zero direction), whose factor is exactly 1.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLight {
@@ -15,9 +17,10 @@ pub struct GpuLight {
     pub position: [f32; 3],
     /// Distance past which the light is cut off; `f32::MAX` when unlimited (point, spot).
     pub range: f32,
-    /// Unit vector along which the light travels (directional, spot).
+    /// Unit vector along which the light travels (directional, spot); zero for a point light.
     pub direction: [f32; 3],
-    /// `1 - cos(outer_angle)` (spot), computed in `f64`; `-1` for an empty cone.
+    /// `1 - cos(outer_angle)` (spot), computed in `f64`; `-1` for an empty cone;
+    /// [`Self::WHOLE_SPHERE`] for a point light.
     pub outer_versine: f32,
     /// Diffuse intensity, linear RGB.
     pub color: [f32; 3],
@@ -41,4 +44,9 @@ impl GpuLight {
     pub const COOKIE_SHIFT: u32 = 16;
     /// The bits of the shadow view's index in [`shadow`](Self::shadow).
     pub const SHADOW_BITS: u32 = 0xffff;
+    /// The [`outer_versine`](Self::outer_versine) of a point light's cone, `1 - cos π`: with
+    /// a zero [`direction`](Self::direction), every ray's `1 - cos θ` is `|L|² / 2 = 1/2`
+    /// (or `0` for no ray), inside it, and with a hard edge and no rim darkening the cone's
+    /// factor is exactly 1.
+    pub const WHOLE_SPHERE: f32 = 2.0;
 }

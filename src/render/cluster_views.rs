@@ -34,15 +34,14 @@ pub struct PhongLightClusters {
     buffer: LightBuffer,
     clusters: LightClusters,
     views: Vec<ClusterView>,
-    /// The spheres of the clustered point lights, then those of the spot lights, as the
-    /// last build read them from the light buffer.
-    point_spheres: Vec<[u32; 4]>,
-    spot_spheres: Vec<[u32; 4]>,
+    /// The spheres of the clustered local lights, as the last build read them from the
+    /// light buffer.
+    local_spheres: Vec<[u32; 4]>,
 }
 
 /// The clustered lights of each extension kind ([`crate::extension::PhongLightKind`]), as
-/// their gathers leave them: slot `2 + i` of the clusters is `slots[i]` (slots 0 and 1 are
-/// the built-in point and spot lights).
+/// their gathers leave them: slot `1 + i` of the clusters is `slots[i]` (slot 0 is the
+/// built-in local lights, point and spot).
 #[derive(Resource, Debug, Default)]
 pub struct ExtensionClusterSlots {
     slots: Vec<ExtensionSlot>,
@@ -57,10 +56,11 @@ pub struct ExtensionSlot {
 }
 
 impl ExtensionClusterSlots {
-    /// The slot of the clusters that built-in point lights take; spot lights take the next.
-    const BUILT_IN_SLOTS: usize = 2;
+    /// The slots of the clusters that built-in lights take: one, for the local (point and
+    /// spot) lights.
+    const BUILT_IN_SLOTS: usize = 1;
 
-    /// A new kind's cluster slot (2 for the first kind added, then 3, ...).
+    /// A new kind's cluster slot (1 for the first kind added, then 2, ...).
     pub fn add_slot(&mut self) -> u32 {
         self.slots.push(ExtensionSlot::default());
         (Self::BUILT_IN_SLOTS + self.slots.len() - 1) as u32
@@ -78,8 +78,7 @@ impl Default for PhongLightClusters {
             buffer: LightBuffer::new(PHONG_LIGHT_CLUSTER_BUFFER),
             clusters: LightClusters::default(),
             views: Vec::new(),
-            point_spheres: Vec::new(),
-            spot_spheres: Vec::new(),
+            local_spheres: Vec::new(),
         }
     }
 }
@@ -104,7 +103,7 @@ impl PhongLightClusters {
     }
 
     /// For each cluster of the first view, its light-buffer entries of slots `slots` (slot 0
-    /// the point lights, 1 the spot lights, then each extension kind), as the shader finds
+    /// the local lights, then each extension kind), as the shader finds
     /// them: from the record's word `slots.start` to its word `slots.end`.
     #[cfg(test)]
     pub(crate) fn first_view_entries(&self, slots: core::ops::Range<usize>) -> Vec<&[u32]> {
@@ -237,37 +236,25 @@ impl PhongLightClusters {
         }
     }
 
-    /// Builds the clusters from the spheres of the built-in clustered point and spot lights
-    /// (the last sections of `lights`' records) and of every extension kind's; returns
-    /// whether they changed.
+    /// Builds the clusters from the spheres of the built-in clustered local lights (the last
+    /// section of `lights`' records) and of every extension kind's; returns whether they
+    /// changed.
     fn build(
         &mut self,
         lights: &PhongLightBuffer,
         extension_lights: &ExtensionClusterSlots,
     ) -> bool {
         let header = lights.header();
-        let first = (header.directional_count + header.point_count + header.spot_count) as usize;
-        let spots = first + header.clustered_point_count as usize;
-        let end = spots + header.clustered_spot_count as usize;
-        let records = lights.records();
-        self.point_spheres.clear();
-        self.point_spheres
-            .extend(records[first..spots].iter().map(light_sphere_bits));
-        self.spot_spheres.clear();
-        self.spot_spheres
-            .extend(records[spots..end].iter().map(light_sphere_bits));
-        let built_in = [
-            ClusterSlot {
-                first: first as u32,
-                spheres: &self.point_spheres,
-            },
-            ClusterSlot {
-                first: spots as u32,
-                spheres: &self.spot_spheres,
-            },
-        ];
-        let slots: Vec<ClusterSlot> = built_in
-            .into_iter()
+        let first = (header.directional_count + header.local_count) as usize;
+        let end = first + header.clustered_local_count as usize;
+        self.local_spheres.clear();
+        self.local_spheres
+            .extend(lights.records()[first..end].iter().map(light_sphere_bits));
+        let built_in = ClusterSlot {
+            first: first as u32,
+            spheres: &self.local_spheres,
+        };
+        let slots: Vec<ClusterSlot> = std::iter::once(built_in)
             .chain(extension_lights.slots.iter().map(|slot| ClusterSlot {
                 first: slot.first,
                 spheres: &slot.spheres,

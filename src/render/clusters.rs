@@ -279,7 +279,7 @@ fn tiles_met(
 }
 
 /// The lights of one cluster slot, as a build is given them: slot 0 holds the built-in
-/// point lights, slot 1 the spot lights, each later slot an extension kind's lights
+/// local (point and spot) lights, each later slot an extension kind's lights
 /// ([`crate::extension::PhongLightKind::bounding_sphere`]).
 #[derive(Clone, Copy, Debug)]
 pub struct ClusterSlot<'a> {

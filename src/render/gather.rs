@@ -39,7 +39,7 @@ pub struct PhongLightBuffer {
     buffer: LightBuffer,
     records: Vec<GpuLight>,
     header: GpuLightsHeader,
-    /// The point and spot lights, while they are put in order (see [`order_by_reach`]).
+    /// The local lights, while they are put in order (see [`order_by_reach`]).
     scratch: Vec<GpuLight>,
     /// The per-light ε of the last gather (`NaN` before the first).
     per_light_epsilon: f32,
@@ -252,45 +252,34 @@ fn has_sphere<L: PhongLightKind>(clusters: bool, record: &L::Gpu, reach: f32) ->
         .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
 }
 
-/// Whether a point or spot light's record, as [`push_cached`] wrote it (its reach in
-/// `range`), goes into the clusters ([`has_sphere`]; the two kinds share their sphere).
+/// Whether a local light's record, as [`push_cached`] wrote it (its reach in `range`), goes
+/// into the clusters ([`has_sphere`]; the built-in local kinds share the point light's
+/// sphere).
 fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
     has_sphere::<PhongPointLight>(culling.clusters, light, light.range)
 }
 
-/// Puts the point lights (`points.kept` records from `records[first]`) and the spot lights
-/// after them (to the end) in the order the shader reads them: the unlimited point lights,
-/// the unlimited spot lights, then the `clustered` point lights and spot lights, each in
-/// their order. Returns those four counts. A scene whose lights are all of one sort (the
-/// usual case) is already in order; a mixed one is sorted through `scratch`.
+/// Puts the local lights (the records `pushed` from `records[first]` to the end) in the
+/// order the shader reads them: those of unlimited reach, then the `clustered` ones, each in
+/// their order. Returns those two counts. A scene whose local lights are all of one sort
+/// (the usual case) is already in order; a mixed one is sorted through `scratch`.
 fn order_by_reach(
     records: &mut Vec<GpuLight>,
     first: usize,
-    [points, spots]: [Pushed; 2],
+    pushed: &[Pushed],
     scratch: &mut Vec<GpuLight>,
     clustered: impl Fn(&GpuLight) -> bool,
-) -> [u32; 4] {
-    let counts = [
-        points.kept - points.clustered,
-        spots.kept - spots.clustered,
-        points.clustered,
-        spots.clustered,
-    ]
-    .map(|count| count as u32);
-    let all_clustered = points.clustered == points.kept && spots.clustered == spots.kept;
-    let none_clustered = points.clustered == 0 && spots.clustered == 0;
-    if all_clustered || none_clustered {
+) -> [u32; 2] {
+    let kept: usize = pushed.iter().map(|kind| kind.kept).sum();
+    let clustered_count: usize = pushed.iter().map(|kind| kind.clustered).sum();
+    let counts = [kept - clustered_count, clustered_count].map(|count| count as u32);
+    if clustered_count == 0 || clustered_count == kept {
         return counts;
     }
     scratch.clear();
     scratch.extend(records.drain(first..));
-    let (point_lights, spot_lights) = scratch.split_at(points.kept);
-    for lights in [point_lights, spot_lights] {
-        records.extend(lights.iter().filter(|light| !clustered(light)));
-    }
-    for lights in [point_lights, spot_lights] {
-        records.extend(lights.iter().filter(|light| clustered(light)));
-    }
+    records.extend(scratch.iter().filter(|light| !clustered(light)));
+    records.extend(scratch.iter().filter(|light| clustered(light)));
     counts
 }
 
@@ -385,13 +374,13 @@ pub fn gather_lights(
     let counts = state.push_lights(&lights, &scene);
     let [ambient, hemisphere_up, hemisphere_half_difference] =
         indirect_light(&scene.ambient, scene.hemisphere.as_deref());
+    let [directional_count, local_count, clustered_local_count] = counts;
     state.header = GpuLightsHeader {
         ambient,
-        directional_count: counts[0],
-        point_count: counts[1],
-        spot_count: counts[2],
-        clustered_point_count: counts[3],
-        clustered_spot_count: counts[4],
+        directional_count,
+        local_count,
+        clustered_local_count,
+        padding: [0; 2],
         hemisphere_up,
         padding_up: 0,
         hemisphere_half_difference,
@@ -412,10 +401,10 @@ pub fn gather_lights(
 
 impl PhongLightBuffer {
     /// Writes the records of `lights` in the order the shader reads them: the directional
-    /// lights, the point and spot lights of unlimited reach (every fragment loops over them),
-    /// then the clustered ones, shadows and cookies or not (the clusters' loop applies both).
-    /// Returns the counts of the five sections, in [`GpuLightsHeader`]'s order.
-    fn push_lights(&mut self, lights: &BuiltInLights, scene: &SceneLighting) -> [u32; 5] {
+    /// lights, the local (point and spot) lights of unlimited reach (every fragment loops over
+    /// them), then the clustered ones, shadows and cookies or not (the clusters' loop applies
+    /// both). Returns the counts of the three sections, in [`GpuLightsHeader`]'s order.
+    fn push_lights(&mut self, lights: &BuiltInLights, scene: &SceneLighting) -> [u32; 3] {
         let slots = scene.slots();
         let directional_count = push_visible(&lights.directional, slots, &mut self.records);
         let culling = &scene.culling;
@@ -455,20 +444,14 @@ impl PhongLightBuffer {
         };
         self.per_light_epsilon = epsilon;
         let clustered = |light: &GpuLight| clustered(culling, light);
-        let [point, spot, clustered_point, clustered_spot] = order_by_reach(
+        let [local, clustered_local] = order_by_reach(
             &mut self.records,
             first_point,
-            pushed,
+            &pushed,
             &mut self.scratch,
             clustered,
         );
-        [
-            directional_count,
-            point,
-            spot,
-            clustered_point,
-            clustered_spot,
-        ]
+        [directional_count, local, clustered_local]
     }
 
     /// Appends the cookies after the lights, as records of a light's size ([`GpuCookie`](

@@ -46,11 +46,13 @@ impl GpuCookie {
 /// The fixed part at the start of the light buffer (`PhongLights` in WGSL, before its
 /// `lights` array): 64 bytes.
 ///
-/// The array that follows holds `directional_count` directional lights, then `point_count`
-/// point lights and `spot_count` spot lights of unlimited reach (every fragment loops over
-/// these), then `clustered_point_count` point lights and `clustered_spot_count` spot
-/// lights of finite reach, which fragments find through their view's clusters
-/// ([`GpuClustersHeader`]), with their shadows and cookies.
+/// The array that follows holds `directional_count` directional lights, then `local_count`
+/// local lights of unlimited reach (every fragment loops over these), then
+/// `clustered_local_count` local lights of finite reach, which fragments find through their
+/// view's clusters ([`GpuClustersHeader`]), with their shadows and cookies. A local light
+/// shines from a position and fades with distance: a point light is a local light whose cone
+/// is the whole sphere, a spot light one with its cone (see
+/// [`GpuLight`](crate::light_kind::GpuLight)); one loop lights both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLightsHeader {
@@ -59,14 +61,12 @@ pub struct GpuLightsHeader {
     pub ambient: [f32; 3],
     /// Number of directional lights at the start of the array.
     pub directional_count: u32,
-    /// Number of point lights of unlimited reach after the directional ones.
-    pub point_count: u32,
-    /// Number of spot lights of unlimited reach after those point lights.
-    pub spot_count: u32,
-    /// Number of point lights of finite reach after those spot lights (clustered).
-    pub clustered_point_count: u32,
-    /// Number of spot lights of finite reach at the end of the array (clustered).
-    pub clustered_spot_count: u32,
+    /// Number of local lights of unlimited reach after the directional ones.
+    pub local_count: u32,
+    /// Number of local lights of finite reach at the end of the array (clustered).
+    pub clustered_local_count: u32,
+    /// Unused.
+    pub padding: [u32; 2],
     /// The hemisphere light's unit `up` direction (zero without one).
     pub hemisphere_up: [f32; 3],
     /// Unused.
@@ -81,11 +81,7 @@ pub struct GpuLightsHeader {
 impl GpuLightsHeader {
     /// Total number of lights in the array.
     pub fn light_count(&self) -> usize {
-        (self.directional_count
-            + self.point_count
-            + self.spot_count
-            + self.clustered_point_count
-            + self.clustered_spot_count) as usize
+        (self.directional_count + self.local_count + self.clustered_local_count) as usize
     }
 }
 

@@ -18,7 +18,7 @@
 //! 800,000 lights not clustered. Past it, lights are left out in this order, with one
 //! warning each time the count left out changes:
 //! 1. the clusters and every clustered light (finite reach, no shadow);
-//! 2. then lights of unlimited reach from the end of the buffer: spot lights, then point
+//! 2. then lights of unlimited reach from the end of the buffer: local (point and spot)
 //!    lights, then directional lights.
 //!
 //! The lights that remain are lit exactly as they would be with room for all.
@@ -104,8 +104,8 @@ pub(crate) fn pack_scene_texture(
         if packed.left_out > 0 {
             warn!(
                 "bevy_phong: the scene data texture holds {DATA_TEXTURE_MAX_TEXELS} texels: \
-                 {} lights are left out (the clustered ones first, then spot, point and \
-                 directional lights from the last)",
+                 {} lights are left out (the clustered ones first, then local and directional \
+                 lights from the last)",
                 packed.left_out
             );
         }
@@ -149,16 +149,11 @@ fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Pack
     let no_clusters = bytemuck::bytes_of(&GpuClustersHeader::EMPTY);
     let mut clusters = clusters;
     if total(&header, clusters) > max_texels {
-        header.clustered_point_count = 0;
-        header.clustered_spot_count = 0;
+        header.clustered_local_count = 0;
         clusters = no_clusters;
     }
     while total(&header, clusters) > max_texels && header.light_count() > 0 {
-        let counts = [
-            &mut header.spot_count,
-            &mut header.point_count,
-            &mut header.directional_count,
-        ];
+        let counts = [&mut header.local_count, &mut header.directional_count];
         if let Some(count) = counts.into_iter().find(|count| **count > 0) {
             *count -= 1;
         }
@@ -186,12 +181,11 @@ fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Pack
 mod tests {
     use super::*;
 
-    fn light_buffer(directional: u32, point: u32, spot: u32, clustered_point: u32) -> Vec<u8> {
+    fn light_buffer(directional: u32, local: u32, clustered_local: u32) -> Vec<u8> {
         let header = GpuLightsHeader {
             directional_count: directional,
-            point_count: point,
-            spot_count: spot,
-            clustered_point_count: clustered_point,
+            local_count: local,
+            clustered_local_count: clustered_local,
             ..bytemuck::Zeroable::zeroed()
         };
         let count = header.light_count();
@@ -210,7 +204,7 @@ mod tests {
 
     #[test]
     fn each_region_starts_on_its_own_texel_after_the_directory() {
-        let lights = light_buffer(1, 0, 0, 0);
+        let lights = light_buffer(1, 0, 0);
         let clusters = [2u8; 36];
         let views = [3u8; 16];
         let packed = pack(&lights, &clusters, &views, usize::MAX);
@@ -230,8 +224,8 @@ mod tests {
     }
 
     #[test]
-    fn past_capacity_the_clusters_go_first_then_spot_point_and_directional_lights() {
-        let lights = light_buffer(2, 3, 4, 5);
+    fn past_capacity_the_clusters_go_first_then_local_and_directional_lights() {
+        let lights = light_buffer(2, 7, 5);
         let clusters = [1u8; 16 * 10];
         let views = [0u8; 16];
         let header_of = |packed: &Packed| -> GpuLightsHeader {
@@ -245,14 +239,7 @@ mod tests {
         let packed = pack(&lights, &clusters, &views, 85);
         assert_eq!(packed.left_out, 5);
         let header = header_of(&packed);
-        assert_eq!(
-            (
-                header.clustered_point_count,
-                header.clustered_spot_count,
-                header.spot_count
-            ),
-            (0, 0, 4)
-        );
+        assert_eq!((header.clustered_local_count, header.local_count), (0, 7));
         let clusters_start = packed.words[1] as usize * 4;
         assert_eq!(
             &packed.words[clusters_start..clusters_start + 4],
@@ -260,18 +247,11 @@ mod tests {
             "no views"
         );
         // Room for 28 texels, 1 + 4 + 5 · 4 + 1 + 1 = 27 used (an empty clusters header is one
-        // texel): the 4 spots go, then a point light.
+        // texel): 5 of the 7 local lights go, from the last.
         let packed = pack(&lights, &clusters, &views, 28);
         assert_eq!(packed.left_out, 10);
         let header = header_of(&packed);
-        assert_eq!(
-            (
-                header.directional_count,
-                header.point_count,
-                header.spot_count
-            ),
-            (2, 2, 0)
-        );
+        assert_eq!((header.directional_count, header.local_count), (2, 2));
         // The records kept are the first ones, unchanged (`range` is word 3 of 20).
         let first = packed.words[0] as usize * 4 + 16;
         assert_eq!(f32::from_bits(packed.words[first + 3]), 0.0);

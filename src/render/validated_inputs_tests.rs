@@ -429,7 +429,7 @@ fn a_light_with_a_nan_position_is_skipped_and_others_stay() {
         app.world()
             .resource::<PhongLightBuffer>()
             .header()
-            .point_count,
+            .local_count,
         1
     );
 }

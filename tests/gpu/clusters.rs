@@ -58,10 +58,11 @@ fn objects() -> (Harness, SurfaceInputs) {
     (harness, inputs)
 }
 
-/// How many point and spot lights the gather put in the clustered part of the light buffer.
+/// How many local (point and spot) lights the gather put in the clustered part of the light
+/// buffer.
 pub fn clustered_light_count(harness: &mut Harness) -> u32 {
     let header = *harness.world_mut().resource::<PhongLightBuffer>().header();
-    header.clustered_point_count + header.clustered_spot_count
+    header.clustered_local_count
 }
 
 fn assert_exact(harness: &mut Harness, inputs: &SurfaceInputs, case: &str) {

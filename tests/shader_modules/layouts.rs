@@ -86,15 +86,10 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
             "directional_count",
             offset_of!(GpuLightsHeader, directional_count),
         ),
-        ("point_count", offset_of!(GpuLightsHeader, point_count)),
-        ("spot_count", offset_of!(GpuLightsHeader, spot_count)),
+        ("local_count", offset_of!(GpuLightsHeader, local_count)),
         (
-            "clustered_point_count",
-            offset_of!(GpuLightsHeader, clustered_point_count),
-        ),
-        (
-            "clustered_spot_count",
-            offset_of!(GpuLightsHeader, clustered_spot_count),
+            "clustered_local_count",
+            offset_of!(GpuLightsHeader, clustered_local_count),
         ),
         ("hemisphere_up", offset_of!(GpuLightsHeader, hemisphere_up)),
         (

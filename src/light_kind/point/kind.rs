@@ -29,11 +29,13 @@ impl PhongPointLight {
         direction: false,
     };
 
-    /// The record without its position or shadow slot: intensities, range and decay.
+    /// The record without its position or shadow slot: intensities, range, decay and the
+    /// whole sphere as its cone (a local light, as the shader reads it).
     fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
         GpuLight {
             range: stored_range(self.range),
+            outer_versine: GpuLight::WHOLE_SPHERE,
             color,
             specular,
             decay: self.decay.to_array(),

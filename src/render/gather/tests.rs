@@ -20,7 +20,7 @@ fn lights_are_uploaded_only_in_frames_where_they_change() {
         "a new light is uploaded"
     );
     let state = app.world().resource::<PhongLightBuffer>();
-    assert_eq!(state.header().point_count, 1);
+    assert_eq!(state.header().local_count, 1);
     assert_eq!(state.records()[0].position, [1.0, 2.0, 3.0]);
 
     assert_eq!(
@@ -287,13 +287,8 @@ fn cookied_and_shadow_casting_lights_are_listed_only_in_the_clusters_they_reach(
     let state = app.world().resource::<PhongLightBuffer>();
     let header = *state.header();
     assert_eq!(
-        [
-            header.point_count,
-            header.spot_count,
-            header.clustered_point_count,
-            header.clustered_spot_count
-        ],
-        [0, 0, 1, 2],
+        [header.local_count, header.clustered_local_count],
+        [0, 3],
         "no light is looped over by every fragment: all three are clustered"
     );
     let index_at = |x: f32| {
@@ -313,8 +308,8 @@ fn cookied_and_shadow_casting_lights_are_listed_only_in_the_clusters_they_reach(
 
     let clusters = app.world().resource::<PhongLightClusters>();
     assert_eq!(clusters.view_count(), 1);
-    // Each cluster's point and spot lights (slots 0 and 1).
-    let entries = clusters.first_view_entries(0..2);
+    // Each cluster's local lights (slot 0).
+    let entries = clusters.first_view_entries(0..1);
     let cluster_count = entries.len();
     let clusters_listing = |light: u32| {
         entries
@@ -356,11 +351,11 @@ fn mixed_lights_are_ordered_unlimited_then_clustered_each_kind_in_its_order() {
     let counts = order_by_reach(
         &mut records,
         1,
-        [pushed(2, 1), pushed(2, 1)],
+        &[pushed(2, 1), pushed(2, 1)],
         &mut scratch,
         clustered,
     );
-    assert_eq!(counts, [1, 1, 1, 1]);
+    assert_eq!(counts, [2, 2]);
     let order: Vec<f32> = records.iter().map(|light| light.position[0]).collect();
     assert_eq!(order, [0.0, 3.0, 4.0, 1.0, 5.0]);
 
@@ -368,17 +363,17 @@ fn mixed_lights_are_ordered_unlimited_then_clustered_each_kind_in_its_order() {
     let counts = order_by_reach(
         &mut records,
         1,
-        [pushed(2, 2), pushed(2, 2)],
+        &[pushed(2, 2), pushed(2, 2)],
         &mut scratch,
         |_| true,
     );
-    assert_eq!(counts, [0, 0, 2, 2]);
+    assert_eq!(counts, [0, 4]);
     let again: Vec<f32> = records.iter().map(|light| light.position[0]).collect();
     assert_eq!(again, order);
 }
 
 #[test]
-fn lights_are_ordered_directional_point_spot() {
+fn lights_are_ordered_directional_then_local_each_kind_in_its_order() {
     let mut app = test_app(|_| {});
     let world = app.world_mut();
     world.spawn(PhongSpotLight::default());
@@ -388,16 +383,17 @@ fn lights_are_ordered_directional_point_spot() {
     app.update();
     let state = app.world().resource::<PhongLightBuffer>();
     let header = state.header();
-    assert_eq!(
-        (
-            header.directional_count,
-            header.point_count,
-            header.spot_count
-        ),
-        (1, 2, 1)
-    );
-    // A directional light has no range; point and spot lights keep "unlimited".
-    assert_eq!(state.records()[0].range, 0.0);
-    assert_eq!(state.records()[1].range, f32::MAX);
-    assert!(state.records()[3].cone_scale > 0.0);
+    assert_eq!((header.directional_count, header.local_count), (1, 3));
+    // A directional light has no range; point and spot lights keep "unlimited". The point
+    // lights come first, their cone the whole sphere; then the spot light with its cone.
+    let records = state.records();
+    assert_eq!(records[0].range, 0.0);
+    assert_eq!(records[1].range, f32::MAX);
+    for point in &records[1..3] {
+        assert_eq!(
+            (point.direction, point.outer_versine, point.cone_scale),
+            ([0.0; 3], GpuLight::WHOLE_SPHERE, 0.0)
+        );
+    }
+    assert!(records[3].cone_scale > 0.0);
 }
