@@ -130,6 +130,8 @@
 //! 10. `testing` (only with the `testing` feature), which re-exports the internals that the
 //!     crate's own tests, benchmarks and harness read.
 //!
+//! `docs/design/layout.md` draws these rooms and the folders of the light kinds.
+//!
 //! Tests are exempt (the `#[cfg(test)]` items and files, such as `test_app`): they may use
 //! any layer. A unit test (`layering_tests`) reads the sources and fails on an import that
 //! points up or sideways.
@@ -143,7 +145,7 @@
 //! | module | main world | render world |
 //! |---|---|---|
 //! | `lights`, `light_kind` (and its kinds' folders), `culling`, `validation`, `scene`, `interop`, `gltf`, `schedule` | all of it | |
-//! | `render` | the gathers: light records, clusters, cookies, the data texture (`gather`, `cluster_views`, `clusters`, `cookies`, `light_records`, `record_cache`, `scene_texture`) | the material bind groups (`material_bindings`) and their order after the uploads (`material_upkeep`, which also marks materials in the main world) |
+//! | `render` | the gathers: light records, clusters, cookies, the data texture (`gather`, `cluster_views`, `clusters`, `cookies`, `light_records`, `scene_texture`) | the material bind groups (`material_bindings`) and their order after the uploads (`material_upkeep`, which also marks materials in the main world) |
 //! | `shadows` | which lights cast, the views and casters (`gather`, `sources`, `request`, `cameras`, `views`) | the shadow passes (`render`, `posed`, `deformed`, `displaced`) |
 //! | `material`, `scene_variants` | the asset and the scene's variants | the key and the pipeline (`specialize`) |
 //! | `extension` | a kind's gather | its binding |

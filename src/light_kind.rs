@@ -5,14 +5,19 @@
 mod built_in;
 mod directional;
 mod gpu_light;
+#[cfg(test)]
+mod line;
 mod point;
+mod record_cache;
 mod spot;
 
-pub(crate) use built_in::is_built_in;
+pub use built_in::BuiltInLights;
 pub use built_in::linear_rgb;
+pub(crate) use built_in::{BuiltInCaches, BuiltInVisitor, is_built_in, local_sphere};
 pub use directional::PhongDirectionalLight;
 pub use gpu_light::GpuLight;
 pub use point::PhongPointLight;
+pub(crate) use record_cache::RecordCache;
 pub use spot::PhongSpotLight;
 
 use crate::lights::PhongCookieProjection;

@@ -5,9 +5,9 @@
 
 use super::{GpuLightCount, PhongLightKind, PhongLightKindBuffer};
 use crate::culling::PhongLightCulling;
-use crate::lights::{LightQuery, lit_lights};
+use crate::lights::{LightChanges, LightQuery, lit_lights};
 use crate::render::{
-    DATA_TEXTURE_MAX_TEXELS, DataTextureWrite, ExtensionClusterSlots, LightChanges, PhongCookies,
+    DATA_TEXTURE_MAX_TEXELS, DataTextureWrite, ExtensionClusterSlots, PhongCookies,
     PhongLightBuffer, SharedEpsilonLights, is_finite_sphere, sphere_bits, words_of,
 };
 use crate::shadows::ShadowSlots;

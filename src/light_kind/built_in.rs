@@ -6,10 +6,86 @@
 //! cached), where an extension's kind gets a buffer of its own
 //! ([`PhongLightKindPlugin`](crate::extension::PhongLightKindPlugin)).
 
-use super::{GpuLight, PhongDirectionalLight, PhongLightKind, PhongPointLight, PhongSpotLight};
-use crate::lights::{influence_radius, light_direction};
-use bevy::{color::Color, transform::components::GlobalTransform};
+use super::{
+    GpuLight, PhongDirectionalLight, PhongLightKind, PhongPointLight, PhongSpotLight, RecordCache,
+};
+use crate::lights::{
+    LightChanges, LightQuery, TrackedLightQuery, influence_radius, light_direction,
+};
+use bevy::{
+    color::Color, ecs::system::SystemParam, math::Vec3, shape::BoundingSphere,
+    transform::components::GlobalTransform,
+};
 use core::any::TypeId;
+
+/// The built-in kinds' lights as the scene's light buffer holds them: the lights that reach
+/// everywhere (directional), then each kind of local light (point, spot), whose records the
+/// gather keeps in a [`RecordCache`] while its component is unchanged. The one list of the
+/// built-in kinds that the gather reads: a new built-in kind adds its query, its changes and
+/// (a local kind) its cache here, and its registration in `PhongPlugin`.
+#[derive(SystemParam)]
+pub struct BuiltInLights<'w, 's> {
+    directional: LightQuery<'w, 's, PhongDirectionalLight>,
+    point: TrackedLightQuery<'w, 's, PhongPointLight>,
+    spot: TrackedLightQuery<'w, 's, PhongSpotLight>,
+    directional_changes: LightChanges<'w, 's, PhongDirectionalLight>,
+    point_changes: LightChanges<'w, 's, PhongPointLight>,
+    spot_changes: LightChanges<'w, 's, PhongSpotLight>,
+}
+
+/// The record caches of the built-in local kinds (see [`BuiltInLights`]).
+#[derive(Debug, Default)]
+pub(crate) struct BuiltInCaches {
+    point: RecordCache<PhongPointLight>,
+    spot: RecordCache<PhongSpotLight>,
+}
+
+/// What a gather does with the lights of each built-in kind ([`BuiltInLights`]).
+pub(crate) trait BuiltInVisitor {
+    /// The lights of a kind that reaches everywhere.
+    fn everywhere<L: PhongLightKind<Gpu = GpuLight>>(&mut self, lights: &LightQuery<L>);
+
+    /// The lights of a local kind, with its cache.
+    fn local<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
+        &mut self,
+        lights: &TrackedLightQuery<L>,
+        cache: &mut RecordCache<L>,
+    );
+}
+
+impl BuiltInLights<'_, '_> {
+    /// Whether a light of any built-in kind was added, changed, moved, shown, hidden or
+    /// removed since the last run. Every kind's detector is read: each drains its removals.
+    pub(crate) fn changed(&mut self) -> bool {
+        let changes = [
+            self.directional_changes.any(),
+            self.point_changes.any(),
+            self.spot_changes.any(),
+        ];
+        changes.contains(&true)
+    }
+
+    /// Hands `visitor` the lights of each kind that reaches everywhere.
+    pub(crate) fn visit_everywhere(&self, visitor: &mut impl BuiltInVisitor) {
+        visitor.everywhere(&self.directional);
+    }
+
+    /// Hands `visitor` the lights of each local kind, in the buffer's order, with its cache.
+    pub(crate) fn visit_local(
+        &self,
+        caches: &mut BuiltInCaches,
+        visitor: &mut impl BuiltInVisitor,
+    ) {
+        visitor.local(&self.point, &mut caches.point);
+        visitor.local(&self.spot, &mut caches.spot);
+    }
+}
+
+/// The bounding sphere of a local light's record that reaches `reach` (short of
+/// `f32::MAX`, which is unlimited): around its position. Every built-in local kind's.
+pub(crate) fn local_sphere(record: &GpuLight, reach: f32) -> Option<BoundingSphere> {
+    (reach < f32::MAX).then(|| BoundingSphere::new(Vec3::from(record.position), reach))
+}
 
 /// Whether `L` is one of the built-in kinds, which `PhongPlugin` gathers itself.
 pub(crate) fn is_built_in<L: PhongLightKind>() -> bool {
@@ -68,8 +144,7 @@ macro_rules! built_in_record {
         }
 
         fn set_shadow(record: &mut $crate::light_kind::GpuLight, shadow: u32) {
-            use $crate::light_kind::GpuLight;
-            record.shadow = (record.shadow & !GpuLight::SHADOW_BITS) | shadow;
+            record.set_shadow_slot(shadow);
         }
 
         fn cookie_projection(&self) -> Option<$crate::lights::PhongCookieProjection> {
@@ -77,9 +152,7 @@ macro_rules! built_in_record {
         }
 
         fn set_cookie(record: &mut $crate::light_kind::GpuLight, cookie: u32) {
-            use $crate::light_kind::GpuLight;
-            record.shadow =
-                (record.shadow & GpuLight::SHADOW_BITS) | cookie << GpuLight::COOKIE_SHIFT;
+            record.set_cookie_index(cookie);
         }
     };
 }
@@ -104,9 +177,7 @@ macro_rules! fading_reach_kind {
             record: &$crate::light_kind::GpuLight,
             reach: f32,
         ) -> Option<bevy::shape::BoundingSphere> {
-            (reach < f32::MAX).then(|| {
-                bevy::shape::BoundingSphere::new(bevy::math::Vec3::from(record.position), reach)
-            })
+            $crate::light_kind::built_in::local_sphere(record, reach)
         }
     };
 }

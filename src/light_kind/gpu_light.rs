@@ -30,7 +30,7 @@ pub struct GpuLight {
     /// Specular intensity, linear RGB.
     pub specular: [f32; 3],
     /// Exponent of the `cos(θ)^exponent` rim darkening (spot).
-    pub spot_exponent: f32,
+    pub cone_exponent: f32,
     /// `[constant, linear, quadratic]` distance fall-off (point, spot).
     pub decay: [f32; 3],
     /// Two 16-bit indices: in the low half, the index of the light's first shadow view plus
@@ -49,4 +49,16 @@ impl GpuLight {
     /// (or `0` for no ray), inside it, and with a hard edge and no rim darkening the cone's
     /// factor is exactly 1.
     pub const WHOLE_SPHERE: f32 = 2.0;
+
+    /// Stores `slot` (the index of the light's first shadow view plus one, `0` for none) in
+    /// [`shadow`](Self::shadow)'s low half.
+    pub(crate) fn set_shadow_slot(&mut self, slot: u32) {
+        self.shadow = (self.shadow & !Self::SHADOW_BITS) | slot;
+    }
+
+    /// Stores `index` (its cookie's record index plus one, `0` for none) in
+    /// [`shadow`](Self::shadow)'s high half.
+    pub(crate) fn set_cookie_index(&mut self, index: u32) {
+        self.shadow = (self.shadow & Self::SHADOW_BITS) | index << Self::COOKIE_SHIFT;
+    }
 }

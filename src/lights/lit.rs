@@ -4,7 +4,14 @@
 
 use bevy::{
     camera::visibility::InheritedVisibility,
-    ecs::{change_detection::Ref, component::Component, entity::Entity, system::Query},
+    ecs::{
+        change_detection::Ref,
+        component::Component,
+        entity::Entity,
+        lifecycle::RemovedComponents,
+        query::{Changed, Or, With},
+        system::{Query, SystemParam},
+    },
     math::Vec3,
     transform::components::GlobalTransform,
 };
@@ -81,4 +88,31 @@ pub fn is_finite_transform(transform: &GlobalTransform) -> bool {
 /// keeps the direction.
 pub fn light_direction(transform: &GlobalTransform) -> Vec3 {
     crate::direction::normalize_or_zero(transform.affine().matrix3 * Vec3::NEG_Z)
+}
+
+/// Matches the lights of kind `L` whose component, transform or visibility changed.
+pub type LightChanged<L> = (
+    With<L>,
+    Or<(
+        Changed<L>,
+        Changed<GlobalTransform>,
+        Changed<InheritedVisibility>,
+    )>,
+);
+
+/// Whether any light of kind `L` was added, changed, moved, shown, hidden or removed since
+/// the last run of the system that holds this parameter.
+#[derive(SystemParam)]
+pub struct LightChanges<'w, 's, L: Component> {
+    changed: Query<'w, 's, (), LightChanged<L>>,
+    removed: RemovedComponents<'w, 's, L>,
+}
+
+impl<L: Component> LightChanges<'_, '_, L> {
+    /// `true` if any light of kind `L` changed. Call it once per run: it consumes the
+    /// removals it has seen.
+    pub fn any(&mut self) -> bool {
+        let removed = self.removed.read().count() > 0;
+        removed || !self.changed.is_empty()
+    }
 }

@@ -26,7 +26,9 @@ pub use decay::Decay;
 pub use hemisphere::PhongHemisphereLight;
 #[cfg(feature = "reference")]
 pub(crate) use lit::gives_light;
-pub(crate) use lit::{LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights};
+pub(crate) use lit::{
+    LightChanges, LightQuery, TrackedLightQuery, lit_light, lit_lights, lit_tracked_lights,
+};
 pub use lit::{is_finite_transform, light_direction};
 pub use reach::influence_radius;
 pub use shadows::{PhongCascades, PhongShadows};

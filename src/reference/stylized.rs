@@ -149,9 +149,9 @@ pub fn near_a_step(
         }
         _ => false,
     };
-    let spot_edge = matches!(specular, SpecularMode::Toon { smoothing } if smoothing <= 0.0)
+    let highlight_edge = matches!(specular, SpecularMode::Toon { smoothing } if smoothing <= 0.0)
         && (h - 0.5).abs() < margin;
-    band_edge || spot_edge
+    band_edge || highlight_edge
 }
 
 #[cfg(test)]

@@ -3,11 +3,13 @@
 
 use super::{
     PHONG_LIGHT_BUFFER, clusters::is_finite_sphere, cookies::PhongCookies,
-    gpu_types::GpuLightsHeader, light_records::indirect_light, record_cache::RecordCache,
+    gpu_types::GpuLightsHeader, light_records::indirect_light,
 };
 use crate::culling::PhongLightCulling;
-use crate::light_kind::{GpuLight, PhongLightKind};
-use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::light_kind::{
+    BuiltInCaches, BuiltInLights, BuiltInVisitor, GpuLight, PhongLightKind, RecordCache,
+    local_sphere,
+};
 use crate::lights::{
     LightQuery, PhongAmbientLight, PhongHemisphereLight, TrackedLightQuery, lit_lights,
     lit_tracked_lights,
@@ -17,19 +19,14 @@ use crate::shadows::ShadowSlots;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
     asset::Assets,
-    camera::visibility::InheritedVisibility,
     ecs::{
         change_detection::DetectChanges,
-        component::Component,
         entity::Entity,
-        lifecycle::RemovedComponents,
         message::MessageWriter,
-        query::{Changed, Or, With},
         resource::Resource,
-        system::{Query, Res, ResMut, SystemParam},
+        system::{Res, ResMut, SystemParam},
     },
     render::storage::ShaderBuffer,
-    transform::components::GlobalTransform,
 };
 
 /// The built-in lights' buffer, and the scratch space the gather system fills it from (kept
@@ -43,8 +40,8 @@ pub struct PhongLightBuffer {
     scratch: Vec<GpuLight>,
     /// The per-light ε of the last gather (`NaN` before the first).
     per_light_epsilon: f32,
-    point_cache: RecordCache<PhongPointLight>,
-    spot_cache: RecordCache<PhongSpotLight>,
+    /// The records of the local lights, kept while their components are unchanged.
+    caches: BuiltInCaches,
     /// Whether the last gather had a hemisphere light.
     hemisphere: bool,
 }
@@ -57,8 +54,7 @@ impl Default for PhongLightBuffer {
             header: GpuLightsHeader::default(),
             scratch: Vec::new(),
             per_light_epsilon: f32::NAN,
-            point_cache: RecordCache::default(),
-            spot_cache: RecordCache::default(),
+            caches: BuiltInCaches::default(),
             hemisphere: false,
         }
     }
@@ -125,33 +121,6 @@ impl PhongLightBuffer {
     }
 }
 
-/// Matches the lights of kind `L` whose component, transform or visibility changed.
-pub type LightChanged<L> = (
-    With<L>,
-    Or<(
-        Changed<L>,
-        Changed<GlobalTransform>,
-        Changed<InheritedVisibility>,
-    )>,
-);
-
-/// Whether any light of kind `L` was added, changed, moved, shown, hidden or removed since
-/// the last run of the system that holds this parameter.
-#[derive(SystemParam)]
-pub struct LightChanges<'w, 's, L: Component> {
-    changed: Query<'w, 's, (), LightChanged<L>>,
-    removed: RemovedComponents<'w, 's, L>,
-}
-
-impl<L: Component> LightChanges<'_, '_, L> {
-    /// `true` if any light of kind `L` changed. Call it once per run: it consumes the
-    /// removals it has seen.
-    pub fn any(&mut self) -> bool {
-        let removed = self.removed.read().count() > 0;
-        removed || !self.changed.is_empty()
-    }
-}
-
 /// Appends the record of every light in `lights` that gives light ([`lit_lights`]) to
 /// `records`, with its shadow and cookie slots ([`Slots::set`]). Returns how many.
 fn push_visible<L: PhongLightKind>(
@@ -191,6 +160,42 @@ impl Slots<'_> {
 /// for none.
 fn cookie_index(cookie_first: u32, slot: u32) -> u32 {
     if slot == 0 { 0 } else { cookie_first + slot }
+}
+
+/// Writes each built-in kind's lights into the records, as [`BuiltInLights`] hands them over:
+/// those that reach everywhere ([`push_visible`]), then the local ones with the per-light
+/// `epsilon` ([`push_cached`]).
+struct Pusher<'a> {
+    records: &'a mut Vec<GpuLight>,
+    slots: Slots<'a>,
+    epsilon: f32,
+    clusters: bool,
+    /// How many lights reach everywhere.
+    directional: u32,
+    /// What was found of each local kind.
+    pushed: Vec<Pushed>,
+}
+
+impl BuiltInVisitor for Pusher<'_> {
+    fn everywhere<L: PhongLightKind<Gpu = GpuLight>>(&mut self, lights: &LightQuery<L>) {
+        self.directional += push_visible(lights, self.slots, self.records);
+    }
+
+    fn local<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
+        &mut self,
+        lights: &TrackedLightQuery<L>,
+        cache: &mut RecordCache<L>,
+    ) {
+        let pushed = push_cached(
+            lights,
+            self.slots,
+            cache,
+            self.records,
+            self.epsilon,
+            self.clusters,
+        );
+        self.pushed.push(pushed);
+    }
 }
 
 /// What [`push_cached`] found of one kind of light.
@@ -253,10 +258,13 @@ fn has_sphere<L: PhongLightKind>(clusters: bool, record: &L::Gpu, reach: f32) ->
 }
 
 /// Whether a local light's record, as [`push_cached`] wrote it (its reach in `range`), goes
-/// into the clusters ([`has_sphere`]; the built-in local kinds share the point light's
-/// sphere).
+/// into the clusters (as [`has_sphere`] found: the built-in local kinds share their sphere,
+/// [`local_sphere`]).
 fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
-    has_sphere::<PhongPointLight>(culling.clusters, light, light.range)
+    (culling.clusters && light.range.is_finite())
+        .then(|| local_sphere(light, light.range))
+        .flatten()
+        .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
 }
 
 /// Puts the local lights (the records `pushed` from `records[first]` to the end) in the
@@ -281,30 +289,6 @@ fn order_by_reach(
     records.extend(scratch.iter().filter(|light| !clustered(light)));
     records.extend(scratch.iter().filter(|light| clustered(light)));
     counts
-}
-
-/// The built-in light entities, kind by kind, and whether any of them changed.
-#[derive(SystemParam)]
-pub struct BuiltInLights<'w, 's> {
-    directional: LightQuery<'w, 's, PhongDirectionalLight>,
-    point: TrackedLightQuery<'w, 's, PhongPointLight>,
-    spot: TrackedLightQuery<'w, 's, PhongSpotLight>,
-    directional_changes: LightChanges<'w, 's, PhongDirectionalLight>,
-    point_changes: LightChanges<'w, 's, PhongPointLight>,
-    spot_changes: LightChanges<'w, 's, PhongSpotLight>,
-}
-
-impl BuiltInLights<'_, '_> {
-    /// Whether a light of any kind was added, changed, moved, shown, hidden or removed since
-    /// the last run. Every kind's detector is read: each drains its removals.
-    fn changed(&mut self) -> bool {
-        let changes = [
-            self.directional_changes.any(),
-            self.point_changes.any(),
-            self.spot_changes.any(),
-        ];
-        changes.contains(&true)
-    }
 }
 
 /// What the gather reads besides the light entities: the ambient and hemisphere lights, ε and
@@ -405,53 +389,45 @@ impl PhongLightBuffer {
     /// them), then the clustered ones, shadows and cookies or not (the clusters' loop applies
     /// both). Returns the counts of the three sections, in [`GpuLightsHeader`]'s order.
     fn push_lights(&mut self, lights: &BuiltInLights, scene: &SceneLighting) -> [u32; 3] {
-        let slots = scene.slots();
-        let directional_count = push_visible(&lights.directional, slots, &mut self.records);
         let culling = &scene.culling;
-        // The point lights, then the spot lights, written once in place. ε bounds the sum of
-        // what every skipped light leaves out: each of the `count` lit point and spot lights
-        // (and lights of extension kinds that share ε) gets ε / count. The count is known
-        // once they are read, so they are written with the last gather's per-light ε, and
-        // written again in a frame where the count changed.
-        let first_point = self.records.len();
-        let mut epsilon = self.per_light_epsilon;
-        let pushed = loop {
-            self.records.truncate(first_point);
-            let pushed = [
-                push_cached(
-                    &lights.point,
-                    slots,
-                    &mut self.point_cache,
-                    &mut self.records,
-                    epsilon,
-                    culling.clusters,
-                ),
-                push_cached(
-                    &lights.spot,
-                    slots,
-                    &mut self.spot_cache,
-                    &mut self.records,
-                    epsilon,
-                    culling.clusters,
-                ),
-            ];
-            let count = pushed[0].lit + pushed[1].lit + scene.sharing.total();
-            let per_light_epsilon = culling.epsilon / count.max(1) as f32;
-            if per_light_epsilon.to_bits() == epsilon.to_bits() {
-                break pushed;
-            }
-            epsilon = per_light_epsilon;
+        let mut pusher = Pusher {
+            records: &mut self.records,
+            slots: scene.slots(),
+            epsilon: self.per_light_epsilon,
+            clusters: culling.clusters,
+            directional: 0,
+            pushed: Vec::new(),
         };
-        self.per_light_epsilon = epsilon;
+        lights.visit_everywhere(&mut pusher);
+        // The local lights, kind by kind, written once in place. ε bounds the sum of what
+        // every skipped light leaves out: each of the `count` lit local lights (and lights of
+        // extension kinds that share ε) gets ε / count. The count is known once they are
+        // read, so they are written with the last gather's per-light ε, and written again in
+        // a frame where the count changed.
+        let first_local = pusher.records.len();
+        loop {
+            pusher.records.truncate(first_local);
+            pusher.pushed.clear();
+            lights.visit_local(&mut self.caches, &mut pusher);
+            let lit: usize = pusher.pushed.iter().map(|kind| kind.lit).sum();
+            let count = lit + scene.sharing.total();
+            let per_light_epsilon = culling.epsilon / count.max(1) as f32;
+            if per_light_epsilon.to_bits() == pusher.epsilon.to_bits() {
+                break;
+            }
+            pusher.epsilon = per_light_epsilon;
+        }
+        let (directional, pushed) = (pusher.directional, pusher.pushed);
+        self.per_light_epsilon = pusher.epsilon;
         let clustered = |light: &GpuLight| clustered(culling, light);
         let [local, clustered_local] = order_by_reach(
             &mut self.records,
-            first_point,
+            first_local,
             &pushed,
             &mut self.scratch,
             clustered,
         );
-        [directional_count, local, clustered_local]
+        [directional, local, clustered_local]
     }
 
     /// Appends the cookies after the lights, as records of a light's size ([`GpuCookie`](
@@ -472,7 +448,7 @@ impl PhongLightBuffer {
                     0
                 };
                 // Every built-in kind stores it alike (`GpuLight::shadow`'s high half).
-                PhongPointLight::set_cookie(record, index);
+                record.set_cookie_index(index);
             }
         }
         self.records.extend(

@@ -51,7 +51,6 @@ mod cookies;
 mod data_texture;
 mod gather;
 mod light_records;
-mod record_cache;
 mod scene_texture;
 // Both: the byte layouts the two sides share; keeping materials on the current buffers
 // (marked in the main world, ordered in the render world).
@@ -76,7 +75,6 @@ pub(crate) use cookies::{CookieRequests, request_cookies};
 pub use cookies::{PhongCookies, gather_cookies};
 pub use data_texture::DATA_TEXTURE_MAX_TEXELS;
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
-pub(crate) use gather::LightChanges;
 pub use gather::{PhongLightBuffer, SharedEpsilonLights, gather_lights};
 pub use gpu_types::{GpuClustersHeader, GpuLightsHeader};
 pub use material_bindings::PhongSceneBindings;

@@ -10,8 +10,8 @@ use super::{
     masked::CasterMask,
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
-        Bounds, MAX_SPOT_MAP_ANGLE, ShadowLightView, beam_view, cascade_views, cube_views,
-        spot_view,
+        Bounds, MAX_CONE_MAP_ANGLE, ShadowLightView, beam_view, cascade_views, cone_view,
+        cube_views,
     },
 };
 use crate::lights::PhongShadows;
@@ -389,8 +389,8 @@ fn light_views(
             position,
             direction,
             half_angle,
-        } if half_angle <= MAX_SPOT_MAP_ANGLE => {
-            vec![spot_view(position, direction, half_angle, near, resolution)]
+        } if half_angle <= MAX_CONE_MAP_ANGLE => {
+            vec![cone_view(position, direction, half_angle, near, resolution)]
         }
         PhongShadowProjection::Cone { position, .. } | PhongShadowProjection::Omni { position } => {
             cube_views(position, near, resolution).to_vec()

@@ -82,11 +82,11 @@ pub(crate) fn cube_views(position: Vec3, near: f32, resolution: u32) -> [ShadowL
 }
 
 /// Widest outer cone angle a spot light's single map covers; past it the light gets a cube.
-pub(crate) const MAX_SPOT_MAP_ANGLE: f32 = 60.0 * core::f32::consts::PI / 180.0;
+pub(crate) const MAX_CONE_MAP_ANGLE: f32 = 60.0 * core::f32::consts::PI / 180.0;
 
 /// The view of a spot light at `position` shining along `direction` with half-angle
-/// `outer_angle` (at most [`MAX_SPOT_MAP_ANGLE`]).
-pub(crate) fn spot_view(
+/// `outer_angle` (at most [`MAX_CONE_MAP_ANGLE`]).
+pub(crate) fn cone_view(
     position: Vec3,
     direction: Vec3,
     outer_angle: f32,
@@ -286,9 +286,9 @@ mod tests {
     }
 
     #[test]
-    fn a_spot_view_holds_its_cone() {
+    fn a_cone_view_holds_its_cone() {
         let angle = 30f32.to_radians();
-        let view = spot_view(Vec3::ZERO, Vec3::NEG_Y, angle, 0.1, 512);
+        let view = cone_view(Vec3::ZERO, Vec3::NEG_Y, angle, 0.1, 512);
         let edge = Vec3::new(angle.sin(), -angle.cos(), 0.0) * 3.0;
         let ndc = project(&view, edge);
         assert!(ndc.x.abs() < 1.0 && ndc.y.abs() < 1.0, "{ndc}");

@@ -52,7 +52,7 @@ fn gpu_light_matches_wgsl_phong_light() {
         ("color", offset_of!(GpuLight, color)),
         ("cone_scale", offset_of!(GpuLight, cone_scale)),
         ("specular", offset_of!(GpuLight, specular)),
-        ("spot_exponent", offset_of!(GpuLight, spot_exponent)),
+        ("cone_exponent", offset_of!(GpuLight, cone_exponent)),
         ("decay", offset_of!(GpuLight, decay)),
         ("shadow", offset_of!(GpuLight, shadow)),
     ];

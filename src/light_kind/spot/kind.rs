@@ -44,7 +44,7 @@ impl PhongSpotLight {
             color,
             cone_scale,
             specular,
-            spot_exponent: self.exponent,
+            cone_exponent: self.exponent,
             decay: self.decay.to_array(),
             ..GpuLight::default()
         }

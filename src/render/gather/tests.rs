@@ -2,7 +2,9 @@
 
 use super::*;
 use crate::test_app::{built_in_buffer_bytes, test_app, uploads_in_next_frame};
+use crate::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
 use bevy::prelude::{App, Entity, Transform, Vec3, Visibility, World};
+use bevy::{camera::visibility::InheritedVisibility, transform::components::GlobalTransform};
 
 #[test]
 fn lights_are_uploaded_only_in_frames_where_they_change() {

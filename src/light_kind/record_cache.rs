@@ -10,7 +10,7 @@
 //! which holds from frame to frame until entities are spawned, despawned or change
 //! archetype: an entry whose entity is not the one at its place is simply made again.
 
-use crate::light_kind::PhongLightKind;
+use super::PhongLightKind;
 use bevy::{ecs::entity::Entity, transform::components::GlobalTransform};
 
 /// The cached records of the lights of kind `L`, in query order: entry `i` of each vector

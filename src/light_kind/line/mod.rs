@@ -1,0 +1,35 @@
+//! A line light, written as a new kind is written: this folder and one line that registers
+//! it (`PhongLightKindPlugin::<LineLight>`, in `tests.rs`). It stands for the next built-in
+//! kind: the test shows that validation, the gather into its own buffer, the clusters and
+//! the reference model take it with no change anywhere else. Only the tests build it.
+//!
+//! - this file: the component;
+//! - `kind.rs`: its record, reach, bounds and validation ([`PhongLightKind`]);
+//! - `reference.rs`: its light in the reference model;
+//! - `tests.rs`: the test.
+
+mod kind;
+#[cfg(feature = "reference")]
+mod reference;
+#[cfg(test)]
+mod tests;
+
+use bevy::{
+    camera::visibility::Visibility, color::Color, ecs::component::Component,
+    transform::components::Transform,
+};
+
+#[cfg(doc)]
+use crate::light_kind::PhongLightKind;
+
+/// A segment of light along its entity's local X axis, centred on its position.
+#[derive(Component, Clone, Debug, PartialEq)]
+#[require(Transform, Visibility)]
+pub struct LineLight {
+    /// Diffuse and specular intensity.
+    pub color: Color,
+    /// Length of the segment, world units, `≥ 0`.
+    pub length: f32,
+    /// Distance from the segment past which it lights nothing, world units, `> 0`.
+    pub range: f32,
+}
