@@ -352,3 +352,54 @@ fn degenerate_inputs_give_finite_colors() {
         assert!(shade(&surface, &material, &lights).is_finite());
     }
 }
+
+/// The model takes a material's numbers into their ranges before using them, as its uniform
+/// does; the values here are worked from the ranges `limits` documents (colors and factors
+/// `[0, 1e6]` with NaN → 0, shininess `[0, 1e6]` with NaN → 0), not from the crate's walk.
+#[test]
+fn a_material_out_of_its_ranges_enters_the_model_at_its_documented_values() {
+    use bevy::color::Color;
+    let cases = [
+        // (base color, specular strength, ambient factor, shininess) → (k_d, strength, k_a, α)
+        (
+            Color::linear_rgb(2e6, f32::NAN, -1.0),
+            f32::NAN,
+            -2.0,
+            -5.0,
+            (DVec3::new(1e6, 0.0, 0.0), 0.0, 0.0, 0.0),
+        ),
+        (
+            Color::linear_rgb(0.25, 1e6, f32::INFINITY),
+            f32::INFINITY,
+            3.0,
+            f32::NAN,
+            (DVec3::new(0.25, 1e6, 1e6), 1e6, 3.0, 0.0),
+        ),
+        (
+            Color::linear_rgb(0.5, 0.5, 0.5),
+            2.0,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+            (DVec3::splat(0.5), 2.0, 0.0, 1e6),
+        ),
+    ];
+    for (base_color, strength, ambient, shininess, expected) in cases {
+        let material = Material::from(&crate::PhongMaterial {
+            base_color,
+            specular_strength: strength,
+            ambient_factor: ambient,
+            shininess,
+            ..Default::default()
+        });
+        assert_eq!(
+            (
+                material.diffuse,
+                material.specular_strength,
+                material.ambient_factor,
+                material.shininess
+            ),
+            expected,
+            "{base_color:?}, strength {strength}, ambient {ambient}, shininess {shininess}"
+        );
+    }
+}

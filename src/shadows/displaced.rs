@@ -4,6 +4,7 @@
 //! ([`CasterDisplacement`]); the render world binds the map (group `DISPLACEMENT_GROUP`) and
 //! passes the numbers as instance data.
 
+use super::caster_bind_groups::{image_entries, remake_bind_groups};
 use crate::displacement::DisplacementUniform;
 use crate::material::PhongMaterial;
 use bevy::{
@@ -18,8 +19,8 @@ use bevy::{
     render::{
         render_asset::RenderAssets,
         render_resource::{
-            BindGroup, BindGroupEntry, BindGroupLayoutDescriptor, BindingResource, PipelineCache,
-            SamplerBindingType, ShaderStages, TextureSampleType,
+            BindGroup, BindGroupLayoutDescriptor, PipelineCache, SamplerBindingType, ShaderStages,
+            TextureSampleType,
             binding_types::{sampler, texture_2d},
         },
         renderer::RenderDevice,
@@ -98,31 +99,9 @@ pub(crate) fn prepare_displaced_bind_groups(
     cache: Res<PipelineCache>,
     mut groups: ResMut<DisplacedBindGroups>,
 ) {
-    groups.0.clear();
     let layout = cache.get_bind_group_layout(&displacement_layout());
-    for map in draws.displacement_maps() {
-        if groups.0.contains_key(&map) {
-            continue;
-        }
-        let Some(image) = images.get(map) else {
-            continue;
-        };
-        let group =
-            device.create_bind_group("phong_displaced_caster", &layout, &image_entries(0, image));
-        groups.0.insert(map, group);
-    }
-}
-
-/// The entries that bind `image`'s texture at `binding` and its sampler at `binding + 1`.
-pub(crate) fn image_entries(binding: u32, image: &GpuImage) -> [BindGroupEntry<'_>; 2] {
-    [
-        BindGroupEntry {
-            binding,
-            resource: BindingResource::TextureView(&image.texture_view),
-        },
-        BindGroupEntry {
-            binding: binding + 1,
-            resource: BindingResource::Sampler(&image.sampler),
-        },
-    ]
+    remake_bind_groups(&mut groups.0, draws.displacement_maps(), |map| {
+        let image = images.get(map)?;
+        Some(device.create_bind_group("phong_displaced_caster", &layout, &image_entries(0, image)))
+    });
 }

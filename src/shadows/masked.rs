@@ -7,7 +7,7 @@
 //! main world notes each masked caster's maps and numbers ([`CasterMask`]); the render world
 //! binds the maps (group `MASK_GROUP`) and passes the numbers as instance data.
 
-use super::displaced::image_entries;
+use super::caster_bind_groups::{image_entries, remake_bind_groups};
 use crate::material::{PhongMaterial, PhongMaterialUniform};
 use bevy::{
     asset::AssetId,
@@ -137,26 +137,18 @@ pub(crate) fn prepare_masked_bind_groups(
     cache: Res<PipelineCache>,
     mut groups: ResMut<MaskedBindGroups>,
 ) {
-    groups.0.clear();
     let layout = cache.get_bind_group_layout(&mask_layout());
-    for maps in draws.mask_maps() {
-        if groups.0.contains_key(&maps) {
-            continue;
-        }
-        let image = |map: Option<AssetId<Image>>| match map {
-            Some(id) => images.get(id),
-            None => Some(&fallback.d2),
-        };
-        let (Some(base_color), Some(alpha)) = (image(maps.0), image(maps.1)) else {
-            continue;
-        };
-        let [texture, sampler] = image_entries(0, base_color);
-        let [alpha_texture, alpha_sampler] = image_entries(2, alpha);
-        let group = device.create_bind_group(
+    let image = |map: Option<AssetId<Image>>| match map {
+        Some(id) => images.get(id),
+        None => Some(&fallback.d2),
+    };
+    remake_bind_groups(&mut groups.0, draws.mask_maps(), |maps| {
+        let [texture, sampler] = image_entries(0, image(maps.0)?);
+        let [alpha_texture, alpha_sampler] = image_entries(2, image(maps.1)?);
+        Some(device.create_bind_group(
             "phong_masked_caster",
             &layout,
             &[texture, sampler, alpha_texture, alpha_sampler],
-        );
-        groups.0.insert(maps, group);
-    }
+        ))
+    });
 }

@@ -45,6 +45,7 @@
 
 mod atlas;
 mod cameras;
+mod caster_bind_groups;
 mod caster_pipeline;
 mod casters;
 mod deformed;

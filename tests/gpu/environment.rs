@@ -4,8 +4,10 @@
 //!
 //! The cube has 8 texels a side and three mip levels, nearest-sampled, so the texel each
 //! pixel reads is known from the direction (Vulkan's cube face rules) and the level from
-//! the material's shininess (the objects read levels 0, 1 and 2: a level formula off by a
-//! constant or a factor reads another level's texels); pixels within 1/100 texel of a
+//! the material's shininess (the nearest level to the formula's: the objects read levels
+//! 0, 1 and 2, the last two at 0.05 of a level from the boundary between levels 1 and 2,
+//! one on each side, so that a level formula off by more than 0.05 of a level, either way,
+//! reads another level's texels); pixels within 1/100 texel of a
 //! texel's or a face's edge are left out. Tolerance: the frame tests' (`TOLERANCE`); the lookup adds a blend in `f32`.
 //! Under WebGL2's limits the environment map is left out (`render::binds_every_map`): there
 //! the test checks that the surfaces are drawn as without it.
@@ -158,7 +160,8 @@ fn spawn_lights(world: &mut World) {
 
 /// Three reflective objects, each given its environment by `environment`: a mirror-like
 /// sphere (Multiply, level 0), a dull cube masked by a specular map (Mix, level 1 of a cube
-/// `cube_size` texels a side) and a duller refracting sphere (Add, level 2).
+/// `cube_size` texels a side, its formula giving 1.45) and a duller refracting sphere (Add,
+/// level 2, its formula giving 1.55).
 fn reflective_objects(
     world: &mut World,
     cube_size: u32,
@@ -168,9 +171,9 @@ fn reflective_objects(
         [0.2 + 0.25 * ((x + y) % 4) as f32, 0.5, 0.5, 1.0]
     }));
     // A lobe one texel of level `m` wide: `environment_lod` (`log2(size / (π/2 · √(n + 1)))`)
-    // is `m` at `n = (2 · size / (π · 2^m))² − 1`.
+    // is `m` at `n = (2 · size / (π · 2^m))² − 1`, for any real `m`.
     let at_level =
-        |m: i32| (2.0 * cube_size as f32 / (core::f32::consts::PI * 2f32.powi(m))).powi(2) - 1.0;
+        |m: f32| (2.0 * cube_size as f32 / (core::f32::consts::PI * 2f32.powf(m))).powi(2) - 1.0;
     [
         (
             Sphere::new(1.0).mesh().uv(48, 32),
@@ -195,7 +198,7 @@ fn reflective_objects(
                 specular_texture: Some(specular_map),
                 environment_combine: EnvironmentCombine::Mix,
                 reflectivity: 0.7,
-                shininess: at_level(1),
+                shininess: at_level(1.45),
                 ..default()
             }),
         ),
@@ -207,18 +210,24 @@ fn reflective_objects(
                 environment_combine: EnvironmentCombine::Add,
                 reflectivity: 0.5,
                 refraction_ratio: Some(0.66),
-                shininess: at_level(2),
+                shininess: at_level(1.55),
                 ..default()
             }),
         ),
     ]
 }
 
-/// The reference color of a pixel of a reflective material, given the environment's color
-/// along a world direction at a level of a cube `cube_size` texels a side (`None` where it
-/// cannot be judged), or the lit color alone where `drawn` is false (the environment left
-/// out).
-#[allow(clippy::too_many_arguments)]
+/// The environment a test's surfaces reflect: whether it is drawn at all, its cube's size
+/// (texels a side) and its color along a world direction at a level (`None` where it cannot
+/// be judged).
+struct Environment<'a> {
+    drawn: bool,
+    cube_size: u32,
+    color_at: &'a dyn Fn(DVec3, u32) -> Option<DVec3>,
+}
+
+/// The reference color of a pixel of a reflective material in `environment`, or the lit
+/// color alone where it is not drawn (the environment left out).
 fn reflected_color(
     material: &PhongMaterial,
     surface: &reference::SurfacePoint,
@@ -226,27 +235,26 @@ fn reflected_color(
     inputs: &SurfaceInputs,
     images: &HashMap<AssetId<Image>, Image>,
     lights: &reference::Lights,
-    drawn: bool,
-    cube_size: u32,
-    environment_at: &dyn Fn(DVec3, u32) -> Option<DVec3>,
+    environment: &Environment,
 ) -> Option<DVec3> {
     let texels = texels_at(material, inputs, pixel, images, SrgbDecoding::Exact)?;
     let lit = lit_color(material, surface, pixel, inputs, &texels, images, lights)?;
-    if !drawn {
+    if !environment.drawn {
         return Some(lit);
     }
     let normal = lit_normal(material, surface, pixel, inputs, images)?;
     let lit_surface = reference::SurfacePoint { normal, ..*surface };
     let ratio = material.refraction_ratio.map(f64::from);
     let direction = reference::environment_direction(&lit_surface, ratio);
-    let lod = reference::environment_lod(f64::from(material.shininess), cube_size.into());
+    let lod =
+        reference::environment_lod(f64::from(material.shininess), environment.cube_size.into());
     // The nearer level, of those there are.
     let level = (lod + 0.5).floor().min(f64::from(CUBE_LEVELS - 1)) as u32;
     assert!(
-        (lod - lod.round()).abs() < 1e-3,
-        "a level, not between two: {lod}"
+        (lod.fract() - 0.5).abs() > 0.04,
+        "a level clear of the boundary between two: {lod}"
     );
-    let environment = environment_at(direction, level)?;
+    let environment = (environment.color_at)(direction, level)?;
     let mask = texels.specular.map_or(1.0, |texel| texel.x);
     let strength = mask * f64::from(material.reflectivity);
     Some(reference::with_environment(
@@ -289,9 +297,11 @@ fn environment_maps_follow_the_reference_model() {
             inputs,
             images,
             lights,
-            drawn,
-            CUBE_SIZE,
-            &environment_at,
+            &Environment {
+                drawn,
+                cube_size: CUBE_SIZE,
+                color_at: &environment_at,
+            },
         )
     };
     assert_pixels_follow(harness, objects, "environment maps", &expected);
@@ -373,9 +383,11 @@ fn the_cameras_environment_map_light_is_reflected_as_the_materials_own_map() {
             inputs,
             images,
             lights,
-            material.camera_environment,
-            CAMERA_CUBE_SIZE,
-            &environment_at,
+            &Environment {
+                drawn: material.camera_environment,
+                cube_size: CAMERA_CUBE_SIZE,
+                color_at: &environment_at,
+            },
         )
     };
     assert_pixels_follow(harness, objects, "camera environment", &expected);
