@@ -95,6 +95,7 @@ mod searchlight;
 mod searchlight_clusters;
 mod searchlight_shadows;
 mod self_check;
+mod shader_api;
 mod shading_normals;
 mod shadow_band;
 mod shadows;
