@@ -11,7 +11,7 @@
 
 use crate::frames::SIZE;
 use crate::texture_maps::{
-    assert_pixels_follow, expected_color, float_map, spawn_map_lights, toon_ramp,
+    TEXELS, assert_pixels_follow, expected_color, float_map, spawn_map_lights, toon_ramp,
 };
 use bevy::prelude::*;
 use bevy_phong::{DiffuseMode, SpecularMode, prelude::*, reference};
@@ -40,11 +40,19 @@ fn stylized_modes_follow_the_reference_model() {
         ground_color: Color::linear_rgb(0.15, 0.08, 0.02),
         up: Vec3::new(0.2, 1.0, -0.1),
     });
-    // Four levels, from the far side (N·L < −1/2) to the light (N·L ≥ 1/2).
+    // Four levels, from the far side (N·L < −1/2) to the light (N·L ≥ 1/2), in the middle
+    // row (`TEXELS / 2`), which the ramp is read at; the other rows hold other levels, so
+    // that a ramp read at another row is seen.
     let levels = [0.1, 0.35, 0.7, 1.0];
-    let ramp = world
-        .resource_mut::<Assets<Image>>()
-        .add(float_map(|x, _| [levels[x as usize], 0.0, 0.0, 1.0]));
+    let ramp = world.resource_mut::<Assets<Image>>().add(float_map(|x, y| {
+        let level = levels[x as usize];
+        let red = if y == TEXELS / 2 {
+            level
+        } else {
+            1.0 - 0.5 * level
+        };
+        [red, 0.0, 0.0, 1.0]
+    }));
     let sphere = || Sphere::new(0.7).mesh().uv(48, 32);
     let objects = [
         (

@@ -1,5 +1,5 @@
 //! Bevy's `DistanceFog` on a camera applies to `PhongMaterial` as to `StandardMaterial`:
-//! every falloff, with the Phong directional lights' inscattering.
+//! every falloff, with the inscattering of the Phong directional lights (two of them).
 
 use bevy::prelude::*;
 use bevy_phong::{prelude::*, reference};
@@ -70,6 +70,14 @@ fn distance_fog_matches_the_fog_formula_on_each_pixels_view_distance() {
             ..default()
         },
         Transform::default().looking_to(Vec3::new(0.3, -0.3, 1.0), Vec3::Y),
+    ));
+    // A second directional light toward the camera: the inscattering sums every one.
+    harness.world_mut().spawn((
+        PhongDirectionalLight {
+            color: Color::linear_rgb(0.2, 0.3, 0.6),
+            ..default()
+        },
+        Transform::default().looking_to(Vec3::new(-0.5, -0.2, 1.0), Vec3::Y),
     ));
     harness.world_mut().spawn((
         PhongPointLight {
