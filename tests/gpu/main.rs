@@ -83,6 +83,7 @@ mod huge_vectors;
 #[path = "../../examples/searchlight/light.rs"]
 mod light;
 mod many_materials;
+mod masked_casters;
 mod morphs;
 #[path = "../fuzz/mutations.rs"]
 mod mutations;
