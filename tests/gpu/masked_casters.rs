@@ -35,7 +35,7 @@ fn a_caster_masked_by_its_alpha_map_through_a_uv_transform_casts_its_holes() {
         .flat_map(|index| {
             let (column, row) = (index % (2 * CELLS), index / (2 * CELLS));
             let in_right_half = column >= CELLS;
-            let even = (column % CELLS + row) % 2 == 0;
+            let even = (column % CELLS + row).is_multiple_of(2);
             let green = if even == in_right_half { 255 } else { 153 };
             [0, green, 0, 255]
         })
