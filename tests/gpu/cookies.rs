@@ -10,7 +10,7 @@
 //! Cookied lamps of finite reach just outside the frustum are clustered, and tint what they
 //! reach inside it exactly.
 
-use crate::frames::SIZE;
+use crate::frames::{SIZE, TOLERANCE};
 use crate::texture_maps::{assert_pixels_follow, assert_scene_follows, expected_color};
 use bevy::{
     asset::RenderAssetUsages,
@@ -361,4 +361,67 @@ fn an_untiled_directional_cookie_leaves_its_light_dark_or_untouched_outside_its_
     }
     let objects = floor_and_sphere(8.0, 1.2);
     assert_scene_follows(&mut harness, objects, "untiled directional cookies");
+}
+
+/// A cookie image edited in place, as hot reloading edits it (the asset modified, its
+/// handle kept), tints its light with its new texels from the next frame: every pixel
+/// follows the reference model made from the image as it is then, and the frame changed
+/// where the image did (under WebGL2, where the atlas is not bound, the light stays
+/// untinted and the frame unchanged).
+#[test]
+fn a_cookie_image_edited_in_place_tints_its_light_with_its_new_texels() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    world.insert_resource(PhongAmbientLight {
+        color: Color::linear_rgb(0.05, 0.05, 0.05),
+    });
+    let image = world
+        .resource_mut::<Assets<Image>>()
+        .add(cookie_image(|x, y| [wave(x, 40.0), wave(y, 56.0), 200]));
+    world.spawn((
+        PhongSpotLight {
+            color: Color::linear_rgb(1.2, 1.1, 1.0),
+            inner_angle: 25f32.to_radians(),
+            outer_angle: 35f32.to_radians(),
+            ..default()
+        },
+        Transform::from_xyz(0.3, 2.2, 0.6).looking_at(Vec3::new(0.3, -1.0, 0.4), Vec3::Z),
+        PhongLightCookie {
+            image: image.clone(),
+            ..default()
+        },
+    ));
+    let (before, _) = assert_scene_follows(
+        &mut harness,
+        floor_and_sphere(8.0, 0.6),
+        "a cookie before its edit",
+    );
+
+    let edited = cookie_image(|x, y| [wave(y, 30.0), 255, wave(x, 70.0)]);
+    let world = harness.world_mut();
+    world
+        .resource_mut::<Assets<Image>>()
+        .get_mut(&image)
+        .expect("the cookie image")
+        .data = edited.data;
+    harness.settle();
+    let after = harness.render_next_frame();
+    let inputs = harness.capture_inputs_with_maps();
+    let comparison = harness.compare(&after, &inputs);
+    comparison.assert_within("a cookie after its edit", TOLERANCE);
+    comparison.assert_mostly_judged("a cookie after its edit");
+    let changed = before
+        .pixels
+        .iter()
+        .zip(&after.pixels)
+        .filter(|(a, b)| (a[1] - b[1]).abs() > 0.05)
+        .count();
+    if harness.binds_every_map() {
+        assert!(changed > 500, "{changed} pixels changed with the edit");
+    } else {
+        assert_eq!(
+            changed, 0,
+            "no atlas bound: the light is untinted before and after"
+        );
+    }
 }
