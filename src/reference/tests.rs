@@ -403,3 +403,82 @@ fn a_material_out_of_its_ranges_enters_the_model_at_its_documented_values() {
         );
     }
 }
+
+/// SPEC.md's lit-side rim is weighted by `max(N·L, 0)`: on the far side of a wrapped
+/// diffuse term, which lights there, it adds nothing.
+#[test]
+fn a_lit_side_rim_adds_nothing_on_the_far_side() {
+    let surface = SurfacePoint {
+        position: DVec3::ZERO,
+        normal: DVec3::Y,
+        camera: DVec3::new(0.0, 1.0, 3.0),
+    };
+    let wrapped = Material {
+        diffuse_mode: crate::DiffuseMode::Wrap(0.5),
+        ..matte(DVec3::splat(0.5))
+    };
+    let with_rim = Material {
+        rim: crate::reference::Rim {
+            color: DVec3::ONE,
+            power: 1.0,
+            lit_side: true,
+        },
+        ..wrapped.clone()
+    };
+    // N·L = −0.2: the wrapped diffuse term lights the point, the rim does not.
+    let to_light = DVec3::new(0.0, -0.2, (1.0f64 - 0.04).sqrt());
+    let light =
+        |material: &Material| phong_light(&surface, material, to_light, DVec3::ONE, DVec3::ONE);
+    assert!(
+        light(&wrapped).max_element() > 0.0,
+        "the wrap lights the far side"
+    );
+    assert_eq!(light(&with_rim), light(&wrapped));
+}
+
+/// The fall-off cuts a light off past its range, not at it: at exactly `range` the light
+/// still arrives (SPEC.md: `A = 0` for `d > range`).
+#[test]
+fn a_light_reaches_a_point_at_exactly_its_range() {
+    assert_eq!(attenuation(2.0, [1.0, 0.0, 0.0], Some(2.0)), 1.0);
+    assert_eq!(attenuation(2.0, [1.0, 0.0, 0.0], Some(1.999_999)), 0.0);
+}
+
+/// A hard-edged spot (inner ≥ outer) is `step(cos_outer, cos θ)`: lit at exactly its outer
+/// angle, dark just past it.
+#[test]
+fn a_hard_edged_spot_lights_its_outer_angle_itself() {
+    for edge in [ConeEdge::Linear, ConeEdge::Smooth] {
+        assert_eq!(spot_cone(0.5, 0.5, 0.5, 0.0, edge), 1.0);
+        assert_eq!(spot_cone(0.499_999, 0.5, 0.5, 0.0, edge), 0.0);
+    }
+}
+
+/// With ε culling, the `n` point and spot lights share ε: each is cut where it falls below
+/// `ε / n`. For `1/d²` fall-off and intensity 1 that is `d = √(n / ε)`, here √200 for two
+/// lights and ε = 1/100 (worked by hand, not by `influence_radius`), to `f32` rounding.
+#[test]
+fn culled_lights_share_epsilon_among_them() {
+    let point = |x: f64| Light::Point {
+        position: DVec3::new(x, 0.0, 0.0),
+        color: DVec3::ONE,
+        specular: DVec3::ONE,
+        decay: [0.0, 0.0, 1.0],
+        range: None,
+    };
+    let lights = Lights {
+        lights: vec![point(0.0), point(5.0)],
+        ..Default::default()
+    };
+    for light in lights.culled(0.01).lights {
+        let Light::Point { range, .. } = light else {
+            unreachable!()
+        };
+        let range = range.expect("a range from ε");
+        assert!(
+            (range - 200f64.sqrt()).abs() < 1e-5,
+            "range {range}, expected √200 = {}",
+            200f64.sqrt()
+        );
+    }
+}

@@ -398,4 +398,35 @@ fn lights_are_ordered_directional_then_local_each_kind_in_its_order() {
         );
     }
     assert!(records[3].cone_scale > 0.0);
+    // Without a specular color of their own, lights highlight in their color.
+    for record in records {
+        assert_eq!(record.specular, record.color);
+    }
+}
+
+/// A light's cookie changed on its own (its component, not the light's): the light buffer,
+/// which holds the cookie records after the lights, is written again in the next frame.
+#[test]
+fn a_cookie_changed_alone_writes_the_light_buffer_again() {
+    use crate::test_app::white_cookie;
+    use bevy::{asset::AssetApp, image::Image};
+    let mut app = test_app(|app| {
+        app.init_asset::<Image>();
+    });
+    let cookie = white_cookie(&mut app);
+    let light = app
+        .world_mut()
+        .spawn((PhongSpotLight::default(), cookie))
+        .id();
+    app.update();
+    assert_eq!(uploads_in_next_frame(&mut app), 0, "nothing changed");
+    app.world_mut()
+        .get_mut::<crate::PhongLightCookie>(light)
+        .unwrap()
+        .red_only = true;
+    assert_eq!(
+        uploads_in_next_frame(&mut app),
+        1,
+        "the cookie's record changed: uploaded"
+    );
 }
