@@ -243,14 +243,12 @@ impl Checker {
             &mut cascades.first_far_bound,
             limits::CASCADE_DISTANCE,
         );
-        if cascades.first_far_bound > cascades.max_distance {
-            self.replace(
-                "cascades.first_far_bound",
-                format!("{:?}", cascades.first_far_bound),
-                format!("{:?} (at most max_distance)", cascades.max_distance),
-            );
-            cascades.first_far_bound = cascades.max_distance;
-        }
+        self.at_most(
+            "cascades.first_far_bound",
+            &mut cascades.first_far_bound,
+            ("max_distance", cascades.max_distance),
+            "one cascade",
+        );
         self.scalar(
             "cascades.overlap",
             &mut cascades.overlap,
@@ -263,6 +261,25 @@ impl Checker {
         self.scalar("decay.constant", &mut decay.constant, limits::DECAY);
         self.scalar("decay.linear", &mut decay.linear, limits::DECAY);
         self.scalar("decay.quadratic", &mut decay.quadratic, limits::DECAY);
+    }
+
+    /// Brings `value` (field `field`) down to `bound`, the value of another field `(name,
+    /// value)`, where it is above it, reporting the replacement and what it means.
+    pub(crate) fn at_most(
+        &mut self,
+        field: &'static str,
+        value: &mut f32,
+        (bound_field, bound): (&str, f32),
+        meaning: &str,
+    ) {
+        if *value > bound {
+            self.replace(
+                field,
+                format!("{value} (> {bound_field})"),
+                format!("{bound} (= {bound_field}: {meaning})"),
+            );
+            *value = bound;
+        }
     }
 
     /// A positive range, or `None` (infinity is taken as `None` without a warning).

@@ -85,12 +85,11 @@ impl PhongLightKind for PhongSpotLight {
 fn validate_angles(checker: &mut Checker, light: &mut PhongSpotLight) {
     checker.scalar("inner_angle", &mut light.inner_angle, limits::SPOT_ANGLE);
     checker.scalar("outer_angle", &mut light.outer_angle, limits::SPOT_ANGLE);
-    if light.inner_angle > light.outer_angle {
-        checker.replace(
-            "inner_angle",
-            format!("{} (> outer_angle)", light.inner_angle),
-            format!("{} (= outer_angle: a hard edge)", light.outer_angle),
-        );
-        light.inner_angle = light.outer_angle;
-    }
+    let outer = light.outer_angle;
+    checker.at_most(
+        "inner_angle",
+        &mut light.inner_angle,
+        ("outer_angle", outer),
+        "a hard edge",
+    );
 }
