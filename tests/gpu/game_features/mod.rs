@@ -8,6 +8,7 @@ mod double_sided;
 mod faces;
 mod fog;
 mod hdr;
+mod motion_vectors;
 mod msaa;
 mod prepasses;
 mod ssao;
