@@ -37,6 +37,20 @@ type ProbedMaterial = ExtendedMaterial<PhongMaterial, MotionProbe>;
 /// projections.
 #[test]
 fn a_moved_mesh_writes_its_screen_motion() {
+    assert_screen_motion(0.0);
+}
+
+/// The same plane displaced toward the camera by 0.5 (a displacement map of one texel of 1,
+/// scale 0.5): its previous position is displaced as its current one, so it moves on screen
+/// as a plane at depth `d − 0.5` does.
+#[test]
+fn a_moved_displaced_mesh_writes_the_motion_of_its_displaced_surface() {
+    assert_screen_motion(0.5);
+}
+
+/// Renders the plane of [`a_moved_mesh_writes_its_screen_motion`] displaced toward the
+/// camera by `displacement` (none for 0), moves it, and checks the motion of every fragment.
+fn assert_screen_motion(displacement: f32) {
     let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
         app.add_phong_material::<ProbedMaterial>();
         let shader = Shader::from_wesl(
@@ -52,10 +66,19 @@ fn a_moved_mesh_writes_its_screen_motion() {
         .camera_mut()
         .insert((DepthPrepass, MotionVectorPrepass));
     let world = harness.world_mut();
+    let displacement_map = (displacement != 0.0).then(|| {
+        world
+            .resource_mut::<Assets<Image>>()
+            .add(crate::texture_maps::float_map(|_, _| [1.0; 4]))
+    });
     let material = world
         .resource_mut::<Assets<ProbedMaterial>>()
         .add(ProbedMaterial {
-            base: PhongMaterial::default(),
+            base: PhongMaterial {
+                displacement_map,
+                displacement_scale: displacement,
+                ..default()
+            },
             extension: MotionProbe {},
         });
     let facing = Dir3::new(CAMERA_POSITION).unwrap();
@@ -89,7 +112,7 @@ fn a_moved_mesh_writes_its_screen_motion() {
         .map(|camera| camera.clip_from_view())
         .find(|matrix| *matrix != Mat4::ZERO)
         .expect("the harness camera's projection");
-    let depth = CAMERA_POSITION.length();
+    let depth = CAMERA_POSITION.length() - displacement;
     let expected = Vec2::new(
         0.5 * clip_from_view.x_axis.x * shift.x,
         -0.5 * clip_from_view.y_axis.y * shift.y,
