@@ -1,8 +1,7 @@
 //! The influence radius against the fall-off it inverts: its boundaries, the exact root it
-//! rounds up, and the light past it in the reference model.
+//! rounds up, and the light past it under SPEC.md's fall-off, written out here.
 
 use super::reach::influence_radius;
-use crate::reference;
 
 /// The boundaries of `influence_radius`: a light exactly at ε reaches ε out to where its
 /// fall-off begins (1 unit for `1/d²`), one below ε reaches nowhere, and so does a NaN
@@ -49,8 +48,11 @@ fn the_common_opengl_decay_falls_to_one_256th_at_about_88_units() {
     assert!((radius - 88.0).abs() < 0.5, "{radius}");
 }
 
+/// `I · min(1, 1 / (c + l·d + q·d²))` (SPEC.md's fall-off, without a range), in `f64`.
 fn intensity_at(decay: [f32; 3], intensity: f32, distance: f32) -> f64 {
-    f64::from(intensity) * reference::attenuation(f64::from(distance), decay.map(f64::from), None)
+    let [constant, linear, quadratic] = decay.map(f64::from);
+    let d = f64::from(distance);
+    f64::from(intensity) * (1.0 / (constant + linear * d + quadratic * d * d)).min(1.0)
 }
 
 #[test]
