@@ -9,6 +9,7 @@
 //! as an error of its whole contribution, far above the tolerance.
 
 use crate::frames::{SIZE, TOLERANCE, spawn_objects};
+use crate::probes::harness_with_probe;
 use bevy::{
     asset::uuid_handle,
     camera::{RenderTarget, primitives::Frustum},
@@ -209,15 +210,11 @@ type ProbedMaterial = ExtendedMaterial<PhongMaterial, ViewProbe>;
 
 #[test]
 fn the_shader_finds_its_own_views_clusters() {
-    let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
-        app.add_phong_material::<ProbedMaterial>();
-        let shader =
-            Shader::from_wesl(include_str!("view_probe.wesl"), "tests/gpu/view_probe.wesl");
-        app.world_mut()
-            .resource_mut::<Assets<Shader>>()
-            .insert(VIEW_PROBE_SHADER.id(), shader)
-            .expect("the probe shader's handle is free");
-    });
+    let mut harness = harness_with_probe::<ProbedMaterial>(
+        &VIEW_PROBE_SHADER,
+        include_str!("view_probe.wesl"),
+        "tests/gpu/view_probe.wesl",
+    );
     let world = harness.world_mut();
     let mesh = world
         .resource_mut::<Assets<Mesh>>()

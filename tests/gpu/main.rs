@@ -89,6 +89,7 @@ mod morphs;
 mod mutations;
 mod penumbra;
 mod per_vertex;
+mod probes;
 #[path = "../fuzz/random.rs"]
 mod random;
 mod scene_files;

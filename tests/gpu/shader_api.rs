@@ -3,7 +3,7 @@
 //! functions the material is drawn with (`tests/gpu/shader_api_probe.wesl`): a plane under a
 //! sphere, lit by one directional light that casts shadows.
 
-use crate::frames::SIZE;
+use crate::probes::harness_with_probe;
 use bevy::{
     asset::uuid_handle,
     pbr::{ExtendedMaterial, MaterialExtension},
@@ -12,7 +12,6 @@ use bevy::{
     shader::ShaderRef,
 };
 use bevy_phong::prelude::*;
-use bevy_phong_headless::Harness;
 
 /// The extension whose fragment shader draws the probe.
 #[derive(Asset, AsBindGroup, Reflect, Clone, Debug, Default)]
@@ -35,17 +34,11 @@ type ProbedMaterial = ExtendedMaterial<PhongMaterial, ApiProbe>;
 /// the two sum the same terms, in orders that may round differently).
 #[test]
 fn light_visibility_and_phong_shade_agree_with_the_drawn_path() {
-    let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
-        app.add_phong_material::<ProbedMaterial>();
-        let shader = Shader::from_wesl(
-            include_str!("shader_api_probe.wesl"),
-            "tests/gpu/shader_api_probe.wesl",
-        );
-        app.world_mut()
-            .resource_mut::<Assets<Shader>>()
-            .insert(API_PROBE_SHADER.id(), shader)
-            .expect("the probe shader's handle is free");
-    });
+    let mut harness = harness_with_probe::<ProbedMaterial>(
+        &API_PROBE_SHADER,
+        include_str!("shader_api_probe.wesl"),
+        "tests/gpu/shader_api_probe.wesl",
+    );
     let world = harness.world_mut();
     let material = world
         .resource_mut::<Assets<ProbedMaterial>>()

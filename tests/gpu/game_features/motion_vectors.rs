@@ -2,7 +2,7 @@
 //! prepass writes each fragment's screen motion since the last frame, read back in the main
 //! pass by a probe (`motion_probe.wesl`) as Bevy's own passes read it.
 
-use crate::frames::SIZE;
+use crate::probes::harness_with_probe;
 use bevy::{
     asset::uuid_handle,
     core_pipeline::prepass::{DepthPrepass, MotionVectorPrepass},
@@ -12,7 +12,7 @@ use bevy::{
     shader::ShaderRef,
 };
 use bevy_phong::prelude::*;
-use bevy_phong_headless::{CAMERA_POSITION, Harness};
+use bevy_phong_headless::CAMERA_POSITION;
 
 /// The extension whose fragment shader shows the motion vector under it.
 #[derive(Asset, AsBindGroup, Reflect, Clone, Debug, Default)]
@@ -51,17 +51,11 @@ fn a_moved_displaced_mesh_writes_the_motion_of_its_displaced_surface() {
 /// Renders the plane of [`a_moved_mesh_writes_its_screen_motion`] displaced toward the
 /// camera by `displacement` (none for 0), moves it, and checks the motion of every fragment.
 fn assert_screen_motion(displacement: f32) {
-    let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
-        app.add_phong_material::<ProbedMaterial>();
-        let shader = Shader::from_wesl(
-            include_str!("motion_probe.wesl"),
-            "tests/gpu/game_features/motion_probe.wesl",
-        );
-        app.world_mut()
-            .resource_mut::<Assets<Shader>>()
-            .insert(MOTION_PROBE_SHADER.id(), shader)
-            .expect("the probe shader's handle is free");
-    });
+    let mut harness = harness_with_probe::<ProbedMaterial>(
+        &MOTION_PROBE_SHADER,
+        include_str!("motion_probe.wesl"),
+        "tests/gpu/game_features/motion_probe.wesl",
+    );
     harness
         .camera_mut()
         .insert((DepthPrepass, MotionVectorPrepass));
