@@ -36,6 +36,8 @@ pub struct PhongLightBuffer {
     buffer: LightBuffer,
     records: Vec<GpuLight>,
     header: GpuLightsHeader,
+    /// What the last gather found of each local kind, kept for its allocation.
+    pushed: Vec<Pushed>,
     /// The local lights, while they are put in order (see [`order_by_reach`]).
     scratch: Vec<GpuLight>,
     /// The per-light ε of the last gather (`NaN` before the first).
@@ -52,6 +54,7 @@ impl Default for PhongLightBuffer {
             buffer: LightBuffer::new(PHONG_LIGHT_BUFFER),
             records: Vec::new(),
             header: GpuLightsHeader::default(),
+            pushed: Vec::new(),
             scratch: Vec::new(),
             per_light_epsilon: f32::NAN,
             caches: BuiltInCaches::default(),
@@ -173,7 +176,7 @@ struct Pusher<'a> {
     /// How many lights reach everywhere.
     directional: u32,
     /// What was found of each local kind.
-    pushed: Vec<Pushed>,
+    pushed: &'a mut Vec<Pushed>,
 }
 
 impl BuiltInVisitor for Pusher<'_> {
@@ -396,7 +399,7 @@ impl PhongLightBuffer {
             epsilon: self.per_light_epsilon,
             clusters: culling.clusters,
             directional: 0,
-            pushed: Vec::new(),
+            pushed: &mut self.pushed,
         };
         lights.visit_everywhere(&mut pusher);
         // The local lights, kind by kind, written once in place. ε bounds the sum of what
@@ -417,13 +420,13 @@ impl PhongLightBuffer {
             }
             pusher.epsilon = per_light_epsilon;
         }
-        let (directional, pushed) = (pusher.directional, pusher.pushed);
+        let directional = pusher.directional;
         self.per_light_epsilon = pusher.epsilon;
         let clustered = |light: &GpuLight| clustered(culling, light);
         let [local, clustered_local] = order_by_reach(
             &mut self.records,
             first_local,
-            &pushed,
+            &self.pushed,
             &mut self.scratch,
             clustered,
         );
