@@ -15,6 +15,7 @@ use crate::texture_maps::{TEXELS, color_map, float_map, normal_map, spawn_map_li
 use bevy::{math::Affine2, prelude::*};
 use bevy_phong::prelude::*;
 use bevy_phong_headless::Harness;
+use std::collections::HashSet;
 
 /// Lit pixels each scene must show at least: a sphere of radius 1.3 covers about 1,900.
 const LIT_PIXELS: usize = 1_000;
@@ -317,11 +318,15 @@ fn scenes() -> Vec<(&'static str, Scene)> {
     ]
 }
 
+/// The scenes share one app, as `render_scene` would render one scene after another: each
+/// scene's entities and hemisphere light are taken out before the next is spawned, so that
+/// each comparison sees its own scene (the pipelines the scenes share compile once).
 #[test]
 fn the_self_check_knows_every_material_feature_and_light() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    spawn_map_lights(harness.world_mut());
+    let before: HashSet<Entity> = entities(harness.world_mut());
     for (name, scene) in scenes() {
-        let mut harness = Harness::new(SIZE, SIZE);
-        spawn_map_lights(harness.world_mut());
         scene(harness.world_mut());
         harness.settle();
         let rendered = harness.render_next_frame();
@@ -333,7 +338,20 @@ fn the_self_check_knows_every_material_feature_and_light() {
             comparison.lit_pixels
         );
         comparison.assert_mostly_judged(name);
+        let world = harness.world_mut();
+        for entity in entities(world).difference(&before) {
+            world.despawn(*entity);
+        }
+        world.remove_resource::<PhongHemisphereLight>();
     }
+}
+
+/// The meshes and spot lights of `world`: what a scene spawns.
+fn entities(world: &mut World) -> HashSet<Entity> {
+    world
+        .query_filtered::<Entity, Or<(With<Mesh3d>, With<PhongSpotLight>)>>()
+        .iter(world)
+        .collect()
 }
 
 /// A comparison that judged most of the frame but next to nothing of one object fails: a
