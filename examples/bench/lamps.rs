@@ -6,7 +6,7 @@
 
 use crate::scene::{SHADOW_MAP_SIZE, Scene, Shading, scatter};
 use crate::timing::{Frames, median_frame_time};
-use crate::{alternating_medians, ms, write};
+use crate::{alternating_medians_of, ms, write};
 use bevy::{
     asset::RenderAssetUsages,
     prelude::*,
@@ -191,22 +191,29 @@ pub fn spawn_lamps(world: &mut World, lamps: Lamps, shading: Shading) {
     }
 }
 
-/// The lamps' table: each scene with [`FAR_LAMPS`] far lamps beside the same without them,
-/// Phong, and `StandardMaterial` beside it; the rows take turns over `rounds` rounds.
+/// The lamps' scenes, each by its cookies and shadows: the table's rows.
+pub const KINDS: [(bool, LampShadows); 5] = [
+    (false, LampShadows::Off),
+    (true, LampShadows::Off),
+    (false, LampShadows::HalfNear),
+    (true, LampShadows::HalfNear),
+    (false, LampShadows::NearAndFar),
+];
+
+/// The row `--quick` measures: cookies and shadows both.
+pub const QUICK_KINDS: [(bool, LampShadows); 1] = [(true, LampShadows::HalfNear)];
+
+/// The lamps' table: each scene of `kinds` with [`FAR_LAMPS`] far lamps beside the same
+/// without them, Phong, and `StandardMaterial` beside it; the rows take turns over `rounds`
+/// rounds.
 pub fn table(
     size: u32,
     rounds: usize,
     frames: Frames,
     culling: PhongLightCulling,
+    kinds: &[(bool, LampShadows)],
     directory: &Path,
 ) {
-    let kinds = [
-        (false, LampShadows::Off),
-        (true, LampShadows::Off),
-        (false, LampShadows::HalfNear),
-        (true, LampShadows::HalfNear),
-        (false, LampShadows::NearAndFar),
-    ];
     let phong = Shading::Phong(Some(SpecularModel::Phong));
     // Per kind: Phong without far lamps, Phong with them, Standard with them.
     let columns = [
@@ -215,7 +222,7 @@ pub fn table(
         (Shading::Standard, FAR_LAMPS),
     ];
     let mut csv = String::from("scene,size,shading,round,median_ms\n");
-    let times: [f64; 15] = alternating_medians(rounds, |row, round| {
+    let times = alternating_medians_of(kinds.len() * 3, rounds, |row, round| {
         let ((cookies, shadows), (shading, far)) = (kinds[row / 3], columns[row % 3]);
         let lamps = Lamps {
             far,

@@ -73,6 +73,8 @@ use std::{fmt::Write as _, path::Path, time::Duration};
 use timing::{Frames, median_frame_time, median_frame_time_and_picture};
 
 struct Options {
+    /// `--quick`: a smoke run of every table, each over a few of its rows, which CI runs.
+    quick: bool,
     variants: bool,
     /// The tables to run.
     tables: Tables,
@@ -174,6 +176,7 @@ impl Options {
     fn defaults(quick: bool) -> Self {
         if quick {
             return Self {
+                quick,
                 variants: true,
                 tables: Tables::ALL,
                 one_row: false,
@@ -195,6 +198,7 @@ impl Options {
             };
         }
         Self {
+            quick,
             variants: true,
             tables: Tables::ALL,
             one_row: false,
@@ -295,6 +299,14 @@ struct Variant {
     shading: Shading,
     culling: PhongLightCulling,
 }
+
+/// The variants `--quick` measures: one of each kind of shading and culling.
+const QUICK_VARIANTS: [&str; 4] = [
+    "ranges: Phong, no clusters",
+    "ranges: default (clusters, eps=1/1024)",
+    "ranges: per vertex, fine floor",
+    "no ranges: clusters, eps=1/64",
+];
 
 fn variants() -> Vec<Variant> {
     let variant = |name: &str, ranged, shading, epsilon: f32, clusters| Variant {
@@ -438,6 +450,11 @@ fn main() {
             options.rounds.min(3),
             options.frames,
             options.culling,
+            if options.quick {
+                &lamps::QUICK_KINDS
+            } else {
+                &lamps::KINDS
+            },
             directory,
         );
     }
@@ -448,18 +465,32 @@ fn main() {
 /// `measure(row, round)` gives one measurement in ms.
 fn alternating_medians<const ROWS: usize>(
     rounds: usize,
-    mut measure: impl FnMut(usize, usize) -> f64,
+    measure: impl FnMut(usize, usize) -> f64,
 ) -> [f64; ROWS] {
-    let mut times = [const { Vec::new() }; ROWS];
+    alternating_medians_of(ROWS, rounds, measure)
+        .try_into()
+        .expect("one median per row")
+}
+
+/// [`alternating_medians`] of a number of rows known at run time.
+fn alternating_medians_of(
+    rows: usize,
+    rounds: usize,
+    mut measure: impl FnMut(usize, usize) -> f64,
+) -> Vec<f64> {
+    let mut times = vec![Vec::new(); rows];
     for round in 0..rounds {
         for (row, row_times) in times.iter_mut().enumerate() {
             row_times.push(measure(row, round));
         }
     }
-    times.map(|mut times: Vec<f64>| {
-        times.sort_by(f64::total_cmp);
-        times[times.len() / 2]
-    })
+    times
+        .into_iter()
+        .map(|mut times: Vec<f64>| {
+            times.sort_by(f64::total_cmp);
+            times[times.len() / 2]
+        })
+        .collect()
 }
 
 /// The scene data in storage buffers beside the data texture of devices without them
@@ -737,7 +768,10 @@ fn time_against_error(options: &Options, directory: &Path) {
     );
     let mut csv = String::from("variant,median_ms,max_error,p95_error\n");
     let mut series = Vec::new();
-    for variant in variants() {
+    let variants = variants()
+        .into_iter()
+        .filter(|variant| !options.quick || QUICK_VARIANTS.contains(&variant.name.as_str()));
+    for variant in variants {
         let scene = if variant.ranged {
             Scene::Field { lights }
         } else {
