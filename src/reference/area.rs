@@ -1,0 +1,166 @@
+//! Area lights (docs/design/area-lights.md): a rectangle or a disk that emits from each point of
+//! its area, integrated over that area by adaptive quadrature ([`super::quadrature`]), to
+//! within [`RELATIVE_TOLERANCE`] of the result. No closed form enters: this is what the
+//! shader's closed forms and fits are measured against.
+//!
+//! Each area element `dA` at `y` lights the surface point `P` as a point light of color
+//! `color / |S|` (`|S|` the light's area) would, times the emission's cosine
+//! `e = max(cos θ_y, 0)` (both sides: `|cos θ_y|`) and the inverse square `1 / r²`
+//! (`r = |y − P|`, `cos θ_y` between the light's facing and `P − y`): the whole light seen
+//! face on from far away is a point light of `color` with the inverse-square fall-off.
+//! Seen from `P`, `e · dA / r²` is the solid angle `dω` the element fills, so the diffuse
+//! term is `color / |S| ⊙ k_d · ∫ max(N·ω, 0) dω` over the light's solid angle.
+
+use super::quadrature::integrate_2d;
+use super::{Material, SurfacePoint, attenuation, phong_light};
+use bevy::math::DVec3;
+use std::f64::consts::TAU;
+
+/// The quadrature's tolerance, relative to the light's largest channel at the point.
+pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// The tolerance's floor, relative to the light's color per unit area.
+const ABSOLUTE_FLOOR: f64 = 1e-14;
+
+/// An area light's shape, in its own plane (its local X and Y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AreaShape {
+    /// A rectangle of `width` along local X and `height` along local Y, world units,
+    /// centered on the light's position.
+    Rect { width: f64, height: f64 },
+    /// A disk of `radius`, world units, centered on the light's position.
+    Disk { radius: f64 },
+}
+
+impl AreaShape {
+    /// `|S|`, world units squared.
+    pub fn area(self) -> f64 {
+        match self {
+            Self::Rect { width, height } => width * height,
+            Self::Disk { radius } => std::f64::consts::PI * radius * radius,
+        }
+    }
+
+    /// The point of the shape nearest `(x, y)` of its plane, in the same coordinates.
+    pub fn nearest_point(self, x: f64, y: f64) -> (f64, f64) {
+        match self {
+            Self::Rect { width, height } => (
+                x.clamp(-0.5 * width, 0.5 * width),
+                y.clamp(-0.5 * height, 0.5 * height),
+            ),
+            Self::Disk { radius } => {
+                let length = x.hypot(y);
+                if length <= radius {
+                    (x, y)
+                } else {
+                    (x * radius / length, y * radius / length)
+                }
+            }
+        }
+    }
+}
+
+/// An area light in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaLight {
+    /// The shape's center.
+    pub position: DVec3,
+    /// The light's local X and Y, unit and perpendicular. It faces along local −Z,
+    /// `up × right`, as every light of the crate points.
+    pub right: DVec3,
+    pub up: DVec3,
+    pub shape: AreaShape,
+    /// Whether it emits from its back face too.
+    pub two_sided: bool,
+    /// The whole light's diffuse and specular colors, linear RGB (see the module docs).
+    pub color: DVec3,
+    pub specular: DVec3,
+    /// `(constant, linear, quadratic)` and the range, at the distance from the surface point
+    /// to the light's nearest point ([`attenuation`]).
+    pub decay: [f64; 3],
+    pub range: Option<f64>,
+}
+
+impl AreaLight {
+    /// The direction the light faces (its local −Z).
+    pub fn facing(&self) -> DVec3 {
+        self.up.cross(self.right)
+    }
+
+    /// The world point at `(x, y)` of the light's plane.
+    pub fn point(&self, x: f64, y: f64) -> DVec3 {
+        self.position + x * self.right + y * self.up
+    }
+
+    /// The distance from `point` to the light's nearest point.
+    pub fn distance(&self, point: DVec3) -> f64 {
+        let offset = point - self.position;
+        let (x, y) = self
+            .shape
+            .nearest_point(offset.dot(self.right), offset.dot(self.up));
+        (point - self.point(x, y)).length()
+    }
+
+    /// The emission's weight toward `to_surface` (unit, from the light): the cosine with the
+    /// facing, its absolute value for a two-sided light, 0 behind a one-sided one.
+    pub fn emission(&self, to_surface: DVec3) -> f64 {
+        let cosine = self.facing().dot(to_surface);
+        if self.two_sided {
+            cosine.abs()
+        } else {
+            cosine.max(0.0)
+        }
+    }
+}
+
+/// The light's term at `surface`: each area element's `phong_light` (the material's diffuse
+/// and specular terms toward it) weighed by its emission and inverse square, integrated over
+/// the area; times the fall-off at the light's nearest point.
+pub fn area_light_contribution(
+    surface: &SurfacePoint,
+    material: &Material,
+    light: &AreaLight,
+) -> DVec3 {
+    let fall_off = attenuation(light.distance(surface.position), light.decay, light.range);
+    let area = light.shape.area();
+    if fall_off <= 0.0 || area.is_nan() || area <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let (color, specular) = (light.color / area, light.specular / area);
+    let element = |x: f64, y: f64| -> DVec3 {
+        let offset = light.point(x, y) - surface.position;
+        let distance_squared = offset.length_squared();
+        if distance_squared <= super::MIN_LENGTH_SQUARED {
+            return DVec3::ZERO;
+        }
+        let to_light = offset / distance_squared.sqrt();
+        let weight = light.emission(-to_light) / distance_squared;
+        if weight == 0.0 {
+            return DVec3::ZERO;
+        }
+        weight * phong_light(surface, material, to_light, color, specular)
+    };
+    // A first pass at a loose tolerance gives the scale the tolerance is relative to.
+    let integral = |tolerance: f64| -> DVec3 {
+        match light.shape {
+            AreaShape::Rect { width, height } => integrate_2d(
+                &mut |x, y| element(x, y),
+                (-0.5 * width, 0.5 * width),
+                &|_| (-0.5 * height, 0.5 * height),
+                tolerance,
+            ),
+            AreaShape::Disk { radius } => integrate_2d(
+                &mut |angle, r| r * element(r * angle.cos(), r * angle.sin()),
+                (0.0, TAU),
+                &|_| (0.0, radius),
+                tolerance,
+            ),
+        }
+    };
+    let brightest = color.max(specular).max_element();
+    let scale = integral(1e-3 * brightest);
+    // Below ABSOLUTE_FLOOR of the light's color per unit area no term matters; the floor
+    // keeps a point the light barely reaches from being halved down to the last bit.
+    let tolerance = (RELATIVE_TOLERANCE * scale.max_element()).max(ABSOLUTE_FLOOR * brightest);
+    fall_off * integral(tolerance)
+}

@@ -1,0 +1,356 @@
+//! The closed forms of the area lights (docs/design/area-lights.md), in `f64`, checked against the quadrature of
+//! the reference model ([`super::area`]) in `area_tests`.
+//!
+//! A light seen from the surface point `P` is a spherical polygon: its corners `y − P`,
+//! clipped to the half-spaces the integrand lives in (the surface's horizon `N·ω ≥ 0`, and a
+//! lobe's own hemisphere `w·ω ≥ 0`), then normalized. Over such a polygon `A`:
+//!
+//! - the irradiance moment `∫_A N·ω dω` is Lambert's formula `½ Σ Θ_i (N·n_i)` (`Θ_i` the
+//!   arc of edge `i`, `n_i` its plane's unit normal toward the inside);
+//! - the lobe moment `τⁿ(w) = ∫_A (w·ω)ⁿ dω` for an integer `n` follows Arvo's recurrence
+//!   (Arvo 1995, "Applications of irradiance tensors"):
+//!   `τⁿ = ((n − 1)·τⁿ⁻² + Σ_i (w·n_i)·Eᵢⁿ⁻¹) / (n + 1)` from `τ⁰` (the solid angle) and
+//!   `τ¹` (Lambert's), with the edge integrals `Eᵢᵏ = ∫₀^Θᵢ (a cos t + b sin t)ᵏ dt`
+//!   (`a = w·vᵢ`, `b = w·vᵢ'`, `vᵢ'` the unit vector of the edge's plane perpendicular to
+//!   `vᵢ` toward `vᵢ₊₁`) by their own recurrence
+//!   `Eᵏ = ((k − 1)(a² + b²)·Eᵏ⁻² − [qᵏ⁻¹q']₀^Θ) / k`, `q = a cos t + b sin t`. The cost is
+//!   `n/2` steps per edge.
+//!
+//! The recurrence of `τⁿ` comes from the divergence theorem on the sphere applied to the
+//! field `(w·ω)ᵏ (w − (w·ω) ω)`, whose surface divergence is
+//! `k (w·ω)ᵏ⁻¹ − (k + 2)(w·ω)ᵏ⁺¹`.
+
+use super::area::{AreaLight, AreaShape};
+use super::{Material, SurfacePoint, attenuation, normalize_or_zero, power, reflect};
+use crate::SpecularModel;
+use bevy::math::DVec3;
+use std::f64::consts::PI;
+
+/// The part of the planar polygon `corners` (relative to the surface point) where
+/// `normal · q ≥ 0`, by Sutherland–Hodgman: empty where nothing is on that side.
+pub fn clipped(corners: &[DVec3], normal: DVec3) -> Vec<DVec3> {
+    let mut kept = Vec::with_capacity(corners.len() + 1);
+    for (index, &current) in corners.iter().enumerate() {
+        let next = corners[(index + 1) % corners.len()];
+        let (here, there) = (normal.dot(current), normal.dot(next));
+        if here >= 0.0 {
+            kept.push(current);
+        }
+        if (here >= 0.0) != (there >= 0.0) {
+            let t = here / (here - there);
+            kept.push(current + t * (next - current));
+        }
+    }
+    kept
+}
+
+/// The spherical polygon of `corners`: each normalized.
+pub fn on_sphere(corners: &[DVec3]) -> Vec<DVec3> {
+    corners.iter().map(|corner| corner.normalize()).collect()
+}
+
+/// One edge of a spherical polygon: its arc and the unit vectors spanning its plane.
+struct Edge {
+    /// `vᵢ`.
+    start: DVec3,
+    /// `vᵢ'`: in the edge's plane, perpendicular to `vᵢ`, toward `vᵢ₊₁`.
+    toward: DVec3,
+    /// `Θᵢ`, radians.
+    arc: f64,
+    /// `nᵢ`: the plane's unit normal, toward the polygon's inside.
+    inward: DVec3,
+}
+
+/// The edges of the spherical polygon `vertices` (at least three), their normals turned
+/// toward its inside.
+fn edges(vertices: &[DVec3]) -> Vec<Edge> {
+    let count = vertices.len();
+    let mut edges: Vec<Edge> = (0..count)
+        .filter_map(|index| {
+            let (start, end) = (vertices[index], vertices[(index + 1) % count]);
+            let normal = start.cross(end);
+            let length = normal.length();
+            if length <= 1e-300 {
+                return None;
+            }
+            let arc = length.atan2(start.dot(end));
+            let toward = (end - start.dot(end) * start).normalize();
+            Some(Edge {
+                start,
+                toward,
+                arc,
+                inward: normal / length,
+            })
+        })
+        .collect();
+    // The normals point inside where the polygon winds counterclockwise seen from its
+    // center; the solid angle's sign says which way it winds.
+    if signed_solid_angle(vertices) < 0.0 {
+        for edge in &mut edges {
+            edge.inward = -edge.inward;
+        }
+    }
+    edges
+}
+
+/// The solid angle of the spherical polygon `vertices`, signed by its winding: the sum of its
+/// fan's triangles by Van Oosterom and Strackee's formula.
+fn signed_solid_angle(vertices: &[DVec3]) -> f64 {
+    let first = vertices[0];
+    vertices[1..]
+        .windows(2)
+        .map(|pair| {
+            let (b, c) = (pair[0], pair[1]);
+            let numerator = first.dot(b.cross(c));
+            let denominator = 1.0 + first.dot(b) + b.dot(c) + c.dot(first);
+            2.0 * numerator.atan2(denominator)
+        })
+        .sum()
+}
+
+/// `∫_A N·ω dω` over the spherical polygon `vertices` (already within `N`'s hemisphere):
+/// Lambert's formula.
+pub fn irradiance(vertices: &[DVec3], normal: DVec3) -> f64 {
+    lobe_moment(vertices, normal, 1)
+}
+
+/// `τⁿ(w) = ∫_A (w·ω)ⁿ dω` over the spherical polygon `vertices`, by Arvo's recurrence.
+pub fn lobe_moment(vertices: &[DVec3], axis: DVec3, n: u32) -> f64 {
+    if vertices.len() < 3 {
+        return 0.0;
+    }
+    let edges = edges(vertices);
+    let weights: Vec<f64> = edges.iter().map(|edge| axis.dot(edge.inward)).collect();
+    // τ at the parity of n, and each edge's integral at the other parity, raised together.
+    let (mut tau, mut degree) = if n.is_multiple_of(2) {
+        (signed_solid_angle(vertices).abs(), 0)
+    } else {
+        let lambert: f64 = edges
+            .iter()
+            .zip(&weights)
+            .map(|(edge, weight)| weight * edge.arc)
+            .sum();
+        (0.5 * lambert, 1)
+    };
+    let mut edge_integrals: Vec<EdgeIntegral> = edges
+        .iter()
+        .map(|edge| EdgeIntegral::new(edge, axis, 1 - degree))
+        .collect();
+    while degree < n {
+        degree += 2;
+        // Eᵢ at degree − 1.
+        for integral in &mut edge_integrals {
+            integral.raise_to(degree - 1);
+        }
+        let boundary: f64 = edge_integrals
+            .iter()
+            .zip(&weights)
+            .map(|(integral, weight)| weight * integral.value)
+            .sum();
+        tau = (f64::from(degree - 1) * tau + boundary) / f64::from(degree + 1);
+    }
+    tau
+}
+
+/// `Eᵏ = ∫₀^Θ (a cos t + b sin t)ᵏ dt` of one edge, raised two degrees at a time.
+struct EdgeIntegral {
+    a: f64,
+    b: f64,
+    arc: f64,
+    degree: u32,
+    value: f64,
+}
+
+impl EdgeIntegral {
+    /// The integral at degree 0 or 1.
+    fn new(edge: &Edge, axis: DVec3, degree: u32) -> Self {
+        let (a, b, arc) = (axis.dot(edge.start), axis.dot(edge.toward), edge.arc);
+        let value = if degree == 0 {
+            arc
+        } else {
+            a * arc.sin() + b * (1.0 - arc.cos())
+        };
+        Self {
+            a,
+            b,
+            arc,
+            degree,
+            value,
+        }
+    }
+
+    /// Raises the integral to `degree` (of the same parity) by
+    /// `Eᵏ = ((k − 1)(a² + b²)·Eᵏ⁻² − [qᵏ⁻¹q']₀^Θ) / k`.
+    fn raise_to(&mut self, degree: u32) {
+        let (a, b) = (self.a, self.b);
+        let (sin, cos) = self.arc.sin_cos();
+        let (q_end, q_slope_end) = (a * cos + b * sin, -a * sin + b * cos);
+        while self.degree < degree {
+            let k = self.degree + 2;
+            let ends = q_end.powi(k as i32 - 1) * q_slope_end - a.powi(k as i32 - 1) * b;
+            self.value = (f64::from(k - 1) * (a * a + b * b) * self.value - ends) / f64::from(k);
+            self.degree = k;
+        }
+    }
+}
+
+/// `∫_A max(w·ω, 0)^α dω` for a non-integer `α ≥ 0` over the spherical polygon `vertices`
+/// (already within `w`'s hemisphere): the moments at the integers around `α`, interpolated
+/// geometrically (`τ^⌊α⌋ · (τ^⌈α⌉ / τ^⌊α⌋)^f`), which is exact for a light small beside the
+/// lobe (`τ^α = Ω · cos^α`).
+pub fn lobe(vertices: &[DVec3], axis: DVec3, exponent: f64) -> f64 {
+    let below = exponent.floor();
+    let fraction = exponent - below;
+    let low = lobe_moment(vertices, axis, below as u32);
+    if fraction == 0.0 || low <= 0.0 {
+        return low;
+    }
+    let high = lobe_moment(vertices, axis, below as u32 + 1);
+    low * (high / low).powf(fraction)
+}
+
+/// The solid angle of a whole lobe, `∫ max(w·ω, 0)^α dω = 2π / (α + 1)` over the sphere.
+pub fn whole_lobe(exponent: f64) -> f64 {
+    2.0 * PI / (exponent + 1.0)
+}
+
+/// How a light's highlight is integrated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Specular {
+    /// The lobe's moment over the clipped polygon ([`lobe`]).
+    Exact,
+    /// The lobe toward the light's point nearest the mirror ray, times the light's solid
+    /// angle and the whole lobe's ([`whole_lobe`]) joined harmonically.
+    RepresentativePoint,
+}
+
+/// The corners of `light` (a disk as the regular polygon of `sides` sides with its area),
+/// relative to `point`, winding counterclockwise seen from its facing side.
+pub fn corners(light: &AreaLight, point: DVec3, sides: usize) -> Vec<DVec3> {
+    let relative = |x: f64, y: f64| light.point(x, y) - point;
+    match light.shape {
+        AreaShape::Rect { width, height } => {
+            let (x, y) = (0.5 * width, 0.5 * height);
+            vec![
+                relative(-x, -y),
+                relative(x, -y),
+                relative(x, y),
+                relative(-x, y),
+            ]
+        }
+        AreaShape::Disk { radius } => {
+            let step = 2.0 * PI / sides as f64;
+            // The circumradius whose polygon has the disk's area.
+            let circumradius = radius * (step / step.sin()).sqrt();
+            (0..sides)
+                .map(|side| {
+                    let (sin, cos) = (side as f64 * step).sin_cos();
+                    relative(circumradius * cos, circumradius * sin)
+                })
+                .collect()
+        }
+    }
+}
+
+/// The light's term at `surface` by the closed forms: Lambert's diffuse and the Phong lobe
+/// around the mirror direction `R_V = 2(N·V)N − V` (a Blinn-Phong lobe of exponent `α` as the
+/// Phong lobe of `α/4`), for a material of Lambert diffuse and a smooth highlight.
+pub fn contribution(
+    surface: &SurfacePoint,
+    material: &Material,
+    light: &AreaLight,
+    specular: Specular,
+    sides: usize,
+) -> DVec3 {
+    let fall_off = attenuation(light.distance(surface.position), light.decay, light.range);
+    let area = light.shape.area();
+    let normal = normalize_or_zero(surface.normal);
+    let front = light.facing().dot(surface.position - light.position);
+    if fall_off <= 0.0 || area <= 0.0 || normal == DVec3::ZERO {
+        return DVec3::ZERO;
+    }
+    if front == 0.0 || (!light.two_sided && front < 0.0) {
+        return DVec3::ZERO;
+    }
+    let lit = clipped(&corners(light, surface.position, sides), normal);
+    let diffuse = irradiance(&on_sphere(&lit), normal);
+    let view = normalize_or_zero(surface.camera - surface.position);
+    let mirror = reflect(-view, normal);
+    let exponent = match material.specular_model {
+        SpecularModel::Phong => material.shininess,
+        _ => 0.25 * material.shininess,
+    };
+    let highlight = match specular {
+        Specular::Exact => lobe(&on_sphere(&clipped(&lit, mirror)), mirror, exponent),
+        Specular::RepresentativePoint => {
+            representative_highlight(light, surface.position, &lit, mirror, exponent)
+        }
+    };
+    let weight = material.specular * material.specular_strength;
+    fall_off
+        * (light.color / area * material.diffuse * diffuse
+            + light.specular / area * weight * highlight)
+}
+
+/// The representative point's highlight: `max(w·ω_r, 0)^α` toward the point `ω_r` of the
+/// lit part `lit` (the light's polygon above the horizon, relative to the surface point)
+/// nearest where the mirror ray `w` meets the light's plane (or, for a ray that runs away
+/// from the plane, where it heads), times `Ω·W / (Ω + W)`, `Ω` the lit part's solid angle
+/// and `W = 2π/(α + 1)` the whole lobe's: `Ω` for a light small beside the lobe, `W` for
+/// one that holds it.
+fn representative_highlight(
+    light: &AreaLight,
+    point: DVec3,
+    lit: &[DVec3],
+    mirror: DVec3,
+    exponent: f64,
+) -> f64 {
+    if lit.len() < 3 {
+        return 0.0;
+    }
+    let facing = light.facing();
+    // Relative to the surface point, as `lit`.
+    let plane = light.position - point;
+    let height = facing.dot(plane);
+    let along = facing.dot(mirror);
+    let aim = if along * height > 0.0 {
+        mirror * (height / along)
+    } else {
+        // Far along the ray, brought onto the plane.
+        let far = mirror * 1e6 * (plane.length() + 1.0);
+        far - facing * facing.dot(far - plane)
+    };
+    let toward = nearest_on_polygon(lit, aim, facing).normalize();
+    let solid_angle = signed_solid_angle(&on_sphere(lit)).abs();
+    let whole = whole_lobe(exponent);
+    power(mirror.dot(toward).max(0.0), exponent) * solid_angle * whole / (solid_angle + whole)
+}
+
+/// The point of the convex planar polygon `corners` (in the plane of normal `normal`)
+/// nearest `target` of that plane: `target` itself where it is inside.
+fn nearest_on_polygon(corners: &[DVec3], target: DVec3, normal: DVec3) -> DVec3 {
+    let count = corners.len();
+    let edge = |index: usize| (corners[index], corners[(index + 1) % count]);
+    let side = |index: usize| {
+        let (start, end) = edge(index);
+        normal.dot((end - start).cross(target - start))
+    };
+    let sides: Vec<f64> = (0..count).map(side).collect();
+    if sides.iter().all(|&s| s >= 0.0) || sides.iter().all(|&s| s <= 0.0) {
+        return target;
+    }
+    (0..count)
+        .map(|index| {
+            let (start, end) = edge(index);
+            let span = end - start;
+            let t =
+                ((target - start).dot(span) / span.length_squared().max(1e-300)).clamp(0.0, 1.0);
+            start + t * span
+        })
+        .min_by(|a, b| {
+            (*a - target)
+                .length_squared()
+                .total_cmp(&(*b - target).length_squared())
+        })
+        .unwrap_or(target)
+}
