@@ -26,8 +26,15 @@
 //! light kind, fall-off and the spot cone, "Light types" and "The equation"), `shading` (the
 //! sum and each light's term, "The equation" and "Shadows"), `stylized`, `hemisphere`,
 //! `environment`, `cookies`, `normals`, `texture_maps`, `surface_inputs`, `per_vertex` and
-//! `camera_effects` (the sections of the same names).
+//! `camera_effects` (the sections of the same names). Area lights (docs/design/area-lights.md)
+//! are in the tests' model so far: `area` integrates a rectangle's or a disk's light over its
+//! area by adaptive quadrature (`quadrature`), and `area_closed_forms` holds the closed forms
+//! measured against it.
 
+#[cfg(test)]
+mod area;
+#[cfg(test)]
+mod area_closed_forms;
 mod camera_effects;
 mod cookies;
 mod environment;
@@ -35,6 +42,8 @@ mod hemisphere;
 mod lights;
 mod normals;
 mod per_vertex;
+#[cfg(test)]
+mod quadrature;
 mod shading;
 pub(crate) mod stylized;
 mod surface;
@@ -56,6 +65,8 @@ pub use surface::{MIN_LENGTH_SQUARED, Material, SurfacePoint, normalize_or_zero}
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;
 
+#[cfg(test)]
+mod area_tests;
 #[cfg(test)]
 mod baked_light_tests;
 #[cfg(test)]
