@@ -138,6 +138,7 @@ fn load_shaders(app: &mut App) {
     if app.world().contains_resource::<Assets<Shader>>() {
         load_shader_library!(app, "shaders/types.wesl");
         load_shader_library!(app, "shaders/lighting.wesl");
+        load_shader_library!(app, "shaders/area_light.wesl");
         load_shader_library!(app, "shaders/bindings.wesl");
         load_shader_library!(app, "shaders/data_texture.wesl");
         load_shader_library!(app, "shaders/scene.wesl");

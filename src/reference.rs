@@ -26,12 +26,11 @@
 //! light kind, fall-off and the spot cone, "Light types" and "The equation"), `shading` (the
 //! sum and each light's term, "The equation" and "Shadows"), `stylized`, `hemisphere`,
 //! `environment`, `cookies`, `normals`, `texture_maps`, `surface_inputs`, `per_vertex` and
-//! `camera_effects` (the sections of the same names). Area lights (docs/design/area-lights.md)
-//! are in the tests' model so far: `area` integrates a rectangle's or a disk's light over its
-//! area by adaptive quadrature (`quadrature`), and `area_closed_forms` holds the closed forms
-//! measured against it.
+//! `camera_effects` (the sections of the same names). `area` integrates an area light
+//! (docs/design/area-lights.md) over its area by adaptive quadrature (`quadrature`); the
+//! closed forms the shader uses (`area_closed_forms`, test-only, and
+//! `shaders/area_light.wesl`) are measured against it.
 
-#[cfg(test)]
 mod area;
 #[cfg(test)]
 mod area_closed_forms;
@@ -42,13 +41,13 @@ mod hemisphere;
 mod lights;
 mod normals;
 mod per_vertex;
-#[cfg(test)]
 mod quadrature;
 mod shading;
 pub(crate) mod stylized;
 mod surface;
 mod surface_inputs;
 mod texture_maps;
+pub use area::{AreaLight, AreaShape, area_light_contribution};
 pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use cookies::{Cookie, CookieProjection, cube_face_uv};
 pub use environment::{cube_direction, environment_direction, environment_lod, with_environment};

@@ -25,11 +25,18 @@ const ABSOLUTE_FLOOR: f64 = 1e-14;
 /// An area light's shape, in its own plane (its local X and Y).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AreaShape {
-    /// A rectangle of `width` along local X and `height` along local Y, world units,
-    /// centered on the light's position.
-    Rect { width: f64, height: f64 },
-    /// A disk of `radius`, world units, centered on the light's position.
-    Disk { radius: f64 },
+    /// A rectangle centered on the light's position.
+    Rect {
+        /// Along local X, world units.
+        width: f64,
+        /// Along local Y, world units.
+        height: f64,
+    },
+    /// A disk centered on the light's position.
+    Disk {
+        /// World units.
+        radius: f64,
+    },
 }
 
 impl AreaShape {
@@ -65,19 +72,23 @@ impl AreaShape {
 pub struct AreaLight {
     /// The shape's center.
     pub position: DVec3,
-    /// The light's local X and Y, unit and perpendicular. It faces along local −Z,
-    /// `up × right`, as every light of the crate points.
+    /// The light's local X, unit.
     pub right: DVec3,
+    /// The light's local Y, unit and perpendicular to `right`. The light faces along local
+    /// −Z, `up × right`, as every light of the crate points.
     pub up: DVec3,
+    /// Its shape in its plane.
     pub shape: AreaShape,
     /// Whether it emits from its back face too.
     pub two_sided: bool,
-    /// The whole light's diffuse and specular colors, linear RGB (see the module docs).
+    /// The whole light's diffuse color, linear RGB (see the module docs).
     pub color: DVec3,
+    /// The whole light's specular color, linear RGB.
     pub specular: DVec3,
-    /// `(constant, linear, quadratic)` and the range, at the distance from the surface point
-    /// to the light's nearest point ([`attenuation`]).
+    /// `(constant, linear, quadratic)`, at the distance from the surface point to the
+    /// light's nearest point ([`attenuation`]).
     pub decay: [f64; 3],
+    /// The range, at the same distance.
     pub range: Option<f64>,
 }
 

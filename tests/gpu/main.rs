@@ -17,6 +17,8 @@
 //! - `culling`: light clusters and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
+//!   and the area lights' closed forms (`shaders/area_light.wesl`) against the reference
+//!   model's quadrature over the light's area;
 //! - `game_features`: double-sided materials, fog, HDR, bloom, tonemapping, MSAA, blending,
 //!   prepasses, SSAO and the deferred renderer, each against its own formula;
 //! - `texture_maps`: base color, specular, emissive and normal maps and alpha masks against

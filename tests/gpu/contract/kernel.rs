@@ -42,6 +42,20 @@ pub struct GpuCase {
     pub light: GpuLight,
 }
 
+/// One case of the area lights' kernel (`AreaCase` in `area_kernel.wesl`): 7 texels.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct AreaCase {
+    pub position: [f32; 3],
+    pub shininess: f32,
+    pub normal: [f32; 3],
+    pub specular_model: u32,
+    pub camera: [f32; 3],
+    pub padding: f32,
+    /// The rectangle's corners, world space, in order around it (w unused).
+    pub corners: [[f32; 4]; 4],
+}
+
 /// Pixels per row of the results target (`RESULTS_WIDTH` in `kernel.wesl`).
 const RESULTS_WIDTH: u32 = 1024;
 /// Cases per pass: 256 rows of results, and 10 · 2¹⁸ + 1 texels of cases (1,281 rows of
@@ -61,14 +75,29 @@ impl ContractKernel {
     /// material shaders are: `main` lights each case, `crate_highlight` and
     /// `naive_highlight` give the highlight factor of a directional light.
     pub fn new(entry_point: &'static str) -> Self {
+        Self::compile(
+            include_str!("kernel.wesl"),
+            "tests/gpu/contract/kernel.wesl",
+            entry_point,
+        )
+    }
+
+    /// The area lights' kernel (`area_kernel.wesl`): each [`AreaCase`]'s integrals.
+    pub fn area() -> Self {
+        Self::compile(
+            include_str!("area_kernel.wesl"),
+            "tests/gpu/contract/area_kernel.wesl",
+            "main",
+        )
+    }
+
+    /// Compiles the kernel `source` (at `path`) with its fragment `entry_point`.
+    fn compile(source: &'static str, path: &'static str, entry_point: &'static str) -> Self {
         let mut app = headless_app(|_| {});
         let shader = app
             .world_mut()
             .resource_mut::<Assets<Shader>>()
-            .add(Shader::from_wesl(
-                include_str!("kernel.wesl"),
-                "tests/gpu/contract/kernel.wesl",
-            ));
+            .add(Shader::from_wesl(source, path));
         let layout = BindGroupLayoutDescriptor::new(
             "phong_contract",
             &BindGroupLayoutEntries::single(
@@ -123,15 +152,16 @@ impl ContractKernel {
         panic!("the contract kernel did not compile within {MAX_COMPILE_FRAMES} frames");
     }
 
-    /// The lighting result (linear RGB) of every case.
-    pub fn run(&mut self, cases: &[GpuCase]) -> Vec<[f32; 3]> {
+    /// The result of every case: its lighting (linear RGB) for [`GpuCase`]s, the first
+    /// three channels of its pixel for another kernel's cases.
+    pub fn run<C: Pod>(&mut self, cases: &[C]) -> Vec<[f32; 3]> {
         cases
             .chunks(BATCH)
             .flat_map(|batch| self.run_batch(batch))
             .collect()
     }
 
-    fn run_batch(&mut self, cases: &[GpuCase]) -> Vec<[f32; 3]> {
+    fn run_batch<C: Pod>(&mut self, cases: &[C]) -> Vec<[f32; 3]> {
         let world = self.app.sub_app(RenderApp).world();
         let device = world.resource::<RenderDevice>();
         let queue = world.resource::<RenderQueue>();

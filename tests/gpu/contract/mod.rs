@@ -5,6 +5,7 @@
 //! `PHONG_CONTRACT_CASES=4000000 cargo test --test gpu contract -- --nocapture` runs the
 //! benchmark size (millions of random cases) and prints the same table.
 
+mod area;
 mod corpus;
 mod kernel;
 
