@@ -311,6 +311,8 @@ pub use crate::validation::Checker;
 pub use bevy::shape::BoundingSphere;
 
 mod gather;
+#[cfg(test)]
+mod line_light_tests;
 #[cfg(feature = "reference")]
 mod reference_lights;
 mod shadow_sources;

@@ -6,7 +6,7 @@ mod built_in;
 mod directional;
 mod gpu_light;
 #[cfg(test)]
-mod line;
+pub(crate) mod line;
 mod point;
 mod record_cache;
 mod spot;

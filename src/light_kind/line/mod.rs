@@ -1,18 +1,17 @@
 //! A line light, written as a new kind is written: this folder and one line that registers
-//! it (`PhongLightKindPlugin::<LineLight>`, in `tests.rs`). It stands for the next built-in
-//! kind: the test shows that validation, the gather into its own buffer, the clusters and
+//! it (`PhongLightKindPlugin::<LineLight>`, in `extension/line_light_tests.rs`). It stands
+//! for the next built-in kind: the test shows that validation, the gather into its own buffer, the clusters and
 //! the reference model take it with no change anywhere else. Only the tests build it.
 //!
 //! - this file: the component;
 //! - `kind.rs`: its record, reach, bounds and validation ([`PhongLightKind`]);
 //! - `reference.rs`: its light in the reference model;
-//! - `tests.rs`: the test.
+//! - its test is `extension/line_light_tests.rs`, beside the plugin that registers it (a
+//!   module of the light-kind layer does not import the extension layer above it).
 
 mod kind;
 #[cfg(feature = "reference")]
 mod reference;
-#[cfg(test)]
-mod tests;
 
 use bevy::{
     camera::visibility::Visibility, color::Color, ecs::component::Component,

@@ -2,8 +2,8 @@
 //! plugin every kind from outside `PhongPlugin` takes, is validated, gathered, clustered
 //! and in the reference model.
 
-use super::LineLight;
 use crate::extension::{PhongLightKindPlugin, reference_lights};
+use crate::light_kind::line::LineLight;
 use crate::reference::{Material, SurfacePoint};
 use crate::render::PhongLightClusters;
 use crate::test_app::{invalid_inputs, test_app};
