@@ -1,7 +1,8 @@
 //! A line light, written as a new kind is written: this folder and one line that registers
 //! it (`PhongLightKindPlugin::<LineLight>`, in `extension/line_light_tests.rs`). It stands
-//! for the next built-in kind: the test shows that validation, the gather into its own buffer, the clusters and
-//! the reference model take it with no change anywhere else. Only the tests build it.
+//! for the next built-in kind: the test shows that validation, the gather into its own
+//! buffer, the clusters and the reference model take it with no change anywhere else. Only
+//! the tests build it.
 //!
 //! - this file: the component;
 //! - `kind.rs`: its record, reach, bounds and validation ([`PhongLightKind`]);
