@@ -62,8 +62,8 @@ struct Edge {
 }
 
 /// The edges of the spherical polygon `vertices` (at least three), their normals turned
-/// toward its inside.
-fn edges(vertices: &[DVec3]) -> Vec<Edge> {
+/// toward its inside by the sign of its `signed_solid_angle`.
+fn edges(vertices: &[DVec3], signed_solid_angle: f64) -> Vec<Edge> {
     let count = vertices.len();
     let mut edges: Vec<Edge> = (0..count)
         .filter_map(|index| {
@@ -85,7 +85,7 @@ fn edges(vertices: &[DVec3]) -> Vec<Edge> {
         .collect();
     // The normals point inside where the polygon winds counterclockwise seen from its
     // center; the solid angle's sign says which way it winds.
-    if signed_solid_angle(vertices) < 0.0 {
+    if signed_solid_angle < 0.0 {
         for edge in &mut edges {
             edge.inward = -edge.inward;
         }
@@ -119,11 +119,12 @@ pub fn lobe_moment(vertices: &[DVec3], axis: DVec3, n: u32) -> f64 {
     if vertices.len() < 3 {
         return 0.0;
     }
-    let edges = edges(vertices);
+    let solid_angle = signed_solid_angle(vertices);
+    let edges = edges(vertices, solid_angle);
     let weights: Vec<f64> = edges.iter().map(|edge| axis.dot(edge.inward)).collect();
     // τ at the parity of n, and each edge's integral at the other parity, raised together.
     let (mut tau, mut degree) = if n.is_multiple_of(2) {
-        (signed_solid_angle(vertices).abs(), 0)
+        (solid_angle.abs(), 0)
     } else {
         let lambert: f64 = edges
             .iter()
