@@ -319,6 +319,8 @@ mod shadow_sources;
 mod systems;
 
 #[cfg(feature = "reference")]
+pub(crate) use reference_lights::add_reference_kind;
+#[cfg(feature = "reference")]
 pub use reference_lights::reference_lights;
 pub(crate) use systems::add_light_kind;
 
@@ -452,9 +454,7 @@ impl<L: PhongLightKind> Plugin for PhongLightKindPlugin<L> {
             .get_resource_or_init::<ExtensionClusterSlots>()
             .add_slot();
         #[cfg(feature = "reference")]
-        world
-            .get_resource_or_init::<reference_lights::ReferenceLightKinds>()
-            .add::<L>();
+        reference_lights::add_reference_kind::<L>(world);
         let epsilon_share = L::SHARES_EPSILON.then(|| {
             world
                 .get_resource_or_init::<SharedEpsilonLights>()
@@ -712,16 +712,16 @@ mod tests {
         assert_eq!((header.clustered_first, unlimited), (1, 0));
         assert!(far >= header.clustered_first && near >= header.clustered_first);
         assert_eq!(
-            header.cluster_slot, 2,
-            "after the built-in slots and the Lamp's"
+            header.cluster_slot, 3,
+            "after the built-in slots (local, area) and the Lamp's"
         );
 
         let clusters = app.world().resource::<PhongLightClusters>();
         assert_eq!(clusters.view_count(), 1);
         assert_eq!(
             clusters.cluster_words(),
-            4,
-            "slots 0 to 2 and the end of the last: one texel"
+            8,
+            "slots 0 to 3 and the end of the last: two texels"
         );
         let slot = header.cluster_slot as usize;
         let listed = clusters.first_view_entries(slot..slot + 1).concat();

@@ -193,10 +193,10 @@ pub use culling::{PhongLightCulling, PhongViewClusters};
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin, PhongStandardMaterialPlugin};
-pub use light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+pub use light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
 pub use lights::{
-    ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongLightCookie,
-    PhongShadows,
+    AreaHighlight, ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight,
+    PhongLightCookie, PhongShadows,
 };
 pub use material::{
     DiffuseMode, EnvironmentCombine, MaterialFeatures, PhongMaterial, PhongMaterialKey,
@@ -212,11 +212,12 @@ pub use validation::{InvalidInput, Owner};
 /// a game names to set up a scene.
 pub mod prelude {
     pub use crate::{
-        BevyLightExposure, ConeEdge, Decay, DiffuseMode, EnvironmentCombine, PhongAmbientLight,
-        PhongBevyLightsPlugin, PhongCascades, PhongDirectionalLight, PhongHemisphereLight,
-        PhongLightCookie, PhongLightCulling, PhongMaterial, PhongMaterialAppExt, PhongPlugin,
-        PhongPointLight, PhongSceneMaterial, PhongShadows, PhongSpotLight,
-        PhongStandardMaterialPlugin, PhongViewClusters, SpecularMode, SpecularModel,
+        AreaHighlight, BevyLightExposure, ConeEdge, Decay, DiffuseMode, EnvironmentCombine,
+        PhongAmbientLight, PhongBevyLightsPlugin, PhongCascades, PhongDirectionalLight,
+        PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
+        PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongRectLight, PhongSceneMaterial,
+        PhongShadows, PhongSpotLight, PhongStandardMaterialPlugin, PhongViewClusters, SpecularMode,
+        SpecularModel,
     };
 
     #[cfg(feature = "scene")]

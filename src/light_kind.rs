@@ -4,20 +4,24 @@
 
 mod built_in;
 mod directional;
+mod gpu_area_light;
 mod gpu_light;
 #[cfg(test)]
 pub(crate) mod line;
 mod point;
 mod record_cache;
+mod rect;
 mod spot;
 
 pub use built_in::BuiltInLights;
 pub use built_in::linear_rgb;
 pub(crate) use built_in::{BuiltInCaches, BuiltInVisitor, is_built_in, local_sphere};
 pub use directional::PhongDirectionalLight;
+pub use gpu_area_light::GpuAreaLight;
 pub use gpu_light::GpuLight;
 pub use point::PhongPointLight;
 pub(crate) use record_cache::RecordCache;
+pub use rect::PhongRectLight;
 pub use spot::PhongSpotLight;
 
 use crate::lights::PhongCookieProjection;

@@ -68,6 +68,10 @@ pub const DECAY: Limits = Limits::new(0.0, MAX_DECAY, 0.0);
 /// (an outer angle of 0 is an empty cone).
 pub const SPOT_ANGLE: Limits = Limits::new(0.0, core::f32::consts::PI, 0.0);
 
+/// An area light's `width`, `height` and `radius`, world units: `[0, 1e6]`, NaN → 0 (no
+/// area: no light).
+pub const AREA_SIZE: Limits = Limits::new(0.0, 1e6, 0.0);
+
 /// `PhongShadows::depth_bias` (world units) and `normal_bias` (texels): `[0, 1e6]`, NaN → 0.
 pub const SHADOW_BIAS: Limits = Limits::new(0.0, 1e6, 0.0);
 

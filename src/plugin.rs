@@ -3,13 +3,13 @@
 
 mod order;
 
-use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     extension::add_light_kind,
     lights::{
-        Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongLightCookie,
-        PhongShadows,
+        AreaHighlight, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight,
+        PhongLightCookie, PhongShadows,
     },
     material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
     render::{
@@ -62,6 +62,10 @@ impl Plugin for PhongPlugin {
         add_light_kind::<PhongDirectionalLight>(app);
         add_light_kind::<PhongPointLight>(app);
         add_light_kind::<PhongSpotLight>(app);
+        add_light_kind::<PhongRectLight>(app);
+        // The area lights' reference-model lights, collected as an extension kind's are.
+        #[cfg(feature = "reference")]
+        crate::extension::add_reference_kind::<PhongRectLight>(app.world_mut());
         load_shaders(app);
         add_rendering(app);
     }
@@ -99,6 +103,8 @@ fn register_types(app: &mut App) {
         .register_type::<PhongDirectionalLight>()
         .register_type::<PhongPointLight>()
         .register_type::<PhongSpotLight>()
+        .register_type::<PhongRectLight>()
+        .register_type::<AreaHighlight>()
         .register_type::<Decay>()
         .register_type::<PhongShadows>()
         .register_type::<PhongCascades>()
@@ -139,6 +145,7 @@ fn load_shaders(app: &mut App) {
         load_shader_library!(app, "shaders/types.wesl");
         load_shader_library!(app, "shaders/lighting.wesl");
         load_shader_library!(app, "shaders/area_light.wesl");
+        load_shader_library!(app, "shaders/area_lighting.wesl");
         load_shader_library!(app, "shaders/bindings.wesl");
         load_shader_library!(app, "shaders/data_texture.wesl");
         load_shader_library!(app, "shaders/scene.wesl");
@@ -254,6 +261,7 @@ mod tests {
         for path in [
             crate::PhongPointLight::type_path(),
             crate::PhongSpotLight::type_path(),
+            crate::PhongRectLight::type_path(),
             crate::PhongDirectionalLight::type_path(),
             crate::PhongAmbientLight::type_path(),
             crate::PhongLightCulling::type_path(),

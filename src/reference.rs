@@ -34,6 +34,7 @@
 mod area;
 #[cfg(test)]
 mod area_closed_forms;
+mod area_pieces;
 mod camera_effects;
 mod cookies;
 mod environment;

@@ -1,5 +1,5 @@
 //! What the scene holds that changes every Phong material's shader: whether it casts shadows
-//! this frame, whether soft ones, whether it has a hemisphere light and whether cookies
+//! this frame, whether soft ones, whether it has a hemisphere light, area lights and whether cookies
 //! ([`SceneVariants`]); and where the scene data is bound (storage buffers, or one data
 //! texture under WebGL2's limits). The gathers ([`crate::shadows`], [`crate::render`]) set the
 //! app's [`SceneVariants`] resource in the main world; each Phong material carries a copy
@@ -35,6 +35,10 @@ pub struct SceneVariants {
     /// Whether the scene has a [`PhongHemisphereLight`](crate::PhongHemisphereLight) (shader
     /// def `PHONG_HEMISPHERE`). Set by the light gather.
     pub(crate) hemisphere: bool,
+    /// Whether the light buffer holds an area light ([`PhongRectLight`](crate::PhongRectLight))
+    /// this frame (shader def `PHONG_AREA_LIGHTS`): a scene without one pays nothing for
+    /// their loop. Set by the light gather.
+    pub(crate) area_lights: bool,
     /// Whether some light has a [`PhongLightCookie`](crate::PhongLightCookie) with a record
     /// this frame (shader def `PHONG_LIGHT_COOKIES`). Set by the cookie gather.
     pub(crate) cookies: bool,

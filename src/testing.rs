@@ -9,10 +9,10 @@ pub use crate::lights::is_finite_transform;
 pub use crate::material::PhongMaterialUniform;
 pub use crate::reference::stylized::near_a_step;
 pub use crate::render::{
-    DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH, GpuClustersHeader, GpuCookie, GpuLight,
-    GpuLightsHeader, MaterialBatching, PhongCookies, PhongLightBuffer, PhongLightClusters,
-    assign_lights_to_clusters, binds_every_map, gather_cookies, gather_lights, material_batching,
-    material_map_bindings,
+    DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH, GpuAreaLight, GpuClustersHeader, GpuCookie,
+    GpuLight, GpuLightsHeader, MaterialBatching, PhongCookies, PhongLightBuffer,
+    PhongLightClusters, assign_lights_to_clusters, binds_every_map, gather_cookies, gather_lights,
+    material_batching, material_map_bindings,
 };
 pub use crate::shadows::{
     GpuShadowView, GpuShadowViewsHeader, MAX_SHADOW_VIEWS, PhongShadowViews, ShadowSlots,

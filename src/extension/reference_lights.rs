@@ -27,6 +27,15 @@ impl ReferenceLightKinds {
     }
 }
 
+/// Adds kind `L` to those [`reference_lights`] collects: every kind added with
+/// [`PhongLightKindPlugin`](super::PhongLightKindPlugin), and the built-in area lights, which
+/// the model's [`Light`](crate::reference::Light) does not hold.
+pub(crate) fn add_reference_kind<L: PhongLightKind>(world: &mut World) {
+    world
+        .get_resource_or_init::<ReferenceLightKinds>()
+        .add::<L>();
+}
+
 /// The reference lights of the lights of kind `L` that give light ([`gives_light`]), as the
 /// gather takes them.
 fn collect<L: PhongLightKind>(world: &mut World, lights: &mut Vec<Arc<dyn ReferenceLight>>) {
@@ -40,8 +49,9 @@ fn collect<L: PhongLightKind>(world: &mut World, lights: &mut Vec<Arc<dyn Refere
 }
 
 /// The reference-model lights ([`PhongLightKind::reference_light`]) of every light of the
-/// kinds added with [`PhongLightKindPlugin`](super::PhongLightKindPlugin) that give light,
-/// for [`reference::Lights::others`](crate::reference::Lights::others).
+/// kinds added with [`PhongLightKindPlugin`](super::PhongLightKindPlugin), and of the area
+/// lights ([`PhongRectLight`](crate::PhongRectLight)), that give light, for
+/// [`reference::Lights::others`](crate::reference::Lights::others).
 pub fn reference_lights(world: &mut World) -> Vec<Arc<dyn ReferenceLight>> {
     let kinds = world
         .get_resource::<ReferenceLightKinds>()

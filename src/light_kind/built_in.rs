@@ -1,13 +1,14 @@
 //! What the built-in kinds of light share: each one's record is its placement-free
 //! constants, then its placement by the transform ([`built_in_record`]); the kinds that fade
 //! with distance share their reach ([`fading_reach_kind`]). Each kind's own part is in its
-//! folder (`directional`, `point`, `spot`). The built-in kinds share the scene's light
+//! folder (`directional`, `point`, `spot`, `rect`). The built-in kinds share the scene's light
 //! buffer (gathered by `render::gather_lights` through these methods, their constants
 //! cached), where an extension's kind gets a buffer of its own
 //! ([`PhongLightKindPlugin`](crate::extension::PhongLightKindPlugin)).
 
 use super::{
-    GpuLight, PhongDirectionalLight, PhongLightKind, PhongPointLight, PhongSpotLight, RecordCache,
+    GpuAreaLight, GpuLight, PhongDirectionalLight, PhongLightKind, PhongPointLight, PhongRectLight,
+    PhongSpotLight, RecordCache,
 };
 use crate::lights::{
     LightChanges, LightQuery, TrackedLightQuery, influence_radius, light_direction,
@@ -19,8 +20,9 @@ use bevy::{
 use core::any::TypeId;
 
 /// The built-in kinds' lights as the scene's light buffer holds them: the lights that reach
-/// everywhere (directional), then each kind of local light (point, spot), whose records the
-/// gather keeps in a [`RecordCache`] while its component is unchanged. The one list of the
+/// everywhere (directional), then each kind of local light (point, spot), then each kind of
+/// area light (rect), whose records the gather keeps in a [`RecordCache`] while its
+/// component is unchanged. The one list of the
 /// built-in kinds that the gather reads: a new built-in kind adds its query, its changes and
 /// (a local kind) its cache here, and its registration in `PhongPlugin`.
 #[derive(SystemParam)]
@@ -28,16 +30,19 @@ pub struct BuiltInLights<'w, 's> {
     directional: LightQuery<'w, 's, PhongDirectionalLight>,
     point: TrackedLightQuery<'w, 's, PhongPointLight>,
     spot: TrackedLightQuery<'w, 's, PhongSpotLight>,
+    rect: TrackedLightQuery<'w, 's, PhongRectLight>,
     directional_changes: LightChanges<'w, 's, PhongDirectionalLight>,
     point_changes: LightChanges<'w, 's, PhongPointLight>,
     spot_changes: LightChanges<'w, 's, PhongSpotLight>,
+    rect_changes: LightChanges<'w, 's, PhongRectLight>,
 }
 
-/// The record caches of the built-in local kinds (see [`BuiltInLights`]).
+/// The record caches of the built-in local and area kinds (see [`BuiltInLights`]).
 #[derive(Debug, Default)]
 pub(crate) struct BuiltInCaches {
     point: RecordCache<PhongPointLight>,
     spot: RecordCache<PhongSpotLight>,
+    rect: RecordCache<PhongRectLight>,
 }
 
 /// What a gather does with the lights of each built-in kind ([`BuiltInLights`]).
@@ -47,6 +52,13 @@ pub(crate) trait BuiltInVisitor {
 
     /// The lights of a local kind, with its cache.
     fn local<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
+        &mut self,
+        lights: &TrackedLightQuery<L>,
+        cache: &mut RecordCache<L>,
+    );
+
+    /// The lights of an area kind, with its cache.
+    fn area<L: PhongLightKind<Gpu = GpuAreaLight> + Clone + PartialEq>(
         &mut self,
         lights: &TrackedLightQuery<L>,
         cache: &mut RecordCache<L>,
@@ -61,6 +73,7 @@ impl BuiltInLights<'_, '_> {
             self.directional_changes.any(),
             self.point_changes.any(),
             self.spot_changes.any(),
+            self.rect_changes.any(),
         ];
         changes.contains(&true)
     }
@@ -79,6 +92,11 @@ impl BuiltInLights<'_, '_> {
         visitor.local(&self.point, &mut caches.point);
         visitor.local(&self.spot, &mut caches.spot);
     }
+
+    /// Hands `visitor` the lights of each area kind, in the buffer's order, with its cache.
+    pub(crate) fn visit_area(&self, caches: &mut BuiltInCaches, visitor: &mut impl BuiltInVisitor) {
+        visitor.area(&self.rect, &mut caches.rect);
+    }
 }
 
 /// The bounding sphere of a local light's record that reaches `reach` (short of
@@ -93,6 +111,7 @@ pub(crate) fn is_built_in<L: PhongLightKind>() -> bool {
         TypeId::of::<PhongDirectionalLight>(),
         TypeId::of::<PhongPointLight>(),
         TypeId::of::<PhongSpotLight>(),
+        TypeId::of::<PhongRectLight>(),
     ]
     .contains(&TypeId::of::<L>())
 }

@@ -9,6 +9,7 @@
 //! (`lit`).
 
 mod ambient;
+mod area_highlight;
 mod cone_edge;
 mod cookie;
 mod decay;
@@ -20,6 +21,7 @@ mod reach_tests;
 mod shadows;
 
 pub use ambient::PhongAmbientLight;
+pub use area_highlight::AreaHighlight;
 pub use cone_edge::ConeEdge;
 pub use cookie::{PhongCookieProjection, PhongLightCookie, cookie_layer_texels};
 pub use decay::Decay;

@@ -275,6 +275,9 @@ material_features! {
     /// The app has a `PhongHemisphereLight` (`PHONG_HEMISPHERE`).
     HEMISPHERE: "scene_variants", ["PHONG_HEMISPHERE"], Nothing,
         |m, u| m.scene_variants.hemisphere;
+    /// The app's light buffer holds an area light (`PHONG_AREA_LIGHTS`).
+    AREA_LIGHTS: "scene_variants", ["PHONG_AREA_LIGHTS"], Nothing,
+        |m, u| m.scene_variants.area_lights;
     /// Some light of the app has a `PhongLightCookie` (`PHONG_LIGHT_COOKIES`).
     LIGHT_COOKIES: "scene_variants", ["PHONG_LIGHT_COOKIES"], Nothing,
         |m, u| m.scene_variants.cookies;

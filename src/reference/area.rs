@@ -11,6 +11,7 @@
 //! Seen from `P`, `e · dA / r²` is the solid angle `dω` the element fills, so the diffuse
 //! term is `color / |S| ⊙ k_d · ∫ max(N·ω, 0) dω` over the light's solid angle.
 
+use super::area_pieces::{cut, integrate_polygon};
 use super::quadrature::integrate_2d;
 use super::{Material, SurfacePoint, attenuation, phong_light};
 use bevy::math::DVec3;
@@ -124,6 +125,14 @@ impl AreaLight {
     }
 }
 
+/// An area light's term is [`area_light_contribution`]'s: the rectangle light gives its own
+/// through [`PhongLightKind::reference_light`](crate::extension::PhongLightKind::reference_light).
+impl super::ReferenceLight for AreaLight {
+    fn term(&self, surface: &SurfacePoint, material: &Material) -> DVec3 {
+        area_light_contribution(surface, material, self)
+    }
+}
+
 /// The light's term at `surface`: each area element's `phong_light` (the material's diffuse
 /// and specular terms toward it) weighed by its emission and inverse square, integrated over
 /// the area; times the fall-off at the light's nearest point.
@@ -151,15 +160,42 @@ pub fn area_light_contribution(
         }
         weight * phong_light(surface, material, to_light, color, specular)
     };
+    // A rectangle is cut where the integrand has kinks (`area_pieces`): along the surface's
+    // horizon and the mirror direction's plane.
+    let pieces = match light.shape {
+        AreaShape::Rect { width, height } => {
+            let (x, y) = (0.5 * width, 0.5 * height);
+            let view = super::normalize_or_zero(surface.camera - surface.position);
+            let normal = super::normalize_or_zero(surface.normal);
+            let mirror = 2.0 * normal.dot(view) * normal - view;
+            let offset = light.position - surface.position;
+            let line = |plane: DVec3| {
+                (
+                    plane.dot(light.right),
+                    plane.dot(light.up),
+                    plane.dot(offset),
+                )
+            };
+            cut(
+                vec![(-x, -y), (x, -y), (x, y), (-x, y)],
+                &[line(normal), line(mirror)],
+            )
+        }
+        AreaShape::Disk { .. } => Vec::new(),
+    };
     // A first pass at a loose tolerance gives the scale the tolerance is relative to.
     let integral = |tolerance: f64| -> DVec3 {
         match light.shape {
-            AreaShape::Rect { width, height } => integrate_2d(
-                &mut |x, y| element(x, y),
-                (-0.5 * width, 0.5 * width),
-                &|_| (-0.5 * height, 0.5 * height),
-                tolerance,
-            ),
+            AreaShape::Rect { .. } => pieces
+                .iter()
+                .map(|piece| {
+                    integrate_polygon(
+                        &mut |x, y| element(x, y),
+                        piece,
+                        tolerance / pieces.len() as f64,
+                    )
+                })
+                .fold(DVec3::ZERO, |sum, part| sum + part),
             AreaShape::Disk { radius } => integrate_2d(
                 &mut |angle, r| r * element(r * angle.cos(), r * angle.sin()),
                 (0.0, TAU),

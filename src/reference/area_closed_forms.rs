@@ -215,6 +215,16 @@ pub fn whole_lobe(exponent: f64) -> f64 {
     2.0 * PI / (exponent + 1.0)
 }
 
+/// The exponent of the Phong lobe around the mirror direction that stands for a
+/// Blinn-Phong lobe of `exponent` seen at `n_dot_v`: `α / (4 N·V)`. Near its peak the
+/// Blinn-Phong lobe is a Phong lobe of `α/4` across the plane of incidence's normal and of
+/// `α / (4 (N·V)²)` along it (the half vector turns half as fast as the light in the plane,
+/// `1/(2 N·V)` times as fast across it); `α / (4 N·V)` is their geometric mean, the lobe of
+/// the same solid angle. `N·V` is taken at least 1e-3.
+pub fn blinn_as_phong(exponent: f64, n_dot_v: f64) -> f64 {
+    0.25 * exponent / n_dot_v.max(1e-3)
+}
+
 /// How a light's highlight is integrated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Specular {
@@ -279,7 +289,7 @@ pub fn contribution(
     let mirror = reflect(-view, normal);
     let exponent = match material.specular_model {
         SpecularModel::Phong => material.shininess,
-        _ => 0.25 * material.shininess,
+        _ => blinn_as_phong(material.shininess, normal.dot(view)),
     };
     let highlight = match specular {
         Specular::Exact => lobe(&on_sphere(&clipped(&lit, mirror)), mirror, exponent),

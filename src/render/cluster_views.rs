@@ -4,8 +4,8 @@
 use super::{
     PHONG_LIGHT_CLUSTER_BUFFER,
     clusters::{
-        ClusterSlot, ClusterView, DepthSlices, LightClusters, keep_distinct_views,
-        light_sphere_bits,
+        ClusterSlot, ClusterView, DepthSlices, LightClusters, area_light_sphere_bits,
+        keep_distinct_views, light_sphere_bits,
     },
     gather::PhongLightBuffer,
 };
@@ -37,11 +37,13 @@ pub struct PhongLightClusters {
     /// The spheres of the clustered local lights, as the last build read them from the
     /// light buffer.
     local_spheres: Vec<[u32; 4]>,
+    /// The spheres of the clustered area lights, the same way.
+    area_spheres: Vec<[u32; 4]>,
 }
 
 /// The clustered lights of each extension kind ([`crate::extension::PhongLightKind`]), as
-/// their gathers leave them: slot `1 + i` of the clusters is `slots[i]` (slot 0 is the
-/// built-in local lights, point and spot).
+/// their gathers leave them: slot `2 + i` of the clusters is `slots[i]` (slot 0 is the
+/// built-in local lights, point and spot; slot 1 the built-in area lights).
 #[derive(Resource, Debug, Default)]
 pub struct ExtensionClusterSlots {
     slots: Vec<ExtensionSlot>,
@@ -56,11 +58,11 @@ pub struct ExtensionSlot {
 }
 
 impl ExtensionClusterSlots {
-    /// The slots of the clusters that built-in lights take: one, for the local (point and
-    /// spot) lights.
-    const BUILT_IN_SLOTS: usize = 1;
+    /// The slots of the clusters that built-in lights take: one for the local (point and
+    /// spot) lights, one for the area lights.
+    const BUILT_IN_SLOTS: usize = 2;
 
-    /// A new kind's cluster slot (1 for the first kind added, then 2, ...).
+    /// A new kind's cluster slot (2 for the first kind added, then 3, ...).
     pub fn add_slot(&mut self) -> u32 {
         self.slots.push(ExtensionSlot::default());
         (Self::BUILT_IN_SLOTS + self.slots.len() - 1) as u32
@@ -79,6 +81,7 @@ impl Default for PhongLightClusters {
             clusters: LightClusters::default(),
             views: Vec::new(),
             local_spheres: Vec::new(),
+            area_spheres: Vec::new(),
         }
     }
 }
@@ -103,7 +106,7 @@ impl PhongLightClusters {
     }
 
     /// For each cluster of the first view, its light-buffer entries of slots `slots` (slot 0
-    /// the local lights, then each extension kind), as the shader finds
+    /// the local lights, slot 1 the area lights, then each extension kind), as the shader finds
     /// them: from the record's word `slots.start` to its word `slots.end`.
     #[cfg(test)]
     pub(crate) fn first_view_entries(&self, slots: core::ops::Range<usize>) -> Vec<&[u32]> {
@@ -236,9 +239,9 @@ impl PhongLightClusters {
         }
     }
 
-    /// Builds the clusters from the spheres of the built-in clustered local lights (the last
-    /// section of `lights`' records) and of every extension kind's; returns whether they
-    /// changed.
+    /// Builds the clusters from the spheres of the built-in clustered local and area lights
+    /// (the sections of `lights`' records after each kind's unlimited ones) and of every
+    /// extension kind's; returns whether they changed.
     fn build(
         &mut self,
         lights: &PhongLightBuffer,
@@ -250,11 +253,26 @@ impl PhongLightClusters {
         self.local_spheres.clear();
         self.local_spheres
             .extend(lights.records()[first..end].iter().map(light_sphere_bits));
-        let built_in = ClusterSlot {
-            first: first as u32,
-            spheres: &self.local_spheres,
-        };
-        let slots: Vec<ClusterSlot> = std::iter::once(built_in)
+        let area_first = end + header.area_count as usize;
+        let area_end = area_first + header.clustered_area_count as usize;
+        self.area_spheres.clear();
+        self.area_spheres.extend(
+            lights.records()[area_first..area_end]
+                .iter()
+                .map(area_light_sphere_bits),
+        );
+        let built_in = [
+            ClusterSlot {
+                first: first as u32,
+                spheres: &self.local_spheres,
+            },
+            ClusterSlot {
+                first: area_first as u32,
+                spheres: &self.area_spheres,
+            },
+        ];
+        let slots: Vec<ClusterSlot> = built_in
+            .into_iter()
             .chain(extension_lights.slots.iter().map(|slot| ClusterSlot {
                 first: slot.first,
                 spheres: &slot.spheres,

@@ -279,7 +279,8 @@ fn tiles_met(
 }
 
 /// The lights of one cluster slot, as a build is given them: slot 0 holds the built-in
-/// local (point and spot) lights, each later slot an extension kind's lights
+/// local (point and spot) lights, slot 1 the built-in area lights, each later slot an
+/// extension kind's lights
 /// ([`crate::extension::PhongLightKind::bounding_sphere`]).
 #[derive(Clone, Copy, Debug)]
 pub struct ClusterSlot<'a> {
@@ -374,6 +375,17 @@ pub fn sphere_bits(center: Vec3, radius: f32) -> [u32; 4] {
 /// A built-in point or spot light's sphere of reach, as bits.
 pub fn light_sphere_bits(light: &GpuLight) -> [u32; 4] {
     sphere_bits(Vec3::from(light.position), light.range)
+}
+
+/// A built-in area light's sphere of reach (its record in a [`GpuLight`]'s place, its reach
+/// in `range`), as bits: `range` out from its shape
+/// ([`GpuAreaLight::bounding_sphere`](crate::light_kind::GpuAreaLight)).
+pub fn area_light_sphere_bits(light: &GpuLight) -> [u32; 4] {
+    let area: crate::light_kind::GpuAreaLight = bytemuck::cast(*light);
+    area.bounding_sphere(area.range).map_or_else(
+        || sphere_bits(Vec3::from(area.center), f32::MAX),
+        |sphere| sphere_bits(sphere.center.into(), sphere.radius()),
+    )
 }
 
 /// The center and radius of a sphere from [`sphere_bits`].

@@ -7,8 +7,8 @@ use super::{
 };
 use crate::culling::PhongLightCulling;
 use crate::light_kind::{
-    BuiltInCaches, BuiltInLights, BuiltInVisitor, GpuLight, PhongLightKind, RecordCache,
-    local_sphere,
+    BuiltInCaches, BuiltInLights, BuiltInVisitor, GpuAreaLight, GpuLight, PhongLightKind,
+    RecordCache, local_sphere,
 };
 use crate::lights::{
     LightQuery, PhongAmbientLight, PhongHemisphereLight, TrackedLightQuery, lit_lights,
@@ -38,6 +38,8 @@ pub struct PhongLightBuffer {
     header: GpuLightsHeader,
     /// What the last gather found of each local kind, kept for its allocation.
     pushed: Vec<Pushed>,
+    /// What the last gather found of each area kind.
+    area_pushed: Vec<Pushed>,
     /// The local lights, while they are put in order (see [`order_by_reach`]).
     scratch: Vec<GpuLight>,
     /// The per-light ε of the last gather (`NaN` before the first).
@@ -55,6 +57,7 @@ impl Default for PhongLightBuffer {
             records: Vec::new(),
             header: GpuLightsHeader::default(),
             pushed: Vec::new(),
+            area_pushed: Vec::new(),
             scratch: Vec::new(),
             per_light_epsilon: f32::NAN,
             caches: BuiltInCaches::default(),
@@ -166,8 +169,8 @@ fn cookie_index(cookie_first: u32, slot: u32) -> u32 {
 }
 
 /// Writes each built-in kind's lights into the records, as [`BuiltInLights`] hands them over:
-/// those that reach everywhere ([`push_visible`]), then the local ones with the per-light
-/// `epsilon` ([`push_cached`]).
+/// those that reach everywhere ([`push_visible`]), then the local ones and the area ones with
+/// the per-light `epsilon` ([`push_cached`]).
 struct Pusher<'a> {
     records: &'a mut Vec<GpuLight>,
     slots: Slots<'a>,
@@ -177,6 +180,8 @@ struct Pusher<'a> {
     directional: u32,
     /// What was found of each local kind.
     pushed: &'a mut Vec<Pushed>,
+    /// What was found of each area kind.
+    area_pushed: &'a mut Vec<Pushed>,
 }
 
 impl BuiltInVisitor for Pusher<'_> {
@@ -189,15 +194,35 @@ impl BuiltInVisitor for Pusher<'_> {
         lights: &TrackedLightQuery<L>,
         cache: &mut RecordCache<L>,
     ) {
-        let pushed = push_cached(
+        let pushed = self.push_cached(lights, cache);
+        self.pushed.push(pushed);
+    }
+
+    fn area<L: PhongLightKind<Gpu = GpuAreaLight> + Clone + PartialEq>(
+        &mut self,
+        lights: &TrackedLightQuery<L>,
+        cache: &mut RecordCache<L>,
+    ) {
+        let pushed = self.push_cached(lights, cache);
+        self.area_pushed.push(pushed);
+    }
+}
+
+impl Pusher<'_> {
+    /// [`push_cached`] with this gather's slots, ε and clusters.
+    fn push_cached<L: PhongLightKind + Clone + PartialEq>(
+        &mut self,
+        lights: &TrackedLightQuery<L>,
+        cache: &mut RecordCache<L>,
+    ) -> Pushed {
+        push_cached(
             lights,
             self.slots,
             cache,
             self.records,
             self.epsilon,
             self.clusters,
-        );
-        self.pushed.push(pushed);
+        )
     }
 }
 
@@ -217,8 +242,9 @@ struct Pushed {
 /// ([`PhongLightKind::reach`]) to `records`, from `cache` ([`RecordCache::record`]), with
 /// its slots and its reach ([`PhongLightKind::set_reach`]); counts those that go into the
 /// clusters: with [`PhongLightCulling::clusters`], those whose kind gives a finite bounding
-/// sphere ([`PhongLightKind::bounding_sphere`]), which [`clustered`] then finds.
-fn push_cached<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
+/// sphere ([`PhongLightKind::bounding_sphere`]), which [`clustered`] then finds. The records
+/// of every built-in kind are as long as a [`GpuLight`], whose place they take.
+fn push_cached<L: PhongLightKind + Clone + PartialEq>(
     lights: &TrackedLightQuery<L>,
     slots: Slots,
     cache: &mut RecordCache<L>,
@@ -243,7 +269,7 @@ fn push_cached<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
             L::set_reach(&mut record, reach);
             pushed.kept += 1;
             pushed.clustered += usize::from(has_sphere::<L>(clusters, &record, reach));
-            records.push(record);
+            records.push(bytemuck::cast(record));
         }
     }
     cache.truncate(pushed.lit);
@@ -270,13 +296,23 @@ fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
         .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
 }
 
-/// Puts the local lights (the records `pushed` from `records[first]` to the end) in the
-/// order the shader reads them: those of unlimited reach, then the `clustered` ones, each in
-/// their order. Returns those two counts. A scene whose local lights are all of one sort
-/// (the usual case) is already in order; a mixed one is sorted through `scratch`.
+/// Whether an area light's record, as [`push_cached`] wrote it in a [`GpuLight`]'s place
+/// (its reach in `range`), goes into the clusters (as [`has_sphere`] found: the built-in area
+/// kinds share their sphere, [`GpuAreaLight::bounding_sphere`]).
+fn clustered_area(culling: &PhongLightCulling, light: &GpuLight) -> bool {
+    let area: GpuAreaLight = bytemuck::cast(*light);
+    (culling.clusters && area.range.is_finite())
+        .then(|| area.bounding_sphere(area.range))
+        .flatten()
+        .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
+}
+
+/// Puts one section of lights (the records `pushed` of its kinds, `section`) in the order the
+/// shader reads them: those of unlimited reach, then the `clustered` ones, each in their
+/// order. Returns those two counts. A section whose lights are all of one sort (the usual
+/// case) is already in order; a mixed one is sorted through `scratch`.
 fn order_by_reach(
-    records: &mut Vec<GpuLight>,
-    first: usize,
+    section: &mut [GpuLight],
     pushed: &[Pushed],
     scratch: &mut Vec<GpuLight>,
     clustered: impl Fn(&GpuLight) -> bool,
@@ -288,9 +324,12 @@ fn order_by_reach(
         return counts;
     }
     scratch.clear();
-    scratch.extend(records.drain(first..));
-    records.extend(scratch.iter().filter(|light| !clustered(light)));
-    records.extend(scratch.iter().filter(|light| clustered(light)));
+    scratch.extend_from_slice(section);
+    let unclustered = scratch.iter().filter(|light| !clustered(light));
+    let ordered = unclustered.chain(scratch.iter().filter(|light| clustered(light)));
+    for (place, light) in section.iter_mut().zip(ordered) {
+        *place = *light;
+    }
     counts
 }
 
@@ -332,7 +371,8 @@ impl SceneLighting<'_> {
 }
 
 /// Where the gather writes: the light buffer, the GPU buffers it is uploaded to (a message
-/// when it grows) and the scene's shader variants (the hemisphere light's).
+/// when it grows) and the scene's shader variants (the hemisphere light's and the area
+/// lights').
 #[derive(SystemParam)]
 pub struct LightBufferWrites<'w> {
     state: ResMut<'w, PhongLightBuffer>,
@@ -345,8 +385,8 @@ pub struct LightBufferWrites<'w> {
 /// last for the clusters ([`assign_lights_to_clusters`](super::assign_lights_to_clusters)),
 /// when any of them, the ambient or hemisphere light or [`PhongLightCulling`] changed (and on
 /// the first run); otherwise it touches nothing, so no GPU buffer is uploaded again. When
-/// the hemisphere light comes or goes, every Phong material is prepared again (with or
-/// without its shader variant).
+/// the hemisphere light or the last area light comes or goes, every Phong material is
+/// prepared again (with or without its shader variant).
 pub fn gather_lights(
     mut lights: BuiltInLights,
     scene: SceneLighting,
@@ -361,13 +401,20 @@ pub fn gather_lights(
     let counts = state.push_lights(&lights, &scene);
     let [ambient, hemisphere_up, hemisphere_half_difference] =
         indirect_light(&scene.ambient, scene.hemisphere.as_deref());
-    let [directional_count, local_count, clustered_local_count] = counts;
+    let [
+        directional_count,
+        local_count,
+        clustered_local_count,
+        area_count,
+        clustered_area_count,
+    ] = counts;
     state.header = GpuLightsHeader {
         ambient,
         directional_count,
         local_count,
         clustered_local_count,
-        padding: [0; 2],
+        area_count,
+        clustered_area_count,
         hemisphere_up,
         padding_up: 0,
         hemisphere_half_difference,
@@ -377,6 +424,10 @@ pub fn gather_lights(
     state.hemisphere = scene.hemisphere.is_some();
     if writes.variants.hemisphere != state.hemisphere {
         writes.variants.hemisphere = state.hemisphere;
+    }
+    let area_lights = area_count + clustered_area_count > 0;
+    if writes.variants.area_lights != area_lights {
+        writes.variants.area_lights = area_lights;
     }
     if state
         .buffer
@@ -390,8 +441,9 @@ impl PhongLightBuffer {
     /// Writes the records of `lights` in the order the shader reads them: the directional
     /// lights, the local (point and spot) lights of unlimited reach (every fragment loops over
     /// them), then the clustered ones, shadows and cookies or not (the clusters' loop applies
-    /// both). Returns the counts of the three sections, in [`GpuLightsHeader`]'s order.
-    fn push_lights(&mut self, lights: &BuiltInLights, scene: &SceneLighting) -> [u32; 3] {
+    /// both), then the area lights the same way. Returns the counts of the five sections, in
+    /// [`GpuLightsHeader`]'s order.
+    fn push_lights(&mut self, lights: &BuiltInLights, scene: &SceneLighting) -> [u32; 5] {
         let culling = &scene.culling;
         let mut pusher = Pusher {
             records: &mut self.records,
@@ -400,19 +452,27 @@ impl PhongLightBuffer {
             clusters: culling.clusters,
             directional: 0,
             pushed: &mut self.pushed,
+            area_pushed: &mut self.area_pushed,
         };
         lights.visit_everywhere(&mut pusher);
-        // The local lights, kind by kind, written once in place. ε bounds the sum of what
-        // every skipped light leaves out: each of the `count` lit local lights (and lights of
-        // extension kinds that share ε) gets ε / count. The count is known once they are
+        // The local and area lights, kind by kind, written once in place. ε bounds the sum of
+        // what every skipped light leaves out: each of the `count` lit local and area lights
+        // (and lights of extension kinds that share ε) gets ε / count. The count is known once they are
         // read, so they are written with the last gather's per-light ε, and written again in
         // a frame where the count changed.
         let first_local = pusher.records.len();
         loop {
             pusher.records.truncate(first_local);
             pusher.pushed.clear();
+            pusher.area_pushed.clear();
             lights.visit_local(&mut self.caches, &mut pusher);
-            let lit: usize = pusher.pushed.iter().map(|kind| kind.lit).sum();
+            lights.visit_area(&mut self.caches, &mut pusher);
+            let lit: usize = pusher
+                .pushed
+                .iter()
+                .chain(pusher.area_pushed.iter())
+                .map(|kind| kind.lit)
+                .sum();
             let count = lit + scene.sharing.total();
             let per_light_epsilon = culling.epsilon / count.max(1) as f32;
             if per_light_epsilon.to_bits() == pusher.epsilon.to_bits() {
@@ -422,15 +482,24 @@ impl PhongLightBuffer {
         }
         let directional = pusher.directional;
         self.per_light_epsilon = pusher.epsilon;
-        let clustered = |light: &GpuLight| clustered(culling, light);
-        let [local, clustered_local] = order_by_reach(
-            &mut self.records,
-            first_local,
-            &self.pushed,
+        let local_kept: usize = self.pushed.iter().map(|kind| kind.kept).sum();
+        let first_area = first_local + local_kept;
+        let (local_section, area_section) = self.records[first_local..].split_at_mut(local_kept);
+        let [local, clustered_local] =
+            order_by_reach(local_section, &self.pushed, &mut self.scratch, |light| {
+                clustered(culling, light)
+            });
+        let [area, clustered_area] = order_by_reach(
+            area_section,
+            &self.area_pushed,
             &mut self.scratch,
-            clustered,
+            |light| clustered_area(culling, light),
         );
-        [directional, local, clustered_local]
+        debug_assert_eq!(
+            self.records.len(),
+            first_area + (area + clustered_area) as usize
+        );
+        [directional, local, clustered_local, area, clustered_area]
     }
 
     /// Appends the cookies after the lights, as records of a light's size ([`GpuCookie`](
@@ -438,8 +507,12 @@ impl PhongLightBuffer {
     /// (plus one), where 16 bits hold it.
     fn append_cookies(&mut self, cookies: &PhongCookies) {
         let cookie_first = self.records.len() as u32;
+        let header = &self.header;
+        // The area lights take no cookie: their records' high half holds their flags.
+        let with_cookies =
+            (header.directional_count + header.local_count + header.clustered_local_count) as usize;
         if !cookies.records().is_empty() {
-            for record in &mut self.records {
+            for record in &mut self.records[..with_cookies] {
                 let index = cookie_index(cookie_first, record.shadow >> GpuLight::COOKIE_SHIFT);
                 let index = if index <= GpuLight::SHADOW_BITS {
                     index

@@ -49,7 +49,9 @@ impl GpuCookie {
 /// The array that follows holds `directional_count` directional lights, then `local_count`
 /// local lights of unlimited reach (every fragment loops over these), then
 /// `clustered_local_count` local lights of finite reach, which fragments find through their
-/// view's clusters ([`GpuClustersHeader`]), with their shadows and cookies. A local light
+/// view's clusters ([`GpuClustersHeader`]), with their shadows and cookies; then the area
+/// lights the same way, `area_count` then `clustered_area_count`
+/// ([`GpuAreaLight`](crate::light_kind::GpuAreaLight) records in a light's place). A local light
 /// shines from a position and fades with distance: a point light is a local light whose cone
 /// is the whole sphere, a spot light one with its cone (see
 /// [`GpuLight`](crate::light_kind::GpuLight)); one loop lights both.
@@ -63,10 +65,13 @@ pub struct GpuLightsHeader {
     pub directional_count: u32,
     /// Number of local lights of unlimited reach after the directional ones.
     pub local_count: u32,
-    /// Number of local lights of finite reach at the end of the array (clustered).
+    /// Number of local lights of finite reach after those (clustered).
     pub clustered_local_count: u32,
-    /// Unused.
-    pub padding: [u32; 2],
+    /// Number of area lights ([`GpuAreaLight`](crate::light_kind::GpuAreaLight)) of
+    /// unlimited reach after the local lights.
+    pub area_count: u32,
+    /// Number of area lights of finite reach at the end of the array (clustered).
+    pub clustered_area_count: u32,
     /// The hemisphere light's unit `up` direction (zero without one).
     pub hemisphere_up: [f32; 3],
     /// Unused.
@@ -81,7 +86,11 @@ pub struct GpuLightsHeader {
 impl GpuLightsHeader {
     /// Total number of lights in the array.
     pub fn light_count(&self) -> usize {
-        (self.directional_count + self.local_count + self.clustered_local_count) as usize
+        (self.directional_count
+            + self.local_count
+            + self.clustered_local_count
+            + self.area_count
+            + self.clustered_area_count) as usize
     }
 }
 

@@ -64,7 +64,12 @@ mod batching;
 // That every validated input reaches the light buffer and the material uniform in range.
 #[cfg(test)]
 mod validated_inputs_tests;
+// The rectangle light through the built-in machinery.
+#[cfg(test)]
+mod area_light_tests;
 
+#[cfg(any(test, feature = "testing"))]
+pub use crate::light_kind::GpuAreaLight;
 pub use crate::light_kind::GpuLight;
 pub(crate) use batching::add_material_batching;
 pub(crate) use cluster_views::ExtensionClusterSlots;

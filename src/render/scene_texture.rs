@@ -18,8 +18,8 @@
 //! 800,000 lights not clustered. Past it, lights are left out in this order, with one
 //! warning each time the count left out changes:
 //! 1. the clusters and every clustered light (finite reach, no shadow);
-//! 2. then lights of unlimited reach from the end of the buffer: local (point and spot)
-//!    lights, then directional lights.
+//! 2. then lights of unlimited reach, each kind from its end: local (point and spot)
+//!    lights, then area lights, then directional lights.
 //!
 //! The lights that remain are lit exactly as they would be with room for all.
 
@@ -131,39 +131,54 @@ const RECORD_BYTES: usize = size_of::<GpuLight>();
 /// the shadow views, each from a texel of its own, within `max_texels` texels (see the
 /// module documentation for what is left out past it).
 fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Packed {
-    let mut header = lights
+    let full = lights
         .get(..HEADER_BYTES)
         .map(bytemuck::pod_read_unaligned::<GpuLightsHeader>)
         .unwrap_or_default();
     let body = lights.get(HEADER_BYTES..).unwrap_or(&[]);
     let stored = body.len() / RECORD_BYTES;
-    let records =
-        |header: &GpuLightsHeader| &body[..header.light_count().min(stored) * RECORD_BYTES];
+    // The records kept of each section (in `sections`' order): the first `kept` of each,
+    // read from where the section starts in the whole buffer.
+    let records = |header: &GpuLightsHeader| -> Vec<&[u8]> {
+        let mut start = 0;
+        sections(&full)
+            .into_iter()
+            .zip(sections(header))
+            .map(|(whole, kept)| {
+                let first = (start as usize).min(stored);
+                let end = (start as usize + kept as usize).min(stored);
+                start += whole;
+                &body[first * RECORD_BYTES..end * RECORD_BYTES]
+            })
+            .collect()
+    };
     let texels = |bytes: usize| bytes.div_ceil(16);
     let total = |header: &GpuLightsHeader, clusters: &[u8]| {
-        1 + texels(HEADER_BYTES + records(header).len())
-            + texels(clusters.len())
-            + texels(views.len())
+        let record_bytes: usize = records(header).iter().map(|part| part.len()).sum();
+        1 + texels(HEADER_BYTES + record_bytes) + texels(clusters.len()) + texels(views.len())
     };
-    let full = header.light_count();
+    let mut header = full;
     let no_clusters = bytemuck::bytes_of(&GpuClustersHeader::EMPTY);
     let mut clusters = clusters;
     if total(&header, clusters) > max_texels {
         header.clustered_local_count = 0;
+        header.clustered_area_count = 0;
         clusters = no_clusters;
     }
     while total(&header, clusters) > max_texels && header.light_count() > 0 {
-        let counts = [&mut header.local_count, &mut header.directional_count];
+        let counts = [
+            &mut header.local_count,
+            &mut header.area_count,
+            &mut header.directional_count,
+        ];
         if let Some(count) = counts.into_iter().find(|count| **count > 0) {
             *count -= 1;
         }
     }
     let mut words = vec![0u32; 4];
-    let regions: [&[&[u8]]; 3] = [
-        &[bytemuck::bytes_of(&header), records(&header)],
-        &[clusters],
-        &[views],
-    ];
+    let mut light_parts = vec![bytemuck::bytes_of(&header)];
+    light_parts.extend(records(&header));
+    let regions: [&[&[u8]]; 3] = [&light_parts, &[clusters], &[views]];
     for (region, parts) in regions.into_iter().enumerate() {
         words[region] = (words.len() / 4) as u32;
         for part in parts {
@@ -173,8 +188,19 @@ fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Pack
     }
     Packed {
         words,
-        left_out: full - header.light_count(),
+        left_out: full.light_count() - header.light_count(),
     }
+}
+
+/// The counts of the light buffer's sections, in their order.
+fn sections(header: &GpuLightsHeader) -> [u32; 5] {
+    [
+        header.directional_count,
+        header.local_count,
+        header.clustered_local_count,
+        header.area_count,
+        header.clustered_area_count,
+    ]
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! A scene as written in a `*.phong_scene.ron` file.
 
 use super::{PhongMaterialDescription, SceneColor};
-use crate::lights::{ConeEdge, Decay, PhongCascades, PhongShadows};
+use crate::lights::{AreaHighlight, ConeEdge, Decay, PhongCascades, PhongShadows};
 use bevy::math::{EulerRot, Quat, Vec2, Vec3};
 use bevy::transform::components::Transform;
 use serde::{Deserialize, Serialize};
@@ -164,6 +164,42 @@ pub enum LightDescription {
         #[serde(default)]
         cookie: Option<CookieDescription>,
     },
+    /// A rectangle that emits from its area (`PhongRectLight`), centered on `position` and
+    /// facing `direction`.
+    Rect {
+        /// The whole rectangle's diffuse intensity.
+        #[serde(default = "SceneColor::white")]
+        color: SceneColor,
+        /// Its specular intensity.
+        #[serde(default)]
+        specular: Option<SceneColor>,
+        /// Its center, world units.
+        position: Vec3,
+        /// The direction it faces (any length).
+        direction: Vec3,
+        /// The direction its height runs along, turned square to `direction` (any length).
+        /// Default +Y (+Z for a rectangle facing straight up or down).
+        #[serde(default)]
+        up: Option<Vec3>,
+        /// Its size across `up`, world units. Default 1.
+        #[serde(default = "default_size")]
+        width: f32,
+        /// Its size along `up`, world units. Default 1.
+        #[serde(default = "default_size")]
+        height: f32,
+        /// Whether it emits from its back face too. Default `false`.
+        #[serde(default)]
+        two_sided: bool,
+        /// Fall-off with the distance to its nearest point. Default none.
+        #[serde(default)]
+        decay: Decay,
+        /// Distance from its nearest point past which it gives no light. Default unlimited.
+        #[serde(default)]
+        range: Option<f32>,
+        /// How its highlight is computed, as `AreaHighlight`. Default `Exact`.
+        #[serde(default)]
+        highlight: AreaHighlight,
+    },
 }
 
 /// A light's cookie (`PhongLightCookie`): `(image: "window.png")`, and for a point light
@@ -213,6 +249,10 @@ impl CubemapLayoutDescription {
             Self::SequenceHorizontal => CubemapLayout::SequenceHorizontal,
         }
     }
+}
+
+fn default_size() -> f32 {
+    1.0
 }
 
 fn default_inner_angle_degrees() -> f32 {

@@ -6,7 +6,7 @@ use super::{
     SceneFileError, TransformDescription, material_file::load_texture, read_ron, relative_path,
     scene_color,
 };
-use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
 use crate::{
     direction,
     lights::{PhongAmbientLight, PhongHemisphereLight, PhongLightCookie},
@@ -45,6 +45,8 @@ pub enum SceneLight {
     Point(PhongPointLight),
     /// A spot light.
     Spot(PhongSpotLight),
+    /// A rectangle light.
+    Rect(PhongRectLight),
 }
 
 /// Loads a [`PhongScene`] from a `*.phong_scene.ron` file ([`PhongSceneDescription`]).
@@ -147,6 +149,7 @@ fn scene_light(
         LightDescription::Directional { cookie, .. }
         | LightDescription::Point { cookie, .. }
         | LightDescription::Spot { cookie, .. } => cookie,
+        LightDescription::Rect { .. } => &None,
     };
     let cookie = match cookie {
         None => None,
@@ -223,6 +226,24 @@ impl LightFields<'_, '_> {
             ));
         }
         Ok(position.looking_to(unit, any_up(unit)))
+    }
+
+    /// A light at `position` facing `direction` (as [`Self::aimed`]), its local Y along
+    /// `up` turned square to `direction`; [`any_up`] where `up` is `None`, along
+    /// `direction` or not finite.
+    fn aimed_up(
+        &self,
+        position: Vec3,
+        direction: Vec3,
+        up: Option<Vec3>,
+    ) -> Result<Transform, SceneFileError> {
+        let aimed = self.aimed(position, direction)?;
+        let facing = direction::normalize_or_zero(direction);
+        let up = direction::normalize_or_zero(up.unwrap_or(Vec3::ZERO));
+        if up.cross(facing).length_squared() < 1e-12 {
+            return Ok(aimed);
+        }
+        Ok(aimed.looking_to(facing, up))
     }
 }
 
@@ -301,6 +322,31 @@ fn scene_light_alone(
                 shadows: *shadows,
             }),
             aimed(*position, *direction)?,
+        ),
+        LightDescription::Rect {
+            color: diffuse,
+            specular: specular_color,
+            position,
+            direction,
+            up,
+            width,
+            height,
+            two_sided,
+            decay,
+            range,
+            highlight,
+        } => (
+            SceneLight::Rect(PhongRectLight {
+                color: color("color", diffuse)?,
+                specular: specular(specular_color)?,
+                width: *width,
+                height: *height,
+                two_sided: *two_sided,
+                decay: *decay,
+                range: *range,
+                highlight: *highlight,
+            }),
+            fields.aimed_up(*position, *direction, *up)?,
         ),
     })
 }

@@ -112,6 +112,7 @@ fn spawn_scene(
                 SceneLight::Directional(light) => parent.spawn((light.clone(), *transform)),
                 SceneLight::Point(light) => parent.spawn((light.clone(), *transform)),
                 SceneLight::Spot(light) => parent.spawn((light.clone(), *transform)),
+                SceneLight::Rect(light) => parent.spawn((light.clone(), *transform)),
             };
             if let Some(cookie) = cookie {
                 light.insert(cookie.clone());

@@ -108,6 +108,8 @@ const GOOD_SCENE: &str = r##"(
         Point(position: (0.0, 3.0, 0.0), decay: (constant: 1.0, linear: 0.09, quadratic: 0.032)),
         Spot(position: (0.0, 4.0, 0.0), direction: (0.0, -1.0, 0.0), color: Hex("#ffcc88"),
              cookie: Some((image: "gobo.png", red_only: true))),
+        Rect(position: (0.0, 3.0, 0.0), direction: (0.0, -1.0, 0.0), up: Some((0.0, 0.0, 2.0)),
+             width: 2.0, height: 0.5, two_sided: true, highlight: RepresentativePoint),
     ],
     objects: [
         (mesh: Sphere(radius: 1.0), material: Inline((base_color: Srgb(1.0, 0.0, 1.0), shininess: 50.0))),
@@ -191,6 +193,22 @@ fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
         .unwrap()
         .forward();
     assert!(spot_direction.dot(Vec3::NEG_Y) > 0.999_999);
+    let (rect, transform) = world
+        .query::<(&crate::PhongRectLight, &Transform)>()
+        .single(world)
+        .unwrap();
+    assert_eq!(
+        (rect.width, rect.height, rect.two_sided, rect.highlight),
+        (2.0, 0.5, true, crate::AreaHighlight::RepresentativePoint)
+    );
+    assert!(
+        transform.forward().dot(Vec3::NEG_Y) > 0.999_999,
+        "it faces down"
+    );
+    assert!(
+        transform.up().dot(Vec3::Z) > 0.999_999,
+        "its height runs along up"
+    );
 }
 
 /// A broken file and what its error must say.

@@ -2,6 +2,9 @@
 //!
 //! - `adoption`: the minimal example's scene, and a scene of Bevy's own materials and
 //!   lights switched to Phong, against the reference model;
+//! - `area_lights`: rectangle lights against the reference model's quadrature over their
+//!   area, every pixel: the exact diffuse light and integer highlights, and each
+//!   approximation within its stated share of the largest highlight;
 //! - `frames`: whole frames of `PhongMaterial` compared pixel by pixel with the f64
 //!   reference model, on each pixel's own inputs (hard-edged spots and a mirrored view
 //!   among them);
@@ -67,6 +70,7 @@
 //! CPU time of its process, which it must have to itself.
 
 mod adoption;
+mod area_lights;
 mod bevy_light_textures;
 #[path = "../fuzz/cases.rs"]
 mod cases;

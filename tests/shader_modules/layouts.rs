@@ -91,6 +91,11 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
             "clustered_local_count",
             offset_of!(GpuLightsHeader, clustered_local_count),
         ),
+        ("area_count", offset_of!(GpuLightsHeader, area_count)),
+        (
+            "clustered_area_count",
+            offset_of!(GpuLightsHeader, clustered_area_count),
+        ),
         ("hemisphere_up", offset_of!(GpuLightsHeader, hemisphere_up)),
         (
             "hemisphere_half_difference",

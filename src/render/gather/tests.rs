@@ -351,8 +351,7 @@ fn mixed_lights_are_ordered_unlimited_then_clustered_each_kind_in_its_order() {
     };
     let mut scratch = Vec::new();
     let counts = order_by_reach(
-        &mut records,
-        1,
+        &mut records[1..],
         &[pushed(2, 1), pushed(2, 1)],
         &mut scratch,
         clustered,
@@ -363,8 +362,7 @@ fn mixed_lights_are_ordered_unlimited_then_clustered_each_kind_in_its_order() {
 
     // All of one sort: left where they are.
     let counts = order_by_reach(
-        &mut records,
-        1,
+        &mut records[1..],
         &[pushed(2, 2), pushed(2, 2)],
         &mut scratch,
         |_| true,

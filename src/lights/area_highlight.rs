@@ -1,0 +1,30 @@
+//! How an area light's highlight is computed (docs/design/area-lights.md, "The closed
+//! forms the shader uses").
+
+use bevy::{prelude::ReflectDefault, reflect::Reflect};
+#[cfg(feature = "scene")]
+use serde::{Deserialize, Serialize};
+
+/// How an area light ([`PhongRectLight`](crate::PhongRectLight)) computes the highlight it
+/// gives: the material's lobe integrated over the light's shape, or taken toward one
+/// point of it. The diffuse light is exact either way. Each choice's error, against the
+/// reference model's quadrature, is in SPEC.md ("Area lights") and on the time-against-error
+/// plot of docs/design/performance.md.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
+#[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
+#[reflect(Default, Debug, PartialEq, Clone)]
+pub enum AreaHighlight {
+    /// The Phong lobe `max(R·V, 0)^α` integrated over the light by Arvo's recurrence: exact
+    /// for an integer shininess, its moments at `⌊α⌋` and `⌈α⌉` interpolated between them
+    /// otherwise (at most 8e-3 of the largest highlight measured); Blinn-Phong integrated as
+    /// the Phong lobe of `α / (4 N·V)`, the lobe of the same solid angle (at most 0.4). Its
+    /// cost grows with the shininess: about `α/2` steps per edge of the light's lit polygon
+    /// (4 to 6 edges).
+    #[default]
+    Exact,
+    /// The material's highlight toward the light's point nearest the mirror ray, times the
+    /// light's solid angle and the whole lobe's joined harmonically (`Ω·W / (Ω + W)`): a cost
+    /// that does not grow with the shininess, and a larger error (at most 0.5 of the largest
+    /// highlight measured, at grazing angles).
+    RepresentativePoint,
+}
