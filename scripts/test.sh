@@ -24,7 +24,7 @@ part() { step "$@"; }
 
 # The examples rendered and compared below (the minimal one is rendered by the GPU tests:
 # it opens a window and nothing else).
-EXAMPLES="showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon"
+EXAMPLES="showcase searchlight orbiting_light many_lights textured_cubes gltf_scene baked_room toon area_lights"
 
 # Runs the test targets named by "$@", each test in its own process and two at a time where
 # cargo-nextest is installed, else with `cargo test` (each binary's tests on two threads).
