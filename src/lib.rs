@@ -49,7 +49,9 @@
 //!   in `f64`; it is the specification in code, and the tests compare the shader with it
 //!   pixel by pixel.
 //! - **Lights** are components: [`PhongDirectionalLight`], [`PhongPointLight`],
-//!   [`PhongSpotLight`]; the ambient light is the resource [`PhongAmbientLight`]. They
+//!   [`PhongSpotLight`], and the area light [`PhongRectLight`] (a rectangle whose light is
+//!   integrated over its area: SPEC.md, "Area lights"); the ambient light is the resource
+//!   [`PhongAmbientLight`]. They
 //!   light only [`PhongMaterial`]s; Bevy's own `PointLight` & co. light them too once
 //!   [`PhongBevyLightsPlugin`] (opt-in, see [`interop`]) mirrors them. There is no fixed
 //!   maximum count.

@@ -5,17 +5,19 @@
 //! the exact per-pixel picture).
 
 use crate::scene::{Scene, Shading, spawn_scene};
+use bevy::prelude::*;
 use bevy_phong::{
-    PhongLightCulling,
-    reference::{self, Light},
+    PhongLightCulling, PhongRectLight,
+    reference::{self, AreaLight, Light},
 };
 use bevy_phong_headless::Harness;
 
 /// Width and height of the renders the error is measured on.
 pub const ERROR_SIZE: u32 = 128;
 
-/// Pixels this close (world units) to a light's `range` are not judged: there the light is
-/// cut off, and whether `f32` puts the pixel inside or outside is a matter of rounding.
+/// Pixels this close (world units) to a light's `range` (a rect light's, from its nearest
+/// point) are not judged: there the light is cut off, and whether `f32` puts the pixel inside
+/// or outside is a matter of rounding.
 const RANGE_BOUNDARY: f64 = 1e-5;
 
 /// How far a render is from the per-pixel model: each lit pixel's largest per-channel error,
@@ -40,20 +42,32 @@ pub fn measure(scene: Scene, shading: Shading, culling: PhongLightCulling) -> Ac
     let inputs = harness.capture_inputs();
     let rendered = harness.render_next_frame();
     let lights = harness.reference_lights();
+    let world = harness.world_mut();
+    let panels: Vec<(AreaLight, f64)> = world
+        .query::<(&PhongRectLight, &GlobalTransform)>()
+        .iter(world)
+        .filter_map(|(panel, transform)| {
+            Some((AreaLight::rect(panel, transform), f64::from(panel.range?)))
+        })
+        .collect();
     let comparison = harness.compare_with(&rendered, &inputs, |material, surface| {
-        let on_boundary = lights.lights.iter().any(|light| match light {
-            Light::Point {
-                position,
-                range: Some(range),
-                ..
-            }
-            | Light::Spot {
-                position,
-                range: Some(range),
-                ..
-            } => (position.distance(surface.position) - range).abs() < RANGE_BOUNDARY,
-            _ => false,
+        let on_panel_boundary = panels.iter().any(|(panel, range)| {
+            (panel.distance(surface.position) - range).abs() < RANGE_BOUNDARY
         });
+        let on_boundary = on_panel_boundary
+            || lights.lights.iter().any(|light| match light {
+                Light::Point {
+                    position,
+                    range: Some(range),
+                    ..
+                }
+                | Light::Spot {
+                    position,
+                    range: Some(range),
+                    ..
+                } => (position.distance(surface.position) - range).abs() < RANGE_BOUNDARY,
+                _ => false,
+            });
         (!on_boundary)
             .then(|| reference::shade(surface, &reference::Material::from(material), &lights))
     });

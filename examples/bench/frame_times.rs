@@ -61,6 +61,7 @@ pub fn table(options: &Options, directory: &Path) {
                 Scene::WideWorld { lights, far } => lights + far,
                 Scene::Lamps(lamps) => lamps.light_count(),
                 Scene::Cubes(_) => 9,
+                Scene::Panels(panels) => panels.count,
             };
             for (offset, time) in times.iter().enumerate() {
                 series[first_series + offset]

@@ -12,6 +12,7 @@ use bevy_phong::prelude::*;
 use crate::cubes::{self, Cubes};
 use crate::features::{self, Features};
 use crate::lamps::{self, Lamps};
+use crate::panels::{self, Panels};
 
 /// What the scene's meshes are made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,6 +58,8 @@ pub enum Scene {
     Lamps(Lamps),
     /// A grid of many meshes and materials (`cubes.rs`).
     Cubes(Cubes),
+    /// Rectangle lights over the field (`panels.rs`).
+    Panels(Panels),
 }
 
 impl Scene {
@@ -84,6 +87,7 @@ impl Scene {
             Scene::Featured(features) => format!("showcase, {}", features.name()),
             Scene::Lamps(lamps) => lamps.name(),
             Scene::Cubes(cubes) => cubes.name(),
+            Scene::Panels(panels) => panels.name(),
         }
     }
 
@@ -261,7 +265,7 @@ fn point_lights(scene: Scene) -> Vec<Light> {
             near
         }
         Scene::FieldWithoutRanges { lights } => field(lights, Decay::quadratic(4.0), None),
-        Scene::Lamps(_) | Scene::Cubes(_) => Vec::new(),
+        Scene::Lamps(_) | Scene::Cubes(_) | Scene::Panels(_) => Vec::new(),
     }
 }
 
@@ -408,5 +412,8 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
     }
     if let Scene::Lamps(lamps) = scene {
         lamps::spawn_lamps(world, lamps, shading);
+    }
+    if let Scene::Panels(panels) = scene {
+        panels::spawn_panels(world, panels);
     }
 }
