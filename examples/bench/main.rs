@@ -68,7 +68,7 @@ mod scene;
 mod timing;
 
 use bevy::prelude::*;
-use bevy_phong::{AreaHighlight, PhongLightCulling, SpecularModel};
+use bevy_phong::{PhongLightCulling, SpecularModel};
 use scene::{Scene, Shading};
 use std::{fmt::Write as _, path::Path, time::Duration};
 use timing::{Frames, median_frame_time, median_frame_time_and_picture};
@@ -811,45 +811,7 @@ fn time_against_error(options: &Options, directory: &Path) {
         });
     }
     // The area lights, each highlight choice, on the same plot.
-    let counts: &[usize] = if options.quick {
-        &[panels::Panels::QUICK_COUNT]
-    } else {
-        &panels::Panels::COUNTS
-    };
-    for &count in counts {
-        for highlight in [AreaHighlight::Exact, AreaHighlight::RepresentativePoint] {
-            let scene = Scene::Panels(panels::Panels { count, highlight });
-            let shading = Shading::Phong(Some(SpecularModel::Phong));
-            let culling = PhongLightCulling::default();
-            let time = ms(median_frame_time(
-                scene,
-                size,
-                shading,
-                culling,
-                options.frames,
-            ));
-            let accuracy = accuracy::measure(scene, shading, culling);
-            let (error, p95) = (accuracy.max, accuracy.p95);
-            let name = scene.name();
-            eprintln!("{name}: {time:.1} ms, error {error:.2e} (95 % within {p95:.2e})");
-            let _ = writeln!(
-                table,
-                "| {name} | {time:.1} | {error:.2e} | {:.3} | {p95:.2e} |",
-                error * 255.0
-            );
-            let _ = writeln!(csv, "{name},{time:.3},{error:.3e},{p95:.3e}");
-            // Each count is a scene of its own: its two choices make its Pareto front.
-            series.push(plot::Choice {
-                label: format!("{highlight:?}"),
-                scene: format!(
-                    "field, {count} rect light{}",
-                    if count == 1 { "" } else { "s" }
-                ),
-                error: error.max(1e-9),
-                time,
-            });
-        }
-    }
+    panels::time_against_error(options, &mut table, &mut csv, &mut series);
     println!(
         "\nRun time against error, the field of {lights} point lights, with ranges (4 units) and \
          without (1 / (1 + 4d²)), and of 1, 16 and 256 rect lights with ranges, at {size}² \

@@ -4,9 +4,12 @@
 //! `1 / (1 + 0.2 d²)` from its nearest point on top of its own inverse square, and is cut off
 //! 4 units from it, as the field's point lights are.
 
-use crate::scene::scatter;
+use crate::scene::{Scene, Shading, scatter};
+use crate::timing::median_frame_time;
+use crate::{Options, accuracy, ms, plot};
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
+use std::fmt::Write as _;
 
 /// The panels of a scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,5 +61,54 @@ pub fn spawn_panels(world: &mut World, panels: Panels) {
                 Quat::from_rotation_y(w * std::f32::consts::TAU) * Vec3::Z,
             ),
         ));
+    }
+}
+
+/// Times each count of panels with each highlight choice and measures its error, as the
+/// point-light variants are: a row of `table` and `csv` and a choice of the plot's `series`
+/// each (each count a scene of its own); the smoke run (`--quick`) measures 16 panels only.
+pub fn time_against_error(
+    options: &Options,
+    table: &mut String,
+    csv: &mut String,
+    series: &mut Vec<plot::Choice>,
+) {
+    let counts: &[usize] = if options.quick {
+        &[Panels::QUICK_COUNT]
+    } else {
+        &Panels::COUNTS
+    };
+    for &count in counts {
+        for highlight in [AreaHighlight::Exact, AreaHighlight::RepresentativePoint] {
+            let scene = Scene::Panels(Panels { count, highlight });
+            let shading = Shading::Phong(Some(SpecularModel::Phong));
+            let culling = PhongLightCulling::default();
+            let time = ms(median_frame_time(
+                scene,
+                options.variant_size,
+                shading,
+                culling,
+                options.frames,
+            ));
+            let accuracy = accuracy::measure(scene, shading, culling);
+            let (error, p95) = (accuracy.max, accuracy.p95);
+            let name = scene.name();
+            eprintln!("{name}: {time:.1} ms, error {error:.2e} (95 % within {p95:.2e})");
+            let _ = writeln!(
+                table,
+                "| {name} | {time:.1} | {error:.2e} | {:.3} | {p95:.2e} |",
+                error * 255.0
+            );
+            let _ = writeln!(csv, "{name},{time:.3},{error:.3e},{p95:.3e}");
+            series.push(plot::Choice {
+                label: format!("{highlight:?}"),
+                scene: format!(
+                    "field, {count} rect light{}",
+                    if count == 1 { "" } else { "s" }
+                ),
+                error: error.max(1e-9),
+                time,
+            });
+        }
     }
 }
