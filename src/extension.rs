@@ -314,12 +314,10 @@ mod gather;
 #[cfg(test)]
 mod line_light_tests;
 #[cfg(feature = "reference")]
-mod reference_lights;
+pub(crate) mod reference_lights;
 mod shadow_sources;
 mod systems;
 
-#[cfg(feature = "reference")]
-pub(crate) use reference_lights::add_reference_kind;
 #[cfg(feature = "reference")]
 pub use reference_lights::reference_lights;
 pub(crate) use systems::add_light_kind;

@@ -65,7 +65,7 @@ impl Plugin for PhongPlugin {
         add_light_kind::<PhongRectLight>(app);
         // The area lights' reference-model lights, collected as an extension kind's are.
         #[cfg(feature = "reference")]
-        crate::extension::add_reference_kind::<PhongRectLight>(app.world_mut());
+        crate::extension::reference_lights::add_reference_kind::<PhongRectLight>(app.world_mut());
         load_shaders(app);
         add_rendering(app);
     }

@@ -225,14 +225,22 @@ pub(crate) fn place(record: &mut GpuLight, transform: &GlobalTransform, placed: 
 /// or specular channel; `f32::INFINITY` for one without a range that ε does not limit, and
 /// `0` where it reaches nowhere.
 pub(crate) fn fading_reach(record: &GpuLight, epsilon: f32) -> f32 {
-    let intensity = record
-        .color
-        .into_iter()
-        .chain(record.specular)
-        .fold(0.0, f32::max);
-    let reach = record
-        .range
-        .min(influence_radius(record.decay, intensity, epsilon));
+    let intensity = brightest_channel(record.color, record.specular);
+    unlimited_past_max(
+        record
+            .range
+            .min(influence_radius(record.decay, intensity, epsilon)),
+    )
+}
+
+/// The largest channel of a light's diffuse and specular intensities.
+pub(crate) fn brightest_channel(color: [f32; 3], specular: [f32; 3]) -> f32 {
+    color.into_iter().chain(specular).fold(0.0, f32::max)
+}
+
+/// `reach`, read as unlimited (`f32::INFINITY`) from `f32::MAX` on, where a stored range
+/// means none ([`stored_range`]).
+pub(crate) fn unlimited_past_max(reach: f32) -> f32 {
     if reach >= f32::MAX {
         f32::INFINITY
     } else {

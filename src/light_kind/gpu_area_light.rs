@@ -2,6 +2,7 @@
 //! `bevy_phong::shaders::types`): as long as a [`GpuLight`](super::GpuLight), after the
 //! local lights (see [`GpuLightsHeader`](crate::render::GpuLightsHeader)).
 
+use super::built_in::{brightest_channel, unlimited_past_max};
 use bevy::{math::Vec3, shape::BoundingSphere};
 use bytemuck::{Pod, Zeroable};
 
@@ -63,20 +64,10 @@ impl GpuAreaLight {
         if area.is_nan() || area <= 0.0 {
             return 0.0;
         }
-        let brightest = self
-            .color
-            .into_iter()
-            .chain(self.specular)
-            .fold(0.0, f32::max);
-        let intensity = brightest * area;
+        let intensity = brightest_channel(self.color, self.specular) * area;
         let inverse_square = (intensity / epsilon).sqrt();
         let decayed = crate::lights::influence_radius(self.decay, intensity, epsilon).max(1.0);
-        let reach = self.range.min(inverse_square).min(decayed);
-        if reach >= f32::MAX {
-            f32::INFINITY
-        } else {
-            reach
-        }
+        unlimited_past_max(self.range.min(inverse_square).min(decayed))
     }
 
     /// A sphere around the light's shape grown by `reach`, for the clusters; `None` for an

@@ -167,7 +167,7 @@ pub fn area_light_contribution(
             let (x, y) = (0.5 * width, 0.5 * height);
             let view = super::normalize_or_zero(surface.camera - surface.position);
             let normal = super::normalize_or_zero(surface.normal);
-            let mirror = 2.0 * normal.dot(view) * normal - view;
+            let mirror = super::reflect(-view, normal);
             let offset = light.position - surface.position;
             let line = |plane: DVec3| {
                 (

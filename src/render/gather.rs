@@ -27,6 +27,7 @@ use bevy::{
         system::{Res, ResMut, SystemParam},
     },
     render::storage::ShaderBuffer,
+    shape::BoundingSphere,
 };
 
 /// The built-in lights' buffer, and the scratch space the gather system fills it from (kept
@@ -280,8 +281,18 @@ fn push_cached<L: PhongLightKind + Clone + PartialEq>(
 /// ([`PhongLightCulling::clusters`]), where its kind gives a finite bounding sphere for that
 /// reach ([`PhongLightKind::bounding_sphere`]), whatever shadow or cookie it has.
 fn has_sphere<L: PhongLightKind>(clusters: bool, record: &L::Gpu, reach: f32) -> bool {
+    in_clusters(clusters, reach, || L::bounding_sphere(record, reach))
+}
+
+/// Whether a light that reaches `reach` goes into the clusters: with `clusters`, where its
+/// reach is finite and `sphere` (its bounding sphere for that reach) finite too.
+fn in_clusters(
+    clusters: bool,
+    reach: f32,
+    sphere: impl FnOnce() -> Option<BoundingSphere>,
+) -> bool {
     (clusters && reach.is_finite())
-        .then(|| L::bounding_sphere(record, reach))
+        .then(sphere)
         .flatten()
         .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
 }
@@ -290,10 +301,9 @@ fn has_sphere<L: PhongLightKind>(clusters: bool, record: &L::Gpu, reach: f32) ->
 /// into the clusters (as [`has_sphere`] found: the built-in local kinds share their sphere,
 /// [`local_sphere`]).
 fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
-    (culling.clusters && light.range.is_finite())
-        .then(|| local_sphere(light, light.range))
-        .flatten()
-        .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
+    in_clusters(culling.clusters, light.range, || {
+        local_sphere(light, light.range)
+    })
 }
 
 /// Whether an area light's record, as [`push_cached`] wrote it in a [`GpuLight`]'s place
@@ -301,10 +311,9 @@ fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
 /// kinds share their sphere, [`GpuAreaLight::bounding_sphere`]).
 fn clustered_area(culling: &PhongLightCulling, light: &GpuLight) -> bool {
     let area: GpuAreaLight = bytemuck::cast(*light);
-    (culling.clusters && area.range.is_finite())
-        .then(|| area.bounding_sphere(area.range))
-        .flatten()
-        .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
+    in_clusters(culling.clusters, area.range, || {
+        area.bounding_sphere(area.range)
+    })
 }
 
 /// Puts one section of lights (the records `pushed` of its kinds, `section`) in the order the
