@@ -1,5 +1,5 @@
 //! Lighting `PhongMaterial` meshes with Bevy's own lights: [`PhongBevyLightsPlugin`] mirrors
-//! Bevy's `PointLight`, `SpotLight`, `DirectionalLight` and `GlobalAmbientLight` into this
+//! Bevy's `PointLight`, `SpotLight`, `DirectionalLight`, `RectLight` and `GlobalAmbientLight` into this
 //! crate's lights, on the same entities, so an existing scene needs no new entities.
 //!
 //! # The conversion
@@ -15,16 +15,27 @@
 //! | `DirectionalLight { illuminance: E lux, color }` | `color · e · E / π` |
 //! | `PointLight { intensity: Φ lumens, color, range }` | `color · e · Φ / (4π²) · 10⁴`, `Decay::new(0, 0, 10⁴)`, `range` |
 //! | `SpotLight` | as `PointLight`, with its `inner_angle` and `outer_angle` |
+//! | `RectLight { intensity: Φ lumens, color, width, height, range }` | `PhongRectLight` of `color · e · Φ / π²`, the same `width`, `height` and `range`, one-sided |
 //! | `GlobalAmbientLight { brightness: L cd/m², color }` | `color · e · L` |
 //!
 //! The point light's decay `1 / (10⁴ d²)` (and its color, ×10⁴) reproduce Bevy's
 //! inverse-square fall-off `1 / max(d², 10⁻⁴)` exactly: the `min(1, …)` of SPEC.md's
 //! attenuation clamps where Bevy's `max` does, at 1 cm.
 //!
+//! Bevy's rectangle is a Lambertian emitter of radiance `Φ / (π·A)` (`A` its area); its
+//! diffuse light on a white surface is that radiance times the form factor `F` of the part
+//! above the surface's horizon (linearly transformed cosines with the identity matrix:
+//! `F = Σ Θᵢ (N·nᵢ) / 2π`, its arc function fitted within 1e-3). A `PhongRectLight`'s
+//! diffuse term is `color / A · π·F` (SPEC.md, "Area lights"), hence `color = e · Φ / π²`.
+//! Both face the entity's local −Z and light nothing behind it.
+//!
 //! What does not carry over: Bevy fades a light smoothly to zero toward its `range`, a Phong
-//! light is cut off there; Bevy's spot edge is `smoothstep`-like (a squared ramp), a Phong
+//! light is cut off there (a rectangle's range is measured from its center in Bevy, from its
+//! nearest point in Phong); Bevy stretches a rectangle by its transform's scale, a
+//! `PhongRectLight` ignores scale (give the size in `width` and `height`); Bevy's spot edge is `smoothstep`-like (a squared ramp), a Phong
 //! spot's is linear; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
-//! specular intensity is its diffuse color, shaped by the material's shininess.
+//! specular intensity is its diffuse color, shaped by the material's shininess (a mirrored
+//! rectangle's highlight integrated over its area, [`AreaHighlight::Exact`](crate::AreaHighlight)).
 //! Per-camera `AmbientLight` overrides are not mirrored.
 //!
 //! Shadows carry over as settings: a Bevy light's `shadow_maps_enabled`, `shadow_depth_bias`
@@ -49,7 +60,7 @@ mod standard_material;
 
 pub use standard_material::PhongStandardMaterialPlugin;
 
-use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongSpotLight};
+use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
 use crate::{
     lights::{ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongLightCookie, PhongShadows},
     schedule::PhongSystems,
@@ -70,7 +81,7 @@ use bevy::{
     },
     light::{
         DirectionalLight, DirectionalLightTexture, GlobalAmbientLight, PointLight,
-        PointLightTexture, SpotLight, SpotLightTexture,
+        PointLightTexture, RectLight, SpotLight, SpotLightTexture,
     },
     prelude::{ReflectDefault, ReflectResource},
     reflect::Reflect,
@@ -172,6 +183,18 @@ impl BevyLightExposure {
         }
     }
 
+    /// The Phong rectangle light that shows like `light`: its radiance `Φ / (π·A)`
+    /// through the form factor, times the exposure (see the [module docs](self)).
+    pub fn rect(&self, light: &RectLight) -> PhongRectLight {
+        PhongRectLight {
+            color: scaled(light.color, self.factor() * light.intensity / (PI * PI)),
+            width: light.width,
+            height: light.height,
+            range: Some(light.range),
+            ..PhongRectLight::default()
+        }
+    }
+
     /// The Phong ambient light that shows like `light`.
     pub fn ambient(&self, light: &GlobalAmbientLight) -> PhongAmbientLight {
         PhongAmbientLight {
@@ -219,6 +242,7 @@ impl Plugin for PhongBevyLightsPlugin {
                     ),
                     mirror::<PointLight, PhongPointLight>(BevyLightExposure::point),
                     mirror::<SpotLight, PhongSpotLight>(BevyLightExposure::spot),
+                    mirror::<RectLight, PhongRectLight>(BevyLightExposure::rect),
                     mirror::<SpotLightTexture, PhongLightCookie>(spot_cookie),
                     mirror::<PointLightTexture, PhongLightCookie>(point_cookie),
                     mirror::<DirectionalLightTexture, PhongLightCookie>(directional_cookie),
@@ -312,7 +336,11 @@ fn mirror_ambient_light(
 mod tests {
     use super::*;
     use crate::{reference, test_app::test_app};
-    use bevy::{prelude::Transform, transform::components::GlobalTransform};
+    use bevy::{
+        math::{DVec3, Vec3},
+        prelude::Transform,
+        transform::components::GlobalTransform,
+    };
 
     /// What Bevy's renderer shows for a white Lambertian surface facing the light: the
     /// radiance `E / π` times the exposure, with `E` the illuminance at `distance`.
@@ -350,6 +378,116 @@ mod tests {
             assert!(
                 (phong - bevy).abs() <= 1e-6 * bevy,
                 "at {distance}: Phong {phong}, Bevy {bevy}"
+            );
+        }
+    }
+
+    /// What Bevy's renderer shows for a white Lambertian surface (`normal`, at `point`) lit by
+    /// `light` at `transform`, written again from bevy_pbr 0.20.1 (`light.rs` extracts the
+    /// radiance `Φ / (π·w·h)`; `pbr_lighting.wesl`'s `rect_light` multiplies it by
+    /// `ltc_integrate_quad` with the identity: the form factor `Σ Θᵢ (N·nᵢ) / 2π` of the
+    /// rectangle clipped to the horizon, here with the exact arc where Bevy fits it).
+    fn bevy_rect_radiance(
+        light: &RectLight,
+        transform: &GlobalTransform,
+        point: DVec3,
+        normal: DVec3,
+        exposure: f32,
+    ) -> f64 {
+        let affine = transform.affine();
+        let (right, up) = (
+            affine.matrix3.x_axis.as_dvec3(),
+            affine.matrix3.y_axis.as_dvec3(),
+        );
+        let center = affine.translation.as_dvec3();
+        let (hw, hh) = (
+            right * f64::from(light.width) * 0.5,
+            up * f64::from(light.height) * 0.5,
+        );
+        let corners = [
+            center + hw - hh,
+            center - hw - hh,
+            center - hw + hh,
+            center + hw + hh,
+        ];
+        // Bevy's back-face test: the light faces up × right.
+        if up.cross(right).dot(point - corners[0]) <= 0.0 {
+            return 0.0;
+        }
+        let mut clipped = Vec::new();
+        for i in 0..4 {
+            let (a, b) = (corners[i] - point, corners[(i + 1) % 4] - point);
+            let (ha, hb) = (a.dot(normal), b.dot(normal));
+            if ha >= 0.0 {
+                clipped.push(a);
+            }
+            if (ha >= 0.0) != (hb >= 0.0) {
+                clipped.push(a + (b - a) * (ha / (ha - hb)));
+            }
+        }
+        let form_factor: f64 = (0..clipped.len())
+            .map(|i| {
+                let (a, b) = (
+                    clipped[i].normalize(),
+                    clipped[(i + 1) % clipped.len()].normalize(),
+                );
+                let plane = a.cross(b);
+                plane.length().atan2(a.dot(b)) * plane.normalize().dot(normal)
+            })
+            .sum::<f64>()
+            / std::f64::consts::TAU;
+        let radiance = f64::from(light.intensity)
+            / (f64::from(light.width) * f64::from(light.height) * std::f64::consts::PI);
+        radiance * form_factor.abs() * f64::from(exposure)
+    }
+
+    #[test]
+    fn a_mirrored_rect_light_shows_as_bright_as_bevy_shows_it() {
+        let exposure = BevyLightExposure::default();
+        let bevy = RectLight {
+            intensity: 50_000.0,
+            width: 2.0,
+            height: 0.8,
+            range: 100.0,
+            ..RectLight::default()
+        };
+        // Overhead, facing down and tilted a little.
+        let transform = GlobalTransform::from(
+            Transform::from_xyz(0.3, 2.0, -0.2).looking_at(Vec3::new(0.6, 0.0, 0.4), Vec3::Z),
+        );
+        let phong = exposure.rect(&bevy);
+        let light = reference::AreaLight::rect(&phong, &transform);
+        let material = reference::Material {
+            diffuse: DVec3::ONE,
+            specular_strength: 0.0,
+            ..reference::Material::from(&crate::PhongMaterial::default())
+        };
+        for (position, normal) in [
+            (DVec3::ZERO, DVec3::Y),
+            (DVec3::new(2.5, 0.0, 1.0), DVec3::Y),
+            (
+                DVec3::new(-1.5, 0.5, 0.5),
+                DVec3::new(0.6, 1.0, 0.0).normalize(),
+            ),
+            // The panel partly below this point's horizon.
+            (
+                DVec3::new(0.3, 1.4, 0.0),
+                DVec3::new(0.0, 0.2, 1.0).normalize(),
+            ),
+            // Behind the panel: nothing in either.
+            (DVec3::new(0.3, 3.0, -0.2), DVec3::NEG_Y),
+        ] {
+            let surface = reference::SurfacePoint {
+                position,
+                normal,
+                camera: DVec3::new(-1.0, 2.5, 3.0),
+            };
+            let phong = reference::area_light_contribution(&surface, &material, &light).x;
+            let bevy = bevy_rect_radiance(&bevy, &transform, position, normal, exposure.factor());
+            // The quadrature's 1e-9 and the color's rounding to f32.
+            assert!(
+                (phong - bevy).abs() <= 1e-6 * bevy.max(1e-3),
+                "at {position}: Phong {phong}, Bevy {bevy}"
             );
         }
     }
@@ -392,6 +530,10 @@ mod tests {
             .world_mut()
             .spawn((DirectionalLight::default(), Transform::default()))
             .id();
+        let panel = app
+            .world_mut()
+            .spawn((RectLight::default(), Transform::default()))
+            .id();
         app.update();
         let world = app.world();
         let exposure = *world.resource::<BevyLightExposure>();
@@ -402,12 +544,17 @@ mod tests {
         assert!(world.get::<PhongSpotLight>(spot).is_some());
         assert!(world.get::<PhongDirectionalLight>(sun).is_some());
         assert_eq!(
+            world.get::<PhongRectLight>(panel),
+            Some(&exposure.rect(&RectLight::default()))
+        );
+        assert_eq!(
             *world.resource::<PhongAmbientLight>(),
             exposure.ambient(&GlobalAmbientLight::default())
         );
         let header = *world.resource::<crate::render::PhongLightBuffer>().header();
         assert_eq!(header.directional_count, 1);
-        assert_eq!(header.light_count(), 3);
+        assert_eq!(header.light_count(), 4);
+        assert_eq!(header.area_count + header.clustered_area_count, 1);
 
         app.world_mut().entity_mut(spot).insert(SpotLightTexture {
             image: Default::default(),
