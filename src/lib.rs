@@ -49,8 +49,8 @@
 //!   in `f64`; it is the specification in code, and the tests compare the shader with it
 //!   pixel by pixel.
 //! - **Lights** are components: [`PhongDirectionalLight`], [`PhongPointLight`],
-//!   [`PhongSpotLight`], and the area light [`PhongRectLight`] (a rectangle whose light is
-//!   integrated over its area: SPEC.md, "Area lights"); the ambient light is the resource
+//!   [`PhongSpotLight`], and the area lights [`PhongRectLight`] and [`PhongDiskLight`] (a
+//!   rectangle or a disk whose light is integrated over its area: SPEC.md, "Area lights"); the ambient light is the resource
 //!   [`PhongAmbientLight`]. They
 //!   light only [`PhongMaterial`]s; Bevy's own `PointLight` & co. light them too once
 //!   [`PhongBevyLightsPlugin`] (opt-in, see [`interop`]) mirrors them. There is no fixed
@@ -195,7 +195,9 @@ pub use culling::{PhongLightCulling, PhongViewClusters};
 #[cfg(feature = "gltf")]
 pub use gltf::PhongGltfPlugin;
 pub use interop::{BevyLightExposure, PhongBevyLightsPlugin, PhongStandardMaterialPlugin};
-pub use light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
+pub use light_kind::{
+    PhongDirectionalLight, PhongDiskLight, PhongPointLight, PhongRectLight, PhongSpotLight,
+};
 pub use lights::{
     AreaHighlight, ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight,
     PhongLightCookie, PhongShadows,
@@ -216,7 +218,7 @@ pub mod prelude {
     pub use crate::{
         AreaHighlight, BevyLightExposure, ConeEdge, Decay, DiffuseMode, EnvironmentCombine,
         PhongAmbientLight, PhongBevyLightsPlugin, PhongCascades, PhongDirectionalLight,
-        PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
+        PhongDiskLight, PhongHemisphereLight, PhongLightCookie, PhongLightCulling, PhongMaterial,
         PhongMaterialAppExt, PhongPlugin, PhongPointLight, PhongRectLight, PhongSceneMaterial,
         PhongShadows, PhongSpotLight, PhongStandardMaterialPlugin, PhongViewClusters, SpecularMode,
         SpecularModel,

@@ -4,6 +4,7 @@
 
 mod built_in;
 mod directional;
+mod disk;
 mod gpu_area_light;
 mod gpu_light;
 #[cfg(test)]
@@ -17,6 +18,7 @@ pub use built_in::BuiltInLights;
 pub use built_in::linear_rgb;
 pub(crate) use built_in::{BuiltInCaches, BuiltInVisitor, is_built_in, local_sphere};
 pub use directional::PhongDirectionalLight;
+pub use disk::PhongDiskLight;
 pub use gpu_area_light::GpuAreaLight;
 pub use gpu_light::GpuLight;
 pub use point::PhongPointLight;

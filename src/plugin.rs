@@ -3,7 +3,9 @@
 
 mod order;
 
-use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
+use crate::light_kind::{
+    PhongDirectionalLight, PhongDiskLight, PhongPointLight, PhongRectLight, PhongSpotLight,
+};
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     extension::add_light_kind,
@@ -63,9 +65,17 @@ impl Plugin for PhongPlugin {
         add_light_kind::<PhongPointLight>(app);
         add_light_kind::<PhongSpotLight>(app);
         add_light_kind::<PhongRectLight>(app);
+        add_light_kind::<PhongDiskLight>(app);
         // The area lights' reference-model lights, collected as an extension kind's are.
         #[cfg(feature = "reference")]
-        crate::extension::reference_lights::add_reference_kind::<PhongRectLight>(app.world_mut());
+        {
+            crate::extension::reference_lights::add_reference_kind::<PhongRectLight>(
+                app.world_mut(),
+            );
+            crate::extension::reference_lights::add_reference_kind::<PhongDiskLight>(
+                app.world_mut(),
+            );
+        }
         load_shaders(app);
         add_rendering(app);
     }
@@ -104,6 +114,7 @@ fn register_types(app: &mut App) {
         .register_type::<PhongPointLight>()
         .register_type::<PhongSpotLight>()
         .register_type::<PhongRectLight>()
+        .register_type::<PhongDiskLight>()
         .register_type::<AreaHighlight>()
         .register_type::<Decay>()
         .register_type::<PhongShadows>()
@@ -262,6 +273,7 @@ mod tests {
             crate::PhongPointLight::type_path(),
             crate::PhongSpotLight::type_path(),
             crate::PhongRectLight::type_path(),
+            crate::PhongDiskLight::type_path(),
             crate::PhongDirectionalLight::type_path(),
             crate::PhongAmbientLight::type_path(),
             crate::PhongLightCulling::type_path(),

@@ -48,7 +48,7 @@ pub(crate) mod stylized;
 mod surface;
 mod surface_inputs;
 mod texture_maps;
-pub use area::{AreaLight, AreaShape, area_light_contribution};
+pub use area::{AreaLight, AreaShape, area_light_contribution, visible_area_light_contribution};
 pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use cookies::{Cookie, CookieProjection, cube_face_uv};
 pub use environment::{cube_direction, environment_direction, environment_lod, with_environment};

@@ -1,14 +1,14 @@
 //! What the built-in kinds of light share: each one's record is its placement-free
 //! constants, then its placement by the transform ([`built_in_record`]); the kinds that fade
 //! with distance share their reach ([`fading_reach_kind`]). Each kind's own part is in its
-//! folder (`directional`, `point`, `spot`, `rect`). The built-in kinds share the scene's light
+//! folder (`directional`, `point`, `spot`, `rect`, `disk`). The built-in kinds share the scene's light
 //! buffer (gathered by `render::gather_lights` through these methods, their constants
 //! cached), where an extension's kind gets a buffer of its own
 //! ([`PhongLightKindPlugin`](crate::extension::PhongLightKindPlugin)).
 
 use super::{
-    GpuAreaLight, GpuLight, PhongDirectionalLight, PhongLightKind, PhongPointLight, PhongRectLight,
-    PhongSpotLight, RecordCache,
+    GpuAreaLight, GpuLight, PhongDirectionalLight, PhongDiskLight, PhongLightKind, PhongPointLight,
+    PhongRectLight, PhongSpotLight, RecordCache,
 };
 use crate::lights::{
     LightChanges, LightQuery, TrackedLightQuery, influence_radius, light_direction,
@@ -21,7 +21,7 @@ use core::any::TypeId;
 
 /// The built-in kinds' lights as the scene's light buffer holds them: the lights that reach
 /// everywhere (directional), then each kind of local light (point, spot), then each kind of
-/// area light (rect), whose records the gather keeps in a [`RecordCache`] while its
+/// area light (rect, disk), whose records the gather keeps in a [`RecordCache`] while its
 /// component is unchanged. The one list of the
 /// built-in kinds that the gather reads: a new built-in kind adds its query, its changes and
 /// (a local kind) its cache here, and its registration in `PhongPlugin`.
@@ -31,10 +31,12 @@ pub struct BuiltInLights<'w, 's> {
     point: TrackedLightQuery<'w, 's, PhongPointLight>,
     spot: TrackedLightQuery<'w, 's, PhongSpotLight>,
     rect: TrackedLightQuery<'w, 's, PhongRectLight>,
+    disk: TrackedLightQuery<'w, 's, PhongDiskLight>,
     directional_changes: LightChanges<'w, 's, PhongDirectionalLight>,
     point_changes: LightChanges<'w, 's, PhongPointLight>,
     spot_changes: LightChanges<'w, 's, PhongSpotLight>,
     rect_changes: LightChanges<'w, 's, PhongRectLight>,
+    disk_changes: LightChanges<'w, 's, PhongDiskLight>,
 }
 
 /// The record caches of the built-in local and area kinds (see [`BuiltInLights`]).
@@ -43,6 +45,7 @@ pub(crate) struct BuiltInCaches {
     point: RecordCache<PhongPointLight>,
     spot: RecordCache<PhongSpotLight>,
     rect: RecordCache<PhongRectLight>,
+    disk: RecordCache<PhongDiskLight>,
 }
 
 /// What a gather does with the lights of each built-in kind ([`BuiltInLights`]).
@@ -74,6 +77,7 @@ impl BuiltInLights<'_, '_> {
             self.point_changes.any(),
             self.spot_changes.any(),
             self.rect_changes.any(),
+            self.disk_changes.any(),
         ];
         changes.contains(&true)
     }
@@ -96,6 +100,7 @@ impl BuiltInLights<'_, '_> {
     /// Hands `visitor` the lights of each area kind, in the buffer's order, with its cache.
     pub(crate) fn visit_area(&self, caches: &mut BuiltInCaches, visitor: &mut impl BuiltInVisitor) {
         visitor.area(&self.rect, &mut caches.rect);
+        visitor.area(&self.disk, &mut caches.disk);
     }
 }
 
@@ -112,6 +117,7 @@ pub(crate) fn is_built_in<L: PhongLightKind>() -> bool {
         TypeId::of::<PhongPointLight>(),
         TypeId::of::<PhongSpotLight>(),
         TypeId::of::<PhongRectLight>(),
+        TypeId::of::<PhongDiskLight>(),
     ]
     .contains(&TypeId::of::<L>())
 }

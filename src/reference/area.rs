@@ -11,11 +11,9 @@
 //! Seen from `P`, `e · dA / r²` is the solid angle `dω` the element fills, so the diffuse
 //! term is `color / |S| ⊙ k_d · ∫ max(N·ω, 0) dω` over the light's solid angle.
 
-use super::area_pieces::{cut, integrate_polygon};
-use super::quadrature::integrate_2d;
+use super::area_pieces::{cut, integrate_disk, integrate_polygon};
 use super::{Material, SurfacePoint, attenuation, phong_light};
 use bevy::math::DVec3;
-use std::f64::consts::TAU;
 
 /// The quadrature's tolerance, relative to the light's largest channel at the point.
 pub const RELATIVE_TOLERANCE: f64 = 1e-9;
@@ -94,6 +92,32 @@ pub struct AreaLight {
 }
 
 impl AreaLight {
+    /// An area light entity's reference form (`AreaLight::rect`, `AreaLight::disk`): `shape`
+    /// placed by `transform`'s translation and rotation (scale ignored, as its record's), its
+    /// specular color `color`'s where it has none.
+    pub(crate) fn placed(
+        transform: &bevy::transform::components::GlobalTransform,
+        shape: AreaShape,
+        two_sided: bool,
+        (color, specular): (bevy::color::Color, Option<bevy::color::Color>),
+        decay: crate::lights::Decay,
+        range: Option<f32>,
+    ) -> Self {
+        let (_, rotation, translation) = transform.to_scale_rotation_translation();
+        let rotation = rotation.as_dquat();
+        AreaLight {
+            position: translation.as_dvec3(),
+            right: rotation * DVec3::X,
+            up: rotation * DVec3::Y,
+            shape,
+            two_sided,
+            color: super::rgb(color),
+            specular: super::rgb(specular.unwrap_or(color)),
+            decay: decay.to_array().map(f64::from),
+            range: range.map(f64::from),
+        }
+    }
+
     /// The direction the light faces (its local −Z).
     pub fn facing(&self) -> DVec3 {
         self.up.cross(self.right)
@@ -141,6 +165,21 @@ pub fn area_light_contribution(
     material: &Material,
     light: &AreaLight,
 ) -> DVec3 {
+    visible_area_light_contribution(surface, material, light, &|_| 1.0, RELATIVE_TOLERANCE)
+}
+
+/// [`area_light_contribution`] with each element `y` of the light weighed by `visible(y)`
+/// (`1` where the segment from the surface point to `y` meets nothing, `0` where it is
+/// blocked): the light's exact term past what is in the way, SPEC.md's `V` taken per element.
+/// Integrated to `relative_tolerance` of the term (the visibility's edges are jumps, which
+/// the adaptive rule halves intervals down to; the unshadowed term takes 1e-9).
+pub fn visible_area_light_contribution(
+    surface: &SurfacePoint,
+    material: &Material,
+    light: &AreaLight,
+    visible: &dyn Fn(DVec3) -> f64,
+    relative_tolerance: f64,
+) -> DVec3 {
     let fall_off = attenuation(light.distance(surface.position), light.decay, light.range);
     let area = light.shape.area();
     if fall_off <= 0.0 || area.is_nan() || area <= 0.0 {
@@ -158,28 +197,31 @@ pub fn area_light_contribution(
         if weight == 0.0 {
             return DVec3::ZERO;
         }
+        let weight = weight * visible(light.point(x, y));
+        if weight == 0.0 {
+            return DVec3::ZERO;
+        }
         weight * phong_light(surface, material, to_light, color, specular)
     };
-    // A rectangle is cut where the integrand has kinks (`area_pieces`): along the surface's
-    // horizon and the mirror direction's plane.
+    // The integrand has kinks (`area_pieces`) along the surface's horizon and the mirror
+    // direction's plane, each a line of the light's plane: a rectangle is cut along both, a
+    // disk's rays split where they cross them.
+    let view = super::normalize_or_zero(surface.camera - surface.position);
+    let normal = super::normalize_or_zero(surface.normal);
+    let mirror = super::reflect(-view, normal);
+    let offset = light.position - surface.position;
+    let line = |plane: DVec3| {
+        (
+            plane.dot(light.right),
+            plane.dot(light.up),
+            plane.dot(offset),
+        )
+    };
+    let lines = [line(normal), line(mirror)];
     let pieces = match light.shape {
         AreaShape::Rect { width, height } => {
             let (x, y) = (0.5 * width, 0.5 * height);
-            let view = super::normalize_or_zero(surface.camera - surface.position);
-            let normal = super::normalize_or_zero(surface.normal);
-            let mirror = super::reflect(-view, normal);
-            let offset = light.position - surface.position;
-            let line = |plane: DVec3| {
-                (
-                    plane.dot(light.right),
-                    plane.dot(light.up),
-                    plane.dot(offset),
-                )
-            };
-            cut(
-                vec![(-x, -y), (x, -y), (x, y), (-x, y)],
-                &[line(normal), line(mirror)],
-            )
+            cut(vec![(-x, -y), (x, -y), (x, y), (-x, y)], &lines)
         }
         AreaShape::Disk { .. } => Vec::new(),
     };
@@ -196,18 +238,15 @@ pub fn area_light_contribution(
                     )
                 })
                 .fold(DVec3::ZERO, |sum, part| sum + part),
-            AreaShape::Disk { radius } => integrate_2d(
-                &mut |angle, r| r * element(r * angle.cos(), r * angle.sin()),
-                (0.0, TAU),
-                &|_| (0.0, radius),
-                tolerance,
-            ),
+            AreaShape::Disk { radius } => {
+                integrate_disk(&mut |x, y| element(x, y), radius, &lines, tolerance)
+            }
         }
     };
     let brightest = color.max(specular).max_element();
     let scale = integral(1e-3 * brightest);
     // Below ABSOLUTE_FLOOR of the light's color per unit area no term matters; the floor
     // keeps a point the light barely reaches from being halved down to the last bit.
-    let tolerance = (RELATIVE_TOLERANCE * scale.max_element()).max(ABSOLUTE_FLOOR * brightest);
+    let tolerance = (relative_tolerance * scale.max_element()).max(ABSOLUTE_FLOOR * brightest);
     fall_off * integral(tolerance)
 }

@@ -1,5 +1,6 @@
 //! A rectangle light cut into convex pieces over which the integrand of its term is smooth,
-//! and the quadrature over such a piece, for [`super::area`].
+//! and the quadrature over such a piece; a disk integrated along rays split where they cross
+//! the same lines; for [`super::area`].
 //!
 //! The integrand is not smooth everywhere on the light: the diffuse term has a kink where
 //! the light crosses the surface's horizon (`N·ω = 0`, a jump for a highlight gated by it),
@@ -7,9 +8,12 @@
 //! those is a plane through the surface point, which meets the light's plane in a line: the
 //! rectangle is cut along both lines, and each convex piece is integrated on its own, where
 //! the adaptive rule converges at its full order instead of halving intervals down to the
-//! kink. Nothing of the integrals' closed forms enters.
+//! kink. A disk is integrated in polar coordinates, each ray's radial integral split where
+//! it crosses a line and the angles split where a line meets the circle. Nothing of the
+//! integrals' closed forms enters.
 
-use super::quadrature::{Value, integrate_2d};
+use super::quadrature::{Value, integrate, integrate_2d};
+use std::f64::consts::TAU;
 
 /// A point of the light's plane, in its own coordinates (along its local X and Y).
 pub(super) type PlanePoint = (f64, f64);
@@ -83,6 +87,59 @@ pub(super) fn integrate_polygon<V: Value>(
     sum
 }
 
+/// `∫ f dA` over the disk of `radius` around the plane's origin, whose integrand has kinks
+/// along `lines`, to within about `tolerance`: over the angle, split where a line meets the
+/// circle, the radial integral (times `r`) split where the ray crosses a line.
+pub(super) fn integrate_disk<V: Value>(
+    f: &mut dyn FnMut(f64, f64) -> V,
+    radius: f64,
+    lines: &[Line],
+    tolerance: f64,
+) -> V {
+    // The angles where a line meets the circle: `R·ρ·cos(θ − φ) = −c`.
+    let mut angles = vec![0.0, TAU];
+    for &(a, b, c) in lines {
+        let length = a.hypot(b);
+        if length > 0.0 && c.abs() < radius * length {
+            let (toward, spread) = (b.atan2(a), (-c / (radius * length)).acos());
+            angles.extend(
+                [toward - spread, toward + spread]
+                    .into_iter()
+                    .map(|angle| angle.rem_euclid(TAU)),
+            );
+        }
+    }
+    angles.sort_by(f64::total_cmp);
+    angles.dedup();
+    let inner_tolerance = 0.1 * tolerance / TAU;
+    let mut ray = |angle: f64| -> V {
+        let (sin, cos) = angle.sin_cos();
+        // Where the ray crosses each line: `r (a cos θ + b sin θ) + c = 0`.
+        let mut stops = vec![0.0, radius];
+        stops.extend(lines.iter().filter_map(|&(a, b, c)| {
+            let r = -c / (a * cos + b * sin);
+            (r > 0.0 && r < radius).then_some(r)
+        }));
+        stops.sort_by(f64::total_cmp);
+        stops.windows(2).fold(V::ZERO, |sum, span| {
+            sum + integrate(
+                &mut |r| f(r * cos, r * sin) * r,
+                span[0],
+                span[1],
+                inner_tolerance / (stops.len() - 1) as f64,
+            )
+        })
+    };
+    angles.windows(2).fold(V::ZERO, |sum, span| {
+        sum + integrate(
+            &mut ray,
+            span[0],
+            span[1],
+            0.9 * tolerance / (angles.len() - 1) as f64,
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -104,5 +161,18 @@ mod tests {
             .map(|piece| integrate_polygon(&mut |x, _| (x - 0.3).max(0.0), piece, 1e-12))
             .sum();
         assert!((kinked - 0.49).abs() < 1e-12, "{kinked}");
+    }
+
+    #[test]
+    fn a_disk_cut_along_a_line_integrates_a_kinked_function() {
+        let line = (1.0, 0.0, -0.3);
+        let area = integrate_disk(&mut |_, _| 1.0, 1.0, &[line], 1e-12);
+        assert!((area - std::f64::consts::PI).abs() < 1e-11, "{area}");
+        // ∫ max(x − 0.3, 0) over the unit disk: ∫_0.3^1 2√(1 − x²)(x − 0.3) dx
+        // = (2/3)(1 − 0.09)^{3/2} − 0.3·(acos 0.3 − 0.3·√0.91).
+        let chord = (1.0_f64 - 0.09).sqrt();
+        let expected = 2.0 / 3.0 * chord.powi(3) - 0.3 * (0.3_f64.acos() - 0.3 * chord);
+        let kinked = integrate_disk(&mut |x, _| (x - 0.3).max(0.0), 1.0, &[line], 1e-12);
+        assert!((kinked - expected).abs() < 1e-11, "{kinked} for {expected}");
     }
 }

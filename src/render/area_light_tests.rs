@@ -1,4 +1,4 @@
-//! The rectangle light through the built-in machinery: validated, written after the local
+//! The rectangle and disk lights through the built-in machinery: validated, written after the local
 //! lights with its record's fields and flags, clustered in slot 1 by the box its range
 //! grows around it, the scene's area-light variant set while one is in the buffer, and in
 //! the reference model.
@@ -8,7 +8,9 @@ use crate::light_kind::PhongLightKind;
 use crate::reference::{Material, SurfacePoint};
 use crate::scene_variants::SceneVariants;
 use crate::test_app::{invalid_inputs, test_app};
-use crate::{AreaHighlight, Owner, PhongLightCulling, PhongPointLight, PhongRectLight};
+use crate::{
+    AreaHighlight, Owner, PhongDiskLight, PhongLightCulling, PhongPointLight, PhongRectLight,
+};
 use bevy::prelude::{Camera3d, Transform, Vec3, Visibility};
 use glam::DVec3;
 
@@ -182,4 +184,60 @@ fn a_rect_light_is_validated_gathered_after_the_local_lights_clustered_and_model
     }
     app.update();
     assert!(!app.world().resource::<SceneVariants>().area_lights);
+}
+
+#[test]
+fn a_disk_light_is_validated_and_gathered_with_its_shape_flag_area_and_bounds() {
+    let mut app = test_app(|app| {
+        app.insert_resource(PhongLightCulling::EXACT);
+    });
+    let world = app.world_mut();
+    world.spawn((
+        Camera3d::default(),
+        Transform::from_xyz(0.0, 2.0, 10.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    world.spawn((
+        PhongDiskLight {
+            radius: 2.0,
+            color: bevy::color::Color::linear_rgb(4.0 * core::f32::consts::PI, 0.0, 0.0),
+            range: Some(3.0),
+            ..Default::default()
+        },
+        Transform::from_xyz(0.0, 2.0, 0.0).looking_to(Vec3::NEG_Y, Vec3::Z),
+    ));
+    let broken = world
+        .spawn((
+            PhongDiskLight {
+                radius: -1.0,
+                ..Default::default()
+            },
+            Transform::default(),
+        ))
+        .id();
+    app.update();
+
+    // A negative radius is replaced by 0, named; a disk without area is left out.
+    let invalid = invalid_inputs(&mut app);
+    assert_eq!(
+        invalid
+            .iter()
+            .map(|input| (&input.owner, input.component, input.field))
+            .collect::<Vec<_>>(),
+        [(&Owner::Entity(broken), "PhongDiskLight", "radius")]
+    );
+    let buffer = app.world().resource::<PhongLightBuffer>();
+    let header = *buffer.header();
+    assert_eq!((header.area_count, header.clustered_area_count), (0, 1));
+    let disk = area_records(buffer)[0];
+    assert_eq!(disk.flags, GpuAreaLight::DISK);
+    // Its radius along both half extents; 4π over π·2²: 1 per unit area.
+    let length = |v: [f32; 3]| Vec3::from(v).length();
+    assert!((length(disk.half_width) - 2.0).abs() < 1e-6, "{disk:?}");
+    assert!((length(disk.half_height) - 2.0).abs() < 1e-6, "{disk:?}");
+    assert!((disk.area() - 4.0 * core::f32::consts::PI).abs() < 1e-5);
+    assert!((disk.color[0] - 1.0).abs() < 1e-6, "{disk:?}");
+    // Clustered by its range grown by its radius, not by a square's half diagonal.
+    let sphere = PhongDiskLight::bounding_sphere(&disk, 3.0).expect("a finite reach");
+    assert!((sphere.radius() - 5.0).abs() < 1e-5, "{sphere:?}");
+    assert!(app.world().resource::<SceneVariants>().area_lights);
 }

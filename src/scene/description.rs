@@ -199,6 +199,41 @@ pub enum LightDescription {
         /// How its highlight is computed, as `AreaHighlight`. Default `Exact`.
         #[serde(default)]
         highlight: AreaHighlight,
+        /// Shadow settings, as `PhongShadows` (soft as the light's size). Default off.
+        #[serde(default)]
+        shadows: PhongShadows,
+    },
+    /// A disk that emits from its area (`PhongDiskLight`), centered on `position` and facing
+    /// `direction`.
+    Disk {
+        /// The whole disk's diffuse intensity.
+        #[serde(default = "SceneColor::white")]
+        color: SceneColor,
+        /// Its specular intensity.
+        #[serde(default)]
+        specular: Option<SceneColor>,
+        /// Its center, world units.
+        position: Vec3,
+        /// The direction it faces (any length).
+        direction: Vec3,
+        /// World units. Default 0.5.
+        #[serde(default = "default_radius")]
+        radius: f32,
+        /// Whether it emits from its back face too. Default `false`.
+        #[serde(default)]
+        two_sided: bool,
+        /// Fall-off with the distance to its nearest point. Default none.
+        #[serde(default)]
+        decay: Decay,
+        /// Distance from its nearest point past which it gives no light. Default unlimited.
+        #[serde(default)]
+        range: Option<f32>,
+        /// How its highlight is computed, as `AreaHighlight`. Default `Exact`.
+        #[serde(default)]
+        highlight: AreaHighlight,
+        /// Shadow settings, as `PhongShadows` (soft as the light's size). Default off.
+        #[serde(default)]
+        shadows: PhongShadows,
     },
 }
 
@@ -253,6 +288,10 @@ impl CubemapLayoutDescription {
 
 fn default_size() -> f32 {
     1.0
+}
+
+fn default_radius() -> f32 {
+    0.5
 }
 
 fn default_inner_angle_degrees() -> f32 {

@@ -6,7 +6,9 @@ use super::{
     SceneFileError, TransformDescription, material_file::load_texture, read_ron, relative_path,
     scene_color,
 };
-use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
+use crate::light_kind::{
+    PhongDirectionalLight, PhongDiskLight, PhongPointLight, PhongRectLight, PhongSpotLight,
+};
 use crate::{
     direction,
     lights::{PhongAmbientLight, PhongHemisphereLight, PhongLightCookie},
@@ -47,6 +49,8 @@ pub enum SceneLight {
     Spot(PhongSpotLight),
     /// A rectangle light.
     Rect(PhongRectLight),
+    /// A disk light.
+    Disk(PhongDiskLight),
 }
 
 /// Loads a [`PhongScene`] from a `*.phong_scene.ron` file ([`PhongSceneDescription`]).
@@ -149,7 +153,7 @@ fn scene_light(
         LightDescription::Directional { cookie, .. }
         | LightDescription::Point { cookie, .. }
         | LightDescription::Spot { cookie, .. } => cookie,
-        LightDescription::Rect { .. } => &None,
+        LightDescription::Rect { .. } | LightDescription::Disk { .. } => &None,
     };
     let cookie = match cookie {
         None => None,
@@ -335,6 +339,7 @@ fn scene_light_alone(
             decay,
             range,
             highlight,
+            shadows,
         } => (
             SceneLight::Rect(PhongRectLight {
                 color: color("color", diffuse)?,
@@ -345,8 +350,33 @@ fn scene_light_alone(
                 decay: *decay,
                 range: *range,
                 highlight: *highlight,
+                shadows: *shadows,
             }),
             fields.aimed_up(*position, *direction, *up)?,
+        ),
+        LightDescription::Disk {
+            color: diffuse,
+            specular: specular_color,
+            position,
+            direction,
+            radius,
+            two_sided,
+            decay,
+            range,
+            highlight,
+            shadows,
+        } => (
+            SceneLight::Disk(PhongDiskLight {
+                color: color("color", diffuse)?,
+                specular: specular(specular_color)?,
+                radius: *radius,
+                two_sided: *two_sided,
+                decay: *decay,
+                range: *range,
+                highlight: *highlight,
+                shadows: *shadows,
+            }),
+            fields.aimed(*position, *direction)?,
         ),
     })
 }

@@ -113,6 +113,7 @@ fn spawn_scene(
                 SceneLight::Point(light) => parent.spawn((light.clone(), *transform)),
                 SceneLight::Spot(light) => parent.spawn((light.clone(), *transform)),
                 SceneLight::Rect(light) => parent.spawn((light.clone(), *transform)),
+                SceneLight::Disk(light) => parent.spawn((light.clone(), *transform)),
             };
             if let Some(cookie) = cookie {
                 light.insert(cookie.clone());

@@ -110,6 +110,7 @@ const GOOD_SCENE: &str = r##"(
              cookie: Some((image: "gobo.png", red_only: true))),
         Rect(position: (0.0, 3.0, 0.0), direction: (0.0, -1.0, 0.0), up: Some((0.0, 0.0, 2.0)),
              width: 2.0, height: 0.5, two_sided: true, highlight: RepresentativePoint),
+        Disk(position: (1.0, 3.0, 0.0), direction: (0.0, 0.0, 1.0), radius: 0.25, range: Some(4.0)),
     ],
     objects: [
         (mesh: Sphere(radius: 1.0), material: Inline((base_color: Srgb(1.0, 0.0, 1.0), shininess: 50.0))),
@@ -209,6 +210,12 @@ fn a_scene_file_spawns_its_camera_lights_and_objects_with_their_values() {
         transform.up().dot(Vec3::Z) > 0.999_999,
         "its height runs along up"
     );
+    let (disk, transform) = world
+        .query::<(&crate::PhongDiskLight, &Transform)>()
+        .single(world)
+        .unwrap();
+    assert_eq!((disk.radius, disk.range), (0.25, Some(4.0)));
+    assert!(transform.forward().dot(Vec3::Z) > 0.999_999, "it faces +Z");
 }
 
 /// A broken file and what its error must say.

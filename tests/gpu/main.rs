@@ -71,6 +71,7 @@
 
 mod adoption;
 mod area_lights;
+mod area_shadows;
 mod bevy_light_textures;
 #[path = "../fuzz/cases.rs"]
 mod cases;

@@ -11,7 +11,7 @@ mod kind;
 #[cfg(feature = "reference")]
 mod reference;
 
-use crate::lights::{AreaHighlight, Decay};
+use crate::lights::{AreaHighlight, Decay, PhongShadows};
 use bevy::{
     camera::visibility::Visibility,
     color::Color,
@@ -36,7 +36,7 @@ use serde::{Deserialize, Serialize};
 /// distance to the panel's nearest point. The diffuse light is integrated exactly over the
 /// part of the panel above the surface's horizon; the highlight as
 /// [`highlight`](Self::highlight) chooses. SPEC.md ("Area lights") has the equation. Scale is
-/// ignored; a hidden entity gives no light. Area lights cast no shadows yet.
+/// ignored; a hidden entity gives no light.
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Component, Default, Debug, Clone)]
@@ -65,6 +65,11 @@ pub struct PhongRectLight {
     pub range: Option<f32>,
     /// How the highlight is computed. Default [`AreaHighlight::Exact`].
     pub highlight: AreaHighlight,
+    /// Shadow settings. Default off. The shadow is cast from the panel's center into a cube
+    /// of maps, soft as a light of the panel's size (percentage-closer soft shadows whose
+    /// light radius is that of the disk of its area: `softness` is replaced by it); its
+    /// error against the panel's exact visibility is stated in docs/design/area-lights.md.
+    pub shadows: PhongShadows,
 }
 
 impl Default for PhongRectLight {
@@ -78,6 +83,7 @@ impl Default for PhongRectLight {
             decay: Decay::NONE,
             range: None,
             highlight: AreaHighlight::Exact,
+            shadows: PhongShadows::OFF,
         }
     }
 }

@@ -2,7 +2,7 @@
 
 use super::PhongRectLight;
 use crate::limits;
-use crate::reference::{AreaLight, AreaShape, rgb};
+use crate::reference::{AreaLight, AreaShape};
 use bevy::transform::components::GlobalTransform;
 
 impl AreaLight {
@@ -10,21 +10,17 @@ impl AreaLight {
     /// translation and rotation (scale ignored, as its record's), its size brought into
     /// range as its record's is (`crate::limits::AREA_SIZE`).
     pub fn rect(light: &PhongRectLight, transform: &GlobalTransform) -> Self {
-        let (_, rotation, translation) = transform.to_scale_rotation_translation();
-        let rotation = rotation.as_dquat();
-        AreaLight {
-            position: translation.as_dvec3(),
-            right: rotation * glam::DVec3::X,
-            up: rotation * glam::DVec3::Y,
-            shape: AreaShape::Rect {
-                width: limits::AREA_SIZE.apply(light.width).into(),
-                height: limits::AREA_SIZE.apply(light.height).into(),
-            },
-            two_sided: light.two_sided,
-            color: rgb(light.color),
-            specular: rgb(light.specular.unwrap_or(light.color)),
-            decay: light.decay.to_array().map(f64::from),
-            range: light.range.map(f64::from),
-        }
+        let shape = AreaShape::Rect {
+            width: limits::AREA_SIZE.apply(light.width).into(),
+            height: limits::AREA_SIZE.apply(light.height).into(),
+        };
+        AreaLight::placed(
+            transform,
+            shape,
+            light.two_sided,
+            (light.color, light.specular),
+            light.decay,
+            light.range,
+        )
     }
 }
