@@ -11,8 +11,8 @@
 //! cargo run --example area_lights -- --headless out.png # a PNG, and exit
 //! ```
 //!
-//! Keys: H the highlight (integrated over each panel, or at a representative point), W the
-//! window, T the television.
+//! Keys: H the highlight (integrated over each panel, its fitted lobe, or at a representative
+//! point), W the window, T the television.
 
 mod support;
 
@@ -193,7 +193,8 @@ fn setup(
 type RoomLights<'w, 's> =
     Query<'w, 's, (&'static mut Visibility, Has<Window>), Or<(With<Window>, With<Television>)>>;
 
-/// H switches every panel's highlight between integrated and a representative point; W and
+/// H switches every panel's highlight from integrated to fitted to a representative point
+/// and back; W and
 /// T turn the window and the television (each light and its quad) off and on.
 fn keys(
     input: Res<ButtonInput<KeyCode>>,
@@ -203,7 +204,8 @@ fn keys(
     if input.just_pressed(KeyCode::KeyH) {
         for mut panel in &mut panels {
             panel.highlight = match panel.highlight {
-                AreaHighlight::Exact => AreaHighlight::RepresentativePoint,
+                AreaHighlight::Exact => AreaHighlight::Fitted,
+                AreaHighlight::Fitted => AreaHighlight::RepresentativePoint,
                 AreaHighlight::RepresentativePoint => AreaHighlight::Exact,
             };
             println!("highlight: {:?}", panel.highlight);

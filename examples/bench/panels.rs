@@ -27,6 +27,7 @@ impl Panels {
         let highlight = match self.highlight {
             AreaHighlight::Exact => "integrated",
             AreaHighlight::RepresentativePoint => "representative point",
+            AreaHighlight::Fitted => "fitted",
         };
         format!(
             "field, {} rect light{} ({highlight})",
@@ -79,7 +80,11 @@ pub fn time_against_error(
         &Panels::COUNTS
     };
     for &count in counts {
-        for highlight in [AreaHighlight::Exact, AreaHighlight::RepresentativePoint] {
+        for highlight in [
+            AreaHighlight::Exact,
+            AreaHighlight::Fitted,
+            AreaHighlight::RepresentativePoint,
+        ] {
             let scene = Scene::Panels(Panels { count, highlight });
             let shading = Shading::Phong(Some(SpecularModel::Phong));
             let culling = PhongLightCulling::default();

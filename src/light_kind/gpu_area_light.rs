@@ -38,7 +38,8 @@ pub struct GpuAreaLight {
     pub decay: [f32; 3],
     /// In the low 16 bits the light's shadow slot (`0`: none, as
     /// [`GpuLight::shadow`](super::GpuLight::shadow)); above them the flags
-    /// [`Self::TWO_SIDED`], [`Self::REPRESENTATIVE_POINT`] and [`Self::DISK`].
+    /// [`Self::TWO_SIDED`], [`Self::REPRESENTATIVE_POINT`], [`Self::DISK`] and
+    /// [`Self::FITTED`].
     pub flags: u32,
 }
 
@@ -50,6 +51,8 @@ impl GpuAreaLight {
     pub const REPRESENTATIVE_POINT: u32 = 1 << 17;
     /// The shape is a disk ([`PhongDiskLight`](crate::PhongDiskLight)), not a rectangle.
     pub const DISK: u32 = 1 << 18;
+    /// Its highlight is the fitted lobe's ([`AreaHighlight::Fitted`](crate::AreaHighlight::Fitted)).
+    pub const FITTED: u32 = 1 << 19;
 
     /// The record of an area light of `shape` at the identity transform (see
     /// [`UnplacedShape`]), its colors per unit area computed in `f64` (zero for a shape
@@ -75,9 +78,11 @@ impl GpuAreaLight {
         if two_sided {
             flags |= Self::TWO_SIDED;
         }
-        if highlight == AreaHighlight::RepresentativePoint {
-            flags |= Self::REPRESENTATIVE_POINT;
-        }
+        flags |= match highlight {
+            AreaHighlight::Exact => 0,
+            AreaHighlight::RepresentativePoint => Self::REPRESENTATIVE_POINT,
+            AreaHighlight::Fitted => Self::FITTED,
+        };
         GpuAreaLight {
             center: [0.0; 3],
             range: stored_range(range),

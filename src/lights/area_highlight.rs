@@ -5,9 +5,10 @@ use bevy::{prelude::ReflectDefault, reflect::Reflect};
 #[cfg(feature = "scene")]
 use serde::{Deserialize, Serialize};
 
-/// How an area light ([`PhongRectLight`](crate::PhongRectLight)) computes the highlight it
-/// gives: the material's lobe integrated over the light's shape, or taken toward one
-/// point of it. The diffuse light is exact either way. Each choice's error, against the
+/// How an area light ([`PhongRectLight`](crate::PhongRectLight),
+/// [`PhongDiskLight`](crate::PhongDiskLight)) computes the highlight it gives: the material's
+/// lobe integrated over the light's shape, a fitted lobe integrated over it, or the lobe
+/// taken toward one point of it. The diffuse light is exact either way. Each choice's error, against the
 /// reference model's quadrature, is in SPEC.md ("Area lights") and on the time-against-error
 /// plot of docs/design/performance.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
@@ -19,9 +20,15 @@ pub enum AreaHighlight {
     /// otherwise (at most 8e-3 of the largest highlight measured); Blinn-Phong integrated as
     /// the Phong lobe of `α / (4 N·V)`, the lobe of the same solid angle (at most 0.4). Its
     /// cost grows with the shininess: about `α/2` steps per edge of the light's lit polygon
-    /// (4 to 6 edges).
+    /// (4 to 6 edges; a disk's 16 to 18).
     #[default]
     Exact,
+    /// The lobe replaced by a linearly transformed cosine fitted to it (a clamped cosine
+    /// around the mirror direction squeezed across it by `s = 1/√(0.585 α + 0.415)`, the
+    /// least-squares fit over the hemisphere; exact at `α = 1`), integrated over the light in
+    /// closed form as its diffuse light is: a cost that does not grow with the shininess (one
+    /// polygon's irradiance), its error docs/design/area-lights.md states.
+    Fitted,
     /// The material's highlight toward the light's point nearest the mirror ray, times the
     /// light's solid angle and the whole lobe's joined harmonically (`Ω·W / (Ω + W)`): a cost
     /// that does not grow with the shininess, and a larger error (at most 0.5 of the largest

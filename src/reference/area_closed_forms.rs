@@ -233,6 +233,35 @@ pub enum Specular {
     /// The lobe toward the light's point nearest the mirror ray, times the light's solid
     /// angle and the whole lobe's ([`whole_lobe`]) joined harmonically.
     RepresentativePoint,
+    /// The lobe's fitted linearly transformed cosine integrated over the lit polygon
+    /// ([`fitted_lobe`]).
+    Fitted,
+}
+
+/// `∫ max(w·ω, 0)^α dω` over the planar polygon `corners` (relative to the surface point)
+/// with the lobe replaced by the linearly transformed cosine fitted to it: the clamped
+/// cosine around `w` squeezed across it by `s = 1/√(0.585 α + 0.415)` (the least-squares fit
+/// of the normalized lobe `cos^α θ / W` over the hemisphere, `W` the [`whole_lobe`]; `s = 1`,
+/// exact, at `α = 1`). Its integral over the polygon is the clamped cosine's, `1/π` of
+/// Lambert's formula, over the polygon stretched across `w` by `1/s`, times `W`.
+pub fn fitted_lobe(corners: &[DVec3], axis: DVec3, exponent: f64) -> f64 {
+    if corners.len() < 3 {
+        return 0.0;
+    }
+    let stretch = (0.585 * exponent + 0.415).sqrt();
+    let (across, other) = axis.any_orthonormal_pair();
+    let stretched: Vec<DVec3> = corners
+        .iter()
+        .map(|corner| {
+            DVec3::new(
+                stretch * corner.dot(across),
+                stretch * corner.dot(other),
+                corner.dot(axis),
+            )
+        })
+        .collect();
+    let above = on_sphere(&clipped(&stretched, DVec3::Z));
+    whole_lobe(exponent) / PI * irradiance(&above, DVec3::Z)
 }
 
 /// The corners of `light` (a disk as the regular polygon of `sides` sides with its area),
@@ -296,6 +325,7 @@ pub fn contribution(
         Specular::RepresentativePoint => {
             representative_highlight(light, surface.position, &lit, mirror, exponent)
         }
+        Specular::Fitted => fitted_lobe(&lit, mirror, exponent),
     };
     let weight = material.specular * material.specular_strength;
     fall_off

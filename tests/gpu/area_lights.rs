@@ -13,7 +13,8 @@
 //! are held to the bounds docs/design/area-lights.md states for them (measured in `f64`
 //! against the same quadrature over two scenes, `reference::area_tests`), as a share of the
 //! largest highlight in the frame: the interpolated moments of a non-integer shininess 8e-3,
-//! Blinn-Phong as the Phong lobe of `α / (4 N·V)` 0.4, the representative point 0.5.
+//! Blinn-Phong as the Phong lobe of `α / (4 N·V)` 0.4, the representative point 0.5, the
+//! fitted lobe 0.2.
 //!
 //! The disks (the same three placements) are drawn by the shader as the regular polygon of 16
 //! sides with their area, and the quadrature integrates the disk itself: each term is held
@@ -214,6 +215,12 @@ fn area_lights_match_the_quadrature_over_their_area_at_every_pixel() {
     highlight_only(&mut harness, &materials, SpecularModel::Phong, 12.0);
     choose(&mut harness, AreaHighlight::RepresentativePoint);
     check_share(&mut harness, &inputs, "area_representative_point", 0.5);
+
+    // The fitted lobe (Blinn-Phong's exponent reaches it as the exact lobe's does, checked
+    // above; its error in f64 is `reference::area_tests`').
+    choose(&mut harness, AreaHighlight::Fitted);
+    highlight_only(&mut harness, &materials, SpecularModel::Phong, 12.5);
+    check_share(&mut harness, &inputs, "area_fitted", 0.2);
 }
 
 #[test]
