@@ -39,6 +39,15 @@ pub struct SceneVariants {
     /// this frame (shader def `PHONG_AREA_LIGHTS`): a scene without one pays nothing for
     /// their loop. Set by the light gather.
     pub(crate) area_lights: bool,
+    /// Whether one of those is a disk ([`PhongDiskLight`](crate::PhongDiskLight), shader def
+    /// `PHONG_DISK_LIGHTS`): only then do the area lights' polygons hold a disk's 16 corners
+    /// (a rectangle's need 6, and the shader's arrays are zeroed and copied at their full
+    /// size). Set by the light gather.
+    pub(crate) disk_lights: bool,
+    /// Whether one of those takes the fitted highlight
+    /// ([`AreaHighlight::Fitted`](crate::AreaHighlight::Fitted), shader def
+    /// `PHONG_AREA_FITTED`): only then is its branch compiled in. Set by the light gather.
+    pub(crate) fitted_highlights: bool,
     /// Whether some light has a [`PhongLightCookie`](crate::PhongLightCookie) with a record
     /// this frame (shader def `PHONG_LIGHT_COOKIES`). Set by the cookie gather.
     pub(crate) cookies: bool,

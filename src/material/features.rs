@@ -278,6 +278,12 @@ material_features! {
     /// The app's light buffer holds an area light (`PHONG_AREA_LIGHTS`).
     AREA_LIGHTS: "scene_variants", ["PHONG_AREA_LIGHTS"], Nothing,
         |m, u| m.scene_variants.area_lights;
+    /// One of them is a disk (`PHONG_DISK_LIGHTS`): the polygons hold 18 corners, not 6.
+    DISK_LIGHTS: "scene_variants", ["PHONG_DISK_LIGHTS"], Nothing,
+        |m, u| m.scene_variants.area_lights && m.scene_variants.disk_lights;
+    /// One of them takes the fitted highlight (`PHONG_AREA_FITTED`).
+    AREA_FITTED: "scene_variants", ["PHONG_AREA_FITTED"], Nothing,
+        |m, u| m.scene_variants.area_lights && m.scene_variants.fitted_highlights;
     /// Some light of the app has a `PhongLightCookie` (`PHONG_LIGHT_COOKIES`).
     LIGHT_COOKIES: "scene_variants", ["PHONG_LIGHT_COOKIES"], Nothing,
         |m, u| m.scene_variants.cookies;

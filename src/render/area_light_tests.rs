@@ -126,7 +126,11 @@ fn a_rect_light_is_validated_gathered_after_the_local_lights_clustered_and_model
         first.flags,
         GpuAreaLight::TWO_SIDED | GpuAreaLight::REPRESENTATIVE_POINT
     );
-    assert!(app.world().resource::<SceneVariants>().area_lights);
+    let variants = app.world().resource::<SceneVariants>();
+    assert!(
+        variants.area_lights && !variants.disk_lights && !variants.fitted_highlights,
+        "rectangles alone, none fitted: the polygons hold 6 corners, no fitted branch"
+    );
 
     // The near panel of finite reach is listed in slot 1 of some clusters, the far one in
     // none; slot 0 holds no area light.
@@ -201,6 +205,7 @@ fn a_disk_light_is_validated_and_gathered_with_its_shape_flag_area_and_bounds() 
             radius: 2.0,
             color: bevy::color::Color::linear_rgb(4.0 * core::f32::consts::PI, 0.0, 0.0),
             range: Some(3.0),
+            highlight: AreaHighlight::Fitted,
             ..Default::default()
         },
         Transform::from_xyz(0.0, 2.0, 0.0).looking_to(Vec3::NEG_Y, Vec3::Z),
@@ -229,7 +234,7 @@ fn a_disk_light_is_validated_and_gathered_with_its_shape_flag_area_and_bounds() 
     let header = *buffer.header();
     assert_eq!((header.area_count, header.clustered_area_count), (0, 1));
     let disk = area_records(buffer)[0];
-    assert_eq!(disk.flags, GpuAreaLight::DISK);
+    assert_eq!(disk.flags, GpuAreaLight::DISK | GpuAreaLight::FITTED);
     // Its radius along both half extents; 4π over π·2²: 1 per unit area.
     let length = |v: [f32; 3]| Vec3::from(v).length();
     assert!((length(disk.half_width) - 2.0).abs() < 1e-6, "{disk:?}");
@@ -239,5 +244,7 @@ fn a_disk_light_is_validated_and_gathered_with_its_shape_flag_area_and_bounds() 
     // Clustered by its range grown by its radius, not by a square's half diagonal.
     let sphere = PhongDiskLight::bounding_sphere(&disk, 3.0).expect("a finite reach");
     assert!((sphere.radius() - 5.0).abs() < 1e-5, "{sphere:?}");
-    assert!(app.world().resource::<SceneVariants>().area_lights);
+    // The disk's 18-corner polygons and the fitted lobe's branch are compiled in.
+    let variants = app.world().resource::<SceneVariants>();
+    assert!(variants.area_lights && variants.disk_lights && variants.fitted_highlights);
 }

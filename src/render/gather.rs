@@ -97,6 +97,13 @@ impl SharedEpsilonLights {
     }
 }
 
+/// Whether one of the area lights' `records` has `flag` (a [`GpuAreaLight`] flag).
+fn any_flagged(records: &[GpuLight], flag: u32) -> bool {
+    records
+        .iter()
+        .any(|record| bytemuck::cast::<GpuLight, GpuAreaLight>(*record).flags & flag != 0)
+}
+
 impl PhongLightBuffer {
     /// The ε each light gets, of [`PhongLightCulling::epsilon`], in the last gather: `ε / n`
     /// for the `n` lit point and spot lights and lights of extension kinds that share ε.
@@ -437,6 +444,17 @@ pub fn gather_lights(
     let area_lights = area_count + clustered_area_count > 0;
     if writes.variants.area_lights != area_lights {
         writes.variants.area_lights = area_lights;
+    }
+    let first_area = (directional_count + local_count + clustered_local_count) as usize;
+    let area_records = first_area..first_area + (area_count + clustered_area_count) as usize;
+    let area_records = &state.records[area_records];
+    let disk_lights = any_flagged(area_records, GpuAreaLight::DISK);
+    if writes.variants.disk_lights != disk_lights {
+        writes.variants.disk_lights = disk_lights;
+    }
+    let fitted_highlights = any_flagged(area_records, GpuAreaLight::FITTED);
+    if writes.variants.fitted_highlights != fitted_highlights {
+        writes.variants.fitted_highlights = fitted_highlights;
     }
     if state
         .buffer
