@@ -107,7 +107,8 @@ impl GpuAreaLight {
     /// Stores `slot` (the index of the light's first shadow view plus one, `0` for none) in
     /// [`flags`](Self::flags)' low half.
     pub(crate) fn set_shadow_slot(&mut self, slot: u32) {
-        self.flags = (self.flags & !0xffff) | (slot & 0xffff);
+        let shadow_bits = super::GpuLight::SHADOW_BITS;
+        self.flags = (self.flags & !shadow_bits) | (slot & shadow_bits);
     }
 
     /// The light's size for its soft shadows: the radius of the disk of its area, world

@@ -187,7 +187,8 @@ pub fn visible_area_light_contribution(
     }
     let (color, specular) = (light.color / area, light.specular / area);
     let element = |x: f64, y: f64| -> DVec3 {
-        let offset = light.point(x, y) - surface.position;
+        let point = light.point(x, y);
+        let offset = point - surface.position;
         let distance_squared = offset.length_squared();
         if distance_squared <= super::MIN_LENGTH_SQUARED {
             return DVec3::ZERO;
@@ -197,7 +198,7 @@ pub fn visible_area_light_contribution(
         if weight == 0.0 {
             return DVec3::ZERO;
         }
-        let weight = weight * visible(light.point(x, y));
+        let weight = weight * visible(point);
         if weight == 0.0 {
             return DVec3::ZERO;
         }

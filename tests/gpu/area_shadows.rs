@@ -58,7 +58,7 @@ fn clear(from: DVec3, to: DVec3) -> f64 {
 
 /// The floor and the blocker (white, diffuse only), `light` at `transform` with `shadows`,
 /// settled, with each pixel's inputs.
-fn scene<L: Component + Clone>(light: L, transform: Transform) -> (Harness, SurfaceInputs) {
+fn scene<L: Component>(light: L, transform: Transform) -> (Harness, SurfaceInputs) {
     let mut harness = Harness::new(SIZE, SIZE);
     harness.look_from(Vec3::new(0.5, 3.0, 4.0));
     let world = harness.world_mut();

@@ -32,8 +32,8 @@ use serde::{Deserialize, Serialize};
 /// distance, so that seen face on from far away the disk is a point light of `color`.
 /// `decay` and `range` multiply that, taken at the distance to the disk's nearest point.
 /// The shader draws the disk as the regular polygon of 16 sides with its area and integrates
-/// over that polygon as over a rectangle: the diffuse light within 2e-3 of the disk's
-/// (relative), the highlight within 2e-4 of the largest (docs/design/area-lights.md has the
+/// over that polygon as over a rectangle: the diffuse light within 5e-3 of the disk's
+/// (relative), the highlight within 2e-3 of the largest (docs/design/area-lights.md has the
 /// measurements). SPEC.md ("Area lights") has the equation. Scale is ignored; a hidden entity
 /// gives no light.
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
