@@ -9,7 +9,10 @@ mod ranges;
 mod vertex_lighting;
 
 pub use features::MaterialFeatures;
-pub(crate) use from_standard::phong_material_from_standard;
+pub(crate) use from_standard::{
+    ANISOTROPY, CLEARCOAT, TRANSMISSION, Unmapped, VOLUME, bevy_dielectric_f0,
+    converted_standard_material, unmapped_standard_features, warn_unmapped,
+};
 pub use key::PhongMaterialKey;
 #[cfg(feature = "testing")]
 pub(crate) use key::culled_in_view;
@@ -262,6 +265,36 @@ pub struct PhongMaterial {
     pub alpha_map_texture: Option<Handle<Image>>,
     /// The UV set [`alpha_map_texture`](Self::alpha_map_texture) is read at (see "UV sets" above). Default `Uv0`.
     pub alpha_map_channel: UvChannel,
+    /// glTF's `metallicRoughnessTexture` (Bevy's `StandardMaterial::metallic_roughness_texture`):
+    /// each texel gives the surface its metallic `m = metallic · B` and perceptual roughness
+    /// `r = perceptual_roughness · G` (blue and green, linear data), and the surface is the
+    /// metallic/roughness one of those numbers, drawn with the material's specular model
+    /// (SPEC.md, "Metallic-roughness map"):
+    ///
+    /// - `k_d ← k_d · (1 − m)`, with `k_d` the base color as its map and the vertex colors
+    ///   give it;
+    /// - `k_s ← mix(k_s, k_d, m)`, with `k_s` the dielectric reflectance at normal incidence
+    ///   (`specular_color` and its map; glTF's 0.04);
+    /// - `α ← clamp(2 / r⁴ − 2, 1, 10⁴)` and `strength ← strength · (α + 8) / 8`, the
+    ///   lobe's energy normalization.
+    ///
+    /// So `shininess` is not read where the map is drawn (a material lit per vertex takes it
+    /// at its vertices), and `specular_strength` stays a factor on the highlight (1 for a
+    /// converted material). Load the map as linear data (`is_srgb: false`). A mesh without
+    /// the map's UV set draws the material's plain fields, with a warning. Default none.
+    #[dependency]
+    pub metallic_roughness_texture: Option<Handle<Image>>,
+    /// The UV set [`metallic_roughness_texture`](Self::metallic_roughness_texture) is read at
+    /// (see "UV sets" above). Default `Uv0`.
+    pub metallic_roughness_channel: UvChannel,
+    /// Multiplies the metallic-roughness map's blue channel, `[0, 1]` (NaN → 0). Read only
+    /// with [`metallic_roughness_texture`](Self::metallic_roughness_texture). Default `1`
+    /// (the texel as it is, glTF's default factor).
+    pub metallic: f32,
+    /// Multiplies the metallic-roughness map's green channel, `[0, 1]` (NaN → 0.5). Read
+    /// only with [`metallic_roughness_texture`](Self::metallic_roughness_texture). Default
+    /// `1` (the texel as it is, glTF's default factor).
+    pub perceptual_roughness: f32,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
     /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
     /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
@@ -447,6 +480,10 @@ impl Default for PhongMaterial {
             emissive_channel: UvChannel::Uv0,
             alpha_map_texture: None,
             alpha_map_channel: UvChannel::Uv0,
+            metallic_roughness_texture: None,
+            metallic_roughness_channel: UvChannel::Uv0,
+            metallic: 1.0,
+            perceptual_roughness: 1.0,
             normal_map_texture: None,
             normal_map_channel: UvChannel::Uv0,
             flip_normal_map_y: false,
@@ -561,6 +598,13 @@ pub struct PhongMaterialUniform {
     pub refraction_ratio: f32,
     /// [`PhongMaterial::bump_scale`].
     pub bump_scale: f32,
+    /// [`PhongMaterial::metallic`], in `[0, 1]`.
+    pub metallic: f32,
+    /// [`PhongMaterial::perceptual_roughness`], in `[0, 1]`.
+    pub perceptual_roughness: f32,
+    /// [`PhongMaterial::specular_strength`] alone (the metallic-roughness map's metal
+    /// reflects `k_d · strength`).
+    pub specular_strength: f32,
     /// The stylized modes' numbers: the diffuse wrap, the toon bands (as a float) and their
     /// smoothing, the toon highlight's smoothing (`PhongMaterial::style_of`).
     pub style: Vec4,
@@ -614,6 +658,9 @@ impl From<&PhongMaterial> for PhongMaterialUniform {
             style: Self::style_of(material.diffuse_mode, material.specular_mode),
             rim: (material.rim_color.to_vec3() * material.rim_strength).extend(material.rim_power),
             normal_map_scale: material.normal_map_scale,
+            metallic: material.metallic,
+            perceptual_roughness: material.perceptual_roughness,
+            specular_strength: material.specular_strength,
         }
     }
 }

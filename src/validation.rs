@@ -34,6 +34,8 @@
 //! | `depth_bias` | what wgpu's `i32` holds (±2.1e9) | `0` | clamped |
 //! | `reflectivity` | 0 to 1 | `0` | clamped |
 //! | `refraction_ratio` | 0 to 1e6 | `1` | clamped |
+//! | `metallic` | 0 to 1 | `0` | clamped |
+//! | `perceptual_roughness` | 0 to 1 | `0.5` | clamped |
 //!
 //! Each replacement is also sent as an [`InvalidInput`] message, for tools and tests. Its
 //! value is quoted at most 80 characters long.

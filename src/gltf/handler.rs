@@ -44,6 +44,9 @@ pub(crate) fn with_what_bevy_drops(
     if let Some(info) = pbr.base_color_texture() {
         phong.base_color_channel = info_channel(&info, "baseColorTexture", label);
     }
+    if let Some(info) = pbr.metallic_roughness_texture() {
+        phong.metallic_roughness_channel = info_channel(&info, "metallicRoughnessTexture", label);
+    }
     if let Some(info) = material.emissive_texture() {
         phong.emissive_channel = info_channel(&info, "emissiveTexture", label);
     }

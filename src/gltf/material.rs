@@ -1,10 +1,10 @@
 //! [`phong_material_from_gltf`]: a glTF material (metallic/roughness) as a [`PhongMaterial`].
 
 use crate::material::{
-    MetallicRoughness, PhongMaterial,
-    metallic_roughness::{DIELECTRIC_F0, emissive_color},
+    ANISOTROPY, CLEARCOAT, MetallicRoughness, PhongMaterial, TRANSMISSION, Unmapped, VOLUME,
+    bevy_dielectric_f0, metallic_roughness::emissive_color, warn_unmapped,
 };
-use bevy::{gltf::GltfMaterial, log::warn, math::Vec3};
+use bevy::gltf::GltfMaterial;
 
 /// The [`PhongMaterial`] that stands for a glTF material, as `PhongGltfPlugin` builds it for
 /// each material of a file (`Material{n}/phong`).
@@ -20,7 +20,8 @@ use bevy::{gltf::GltfMaterial, log::warn, math::Vec3};
 /// | each texture's `texCoord` (the `*_channel` fields) | the map's `*_channel`; `PhongGltfPlugin` reads `KHR_texture_transform`'s `texCoord` from the file, which overrides it and which Bevy's loader drops |
 /// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
 /// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` (`PhongGltfPlugin` then reads the file's `strength`, which `GltfMaterial` drops) |
-/// | `metallic` m, `perceptual_roughness` r | `specular_model: BlinnPhong`, `specular_color = mix(0.04, base_color, m)`, `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
+/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: BlinnPhong`, `specular_color = mix(F₀, base_color, m)` with Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
+/// | `metallic_roughness_texture` (metallicRoughnessTexture), `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are, `specular_strength = 1` (`PhongGltfPlugin` reads the texture's `KHR_texture_transform` `texCoord`) |
 /// | | `ambient_factor = 1` |
 ///
 /// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
@@ -36,9 +37,9 @@ use bevy::{gltf::GltfMaterial, log::warn, math::Vec3};
 /// colors are brought into `limits` as the material's own validation does (NaN channels
 /// become 0, alpha 1). The result never holds a NaN.
 ///
-/// What has no counterpart is left out (see `unmapped_gltf_features`): the
-/// metallic/roughness map, transmission, volume, clearcoat and anisotropy. When `label` is
-/// `Some`, one warning naming it lists them.
+/// What has no counterpart is left out (see `unmapped_gltf_parts`): transmission,
+/// volume, clearcoat and anisotropy. When `label` is `Some`, one warning naming it lists
+/// them, each with what the surface becomes without it.
 ///
 /// ```
 /// use bevy::{color::Color, gltf::GltfMaterial};
@@ -57,20 +58,21 @@ use bevy::{gltf::GltfMaterial, log::warn, math::Vec3};
 /// ```
 pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) -> PhongMaterial {
     if let Some(label) = label {
-        let unmapped = unmapped_gltf_features(material);
-        if !unmapped.is_empty() {
-            warn!(
-                "glTF material {label}: {} not used by PhongMaterial (drawn without them)",
-                unmapped.join(", ")
-            );
-        }
+        warn_unmapped(
+            &format!("glTF material {label}"),
+            &unmapped_gltf_parts(material),
+        );
     }
     let numbers = MetallicRoughness {
         base_color: material.base_color,
         metallic: material.metallic,
         perceptual_roughness: material.perceptual_roughness,
-        dielectric_f0: Vec3::splat(DIELECTRIC_F0),
+        dielectric_f0: bevy_dielectric_f0(material.reflectance, material.specular_tint),
         unlit: material.unlit,
+        map: material
+            .metallic_roughness_texture
+            .clone()
+            .map(|texture| (texture, material.metallic_roughness_channel.clone())),
     };
     PhongMaterial {
         emissive: emissive_color(material.emissive),
@@ -91,34 +93,43 @@ pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) ->
 }
 
 /// The parts of a glTF material that [`phong_material_from_gltf`] does not map, by their
-/// glTF names (empty when it maps everything the material has).
-pub fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
-    let mut unmapped = Vec::new();
-    let mut note = |present: bool, name: &'static str| {
-        if present {
-            unmapped.push(name);
-        }
-    };
-    note(
-        material.metallic_roughness_texture.is_some(),
-        "metallicRoughnessTexture",
-    );
-    note(
-        material.specular_transmission > 0.0,
-        "KHR_materials_transmission",
-    );
-    note(material.thickness > 0.0, "KHR_materials_volume");
-    note(material.clearcoat > 0.0, "KHR_materials_clearcoat");
-    note(
-        material.anisotropy_strength > 0.0,
-        "KHR_materials_anisotropy",
-    );
-    unmapped
+/// glTF names, with what the surface becomes without each (empty when it maps everything
+/// the material has).
+fn unmapped_gltf_parts(material: &GltfMaterial) -> Vec<Unmapped> {
+    [
+        (
+            material.specular_transmission > 0.0,
+            "KHR_materials_transmission",
+            TRANSMISSION,
+        ),
+        (material.thickness > 0.0, "KHR_materials_volume", VOLUME),
+        (
+            material.clearcoat > 0.0,
+            "KHR_materials_clearcoat",
+            CLEARCOAT,
+        ),
+        (
+            material.anisotropy_strength > 0.0,
+            "KHR_materials_anisotropy",
+            ANISOTROPY,
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(set, name, becomes)| set.then_some(Unmapped { name, becomes }))
+    .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The glTF names of the parts [`phong_material_from_gltf`] does not map.
+    fn unmapped_gltf_features(material: &GltfMaterial) -> Vec<&'static str> {
+        unmapped_gltf_parts(material)
+            .iter()
+            .map(|part| part.name)
+            .collect()
+    }
     use crate::material::metallic_roughness::tests::{assert_close, linear};
     use crate::{SpecularModel, limits, material::metallic_roughness::shininess_from_roughness};
     use bevy::{
@@ -372,16 +383,83 @@ mod tests {
     }
 
     #[test]
-    fn maps_without_a_counterpart_are_listed() {
+    fn parts_without_a_counterpart_are_listed() {
         let material = GltfMaterial {
             metallic_roughness_texture: Some(Handle::default()),
             clearcoat: 0.5,
+            specular_transmission: 0.5,
             ..Default::default()
         };
         assert_eq!(
             unmapped_gltf_features(&material),
-            ["metallicRoughnessTexture", "KHR_materials_clearcoat"]
+            ["KHR_materials_transmission", "KHR_materials_clearcoat"]
         );
         assert!(unmapped_gltf_features(&GltfMaterial::default()).is_empty());
+    }
+
+    /// The usual export: factors 1, the values in the texture. The material keeps what the
+    /// shader needs to apply the rules per texel.
+    #[test]
+    fn the_metallic_roughness_texture_is_drawn_with_its_factors() {
+        let map = Handle::<Image>::Uuid(bevy::asset::uuid::Uuid::from_u128(9), Default::default());
+        let material = GltfMaterial {
+            base_color: Color::linear_rgba(0.8, 0.4, 0.2, 0.5),
+            metallic: 1.0,
+            perceptual_roughness: 0.5,
+            metallic_roughness_texture: Some(map.clone()),
+            metallic_roughness_channel: UvChannel::Uv1,
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        assert_eq!(phong.metallic_roughness_texture, Some(map));
+        assert_eq!(phong.metallic_roughness_channel, UvChannel::Uv1);
+        assert_eq!((phong.metallic, phong.perceptual_roughness), (1.0, 0.5));
+        // Not darkened by the factor: the texel's metallic does that.
+        assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 0.5], "base color");
+        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
+        assert_eq!(phong.specular_strength, 1.0);
+        assert_eq!(phong.shininess, 30.0, "the factor's, for the vertices");
+        assert!(
+            crate::MaterialFeatures::of(&phong)
+                .contains(crate::MaterialFeatures::METALLIC_ROUGHNESS_MAP_UV_B)
+        );
+        // Unlit: the base color as it is, no map drawn.
+        let unlit = phong_material_from_gltf(
+            &GltfMaterial {
+                unlit: true,
+                ..material.clone()
+            },
+            None,
+        );
+        assert_eq!(unlit.metallic_roughness_texture, None);
+        assert_close(linear(unlit.base_color), [0.8, 0.4, 0.2, 0.5], "unlit");
+        // NaN factors: metallic 0, roughness 0.5, as without a map.
+        let nan = phong_material_from_gltf(
+            &GltfMaterial {
+                metallic: f32::NAN,
+                perceptual_roughness: f32::NAN,
+                ..material
+            },
+            None,
+        );
+        assert_eq!((nan.metallic, nan.perceptual_roughness), (0.0, 0.5));
+    }
+
+    /// `KHR_materials_specular` as Bevy's loader reads it (`reflectance` = specularFactor /
+    /// 2, `specular_tint` = specularColorFactor): Bevy's `F₀ = 0.16 · (ρ·t)²`.
+    #[test]
+    fn khr_materials_specular_gives_bevys_dielectric_f0() {
+        let material = GltfMaterial {
+            reflectance: 0.25,
+            specular_tint: Color::linear_rgb(1.0, 0.5, 2.0),
+            ..Default::default()
+        };
+        let phong = phong_material_from_gltf(&material, None);
+        // 0.16 · (0.25, 0.125, 0.5)² = (0.01, 0.0025, 0.04).
+        assert_close(
+            linear(phong.specular_color),
+            [0.01, 0.0025, 0.04, 1.0],
+            "F0",
+        );
     }
 }

@@ -2,7 +2,10 @@
 //! drawn with a [`PhongMaterial`] instead.
 
 use crate::{
-    material::{PhongMaterial, phong_material_from_standard},
+    material::{
+        PhongMaterial, Unmapped, converted_standard_material, unmapped_standard_features,
+        warn_unmapped,
+    },
     schedule::PhongSystems,
 };
 use bevy::{
@@ -59,10 +62,29 @@ impl Plugin for PhongStandardMaterialPlugin {
 }
 
 /// The Phong material made for each `StandardMaterial`, kept until the `StandardMaterial` is
-/// removed.
+/// removed, and what its last warning listed.
 #[derive(Resource, Default)]
 struct SwitchedMaterials {
     phong_of: HashMap<AssetId<StandardMaterial>, Handle<PhongMaterial>>,
+    warned: HashMap<AssetId<StandardMaterial>, Vec<Unmapped>>,
+}
+
+impl SwitchedMaterials {
+    /// `source` as a Phong material; warns about what it leaves out the first time, and
+    /// again only where a change of the material changes that list (Bevy sends a material
+    /// loaded with its textures as changed: it is converted twice, warned once).
+    fn convert(
+        &mut self,
+        id: AssetId<StandardMaterial>,
+        source: &StandardMaterial,
+    ) -> PhongMaterial {
+        let unmapped = unmapped_standard_features(source);
+        if self.warned.get(&id) != Some(&unmapped) {
+            warn_unmapped(&label(id), &unmapped);
+            self.warned.insert(id, unmapped);
+        }
+        converted_standard_material(source)
+    }
 }
 
 /// The label the conversion's warning names a material by.
@@ -85,12 +107,14 @@ fn follow_standard_materials(
                 else {
                     continue;
                 };
-                if let Some(mut material) = phong.get_mut(handle) {
-                    *material = phong_material_from_standard(source, &label(id));
+                let handle = handle.clone();
+                if let Some(mut material) = phong.get_mut(&handle) {
+                    *material = switched.convert(id, source);
                 }
             }
             AssetEvent::Removed { id } => {
                 switched.phong_of.remove(&id);
+                switched.warned.remove(&id);
             }
             _ => {}
         }
@@ -115,7 +139,7 @@ fn switch_standard_materials(
                 let Some(source) = standard.get(id) else {
                     continue;
                 };
-                let handle = phong.add(phong_material_from_standard(source, &label(id)));
+                let handle = phong.add(switched.convert(id, source));
                 switched.phong_of.insert(id, handle.clone());
                 handle
             }

@@ -121,12 +121,20 @@ impl MaterialFeatures {
 /// `k_s · strength`, or for the normalized model, whose Fresnel term lights grazing angles
 /// even on a black specular color, a non-zero strength.
 fn has_specular(material: &PhongMaterial, uniform: &PhongMaterialUniform) -> bool {
-    let lit = if material.specular_model == SpecularModel::NormalizedBlinnPhong {
+    // A metallic-roughness map's metal reflects its base color, whatever `k_s`.
+    let lit = if material.specular_model == SpecularModel::NormalizedBlinnPhong
+        || has_metallic_roughness_map(material)
+    {
         material.in_range().specular_strength > 0.0
     } else {
         uniform.specular != Vec3::ZERO
     };
     lit && material.specular_mode != SpecularMode::Off
+}
+
+/// Whether `material` draws a metallic-roughness map: it has one and is lit.
+fn has_metallic_roughness_map(material: &PhongMaterial) -> bool {
+    material.metallic_roughness_texture.is_some() && !material.unlit
 }
 
 /// Whether `material` has an environment (its own cube, or the camera's).
@@ -213,6 +221,17 @@ material_features! {
     SPECULAR_TEXTURE_UV_B: "specular_texture", ["PHONG_SPECULAR_TEXTURE", "PHONG_SPECULAR_UV_B"],
         Uv1,
         |m, u| has_specular(m, u) && map_at(&m.specular_texture, &m.specular_channel, true);
+    /// A metallic-roughness map on the first UV set, on a lit material
+    /// (`PHONG_METALLIC_ROUGHNESS_MAP`).
+    METALLIC_ROUGHNESS_MAP: "metallic_roughness_texture", ["PHONG_METALLIC_ROUGHNESS_MAP"], Uv0,
+        |m, u| has_metallic_roughness_map(m)
+            && map_at(&m.metallic_roughness_texture, &m.metallic_roughness_channel, false);
+    /// A metallic-roughness map on the second UV set (`PHONG_METALLIC_ROUGHNESS_MAP`,
+    /// `PHONG_METALLIC_ROUGHNESS_UV_B`).
+    METALLIC_ROUGHNESS_MAP_UV_B: "metallic_roughness_texture",
+        ["PHONG_METALLIC_ROUGHNESS_MAP", "PHONG_METALLIC_ROUGHNESS_UV_B"], Uv1,
+        |m, u| has_metallic_roughness_map(m)
+            && map_at(&m.metallic_roughness_texture, &m.metallic_roughness_channel, true);
     /// An emissive map on the first UV set (`PHONG_EMISSIVE_TEXTURE`).
     EMISSIVE_TEXTURE: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE"], Uv0,
         |m, u| !m.unlit && map_at(&m.emissive_texture, &m.emissive_channel, false);

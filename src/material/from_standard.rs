@@ -3,8 +3,9 @@
 
 use super::{MetallicRoughness, PhongMaterial, metallic_roughness::emissive_color};
 use bevy::{
-    color::{ColorToComponents, LinearRgba},
+    color::{Color, ColorToComponents, LinearRgba},
     log::warn,
+    math::Vec3,
     pbr::StandardMaterial,
 };
 
@@ -18,9 +19,10 @@ use bevy::{
 /// | `normal_map_texture`, `normal_map_channel`, `flip_normal_map_y` | the same |
 /// | `occlusion_texture`, `occlusion_channel` | `ao_map_texture`, `ao_map_channel` (intensity 1) |
 /// | `alpha_mode`, `double_sided`, `cull_mode`, `unlit`, `fog_enabled`, `depth_bias`, `uv_transform` | the same |
+/// | `metallic_roughness_texture`, `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are, `specular_strength = 1` |
 ///
-/// What has no counterpart is left out, with one warning that lists it: the
-/// metallic/roughness map, parallax (`depth_map`), transmission, thickness, clearcoat,
+/// What has no counterpart is left out, with one warning that lists it and says what the
+/// surface becomes without it: parallax (`depth_map`), transmission, thickness, clearcoat,
 /// anisotropy and an emissive exposure weight. Bevy's `Lightmap` component keeps working on
 /// the mesh; its exposure is the camera's (see `BevyLightExposure`). Invalid numbers are
 /// brought into range as `PhongMaterial`'s validation does: the result never holds a NaN.
@@ -40,29 +42,23 @@ use bevy::{
 /// ```
 impl From<&StandardMaterial> for PhongMaterial {
     fn from(material: &StandardMaterial) -> Self {
-        phong_material_from_standard(material, "a StandardMaterial")
+        warn_unmapped("a StandardMaterial", &unmapped_standard_features(material));
+        converted_standard_material(material)
     }
 }
 
-/// [`PhongMaterial::from`] a `StandardMaterial`, whose warning (if any) names it `label`.
-pub(crate) fn phong_material_from_standard(
-    material: &StandardMaterial,
-    label: &str,
-) -> PhongMaterial {
-    let unmapped = unmapped_standard_features(material);
-    if !unmapped.is_empty() {
-        warn!(
-            "{label}: {} not used by PhongMaterial (drawn without them)",
-            unmapped.join(", ")
-        );
-    }
-    let tinted = LinearRgba::from(material.specular_tint).to_vec3() * material.reflectance;
+/// [`PhongMaterial::from`] a `StandardMaterial`, without a warning.
+pub(crate) fn converted_standard_material(material: &StandardMaterial) -> PhongMaterial {
     let numbers = MetallicRoughness {
         base_color: material.base_color,
         metallic: material.metallic,
         perceptual_roughness: material.perceptual_roughness,
-        dielectric_f0: 0.16 * tinted * tinted,
+        dielectric_f0: bevy_dielectric_f0(material.reflectance, material.specular_tint),
         unlit: material.unlit,
+        map: material
+            .metallic_roughness_texture
+            .clone()
+            .map(|texture| (texture, material.metallic_roughness_channel.clone())),
     };
     PhongMaterial {
         emissive: emissive_color(material.emissive),
@@ -85,32 +81,84 @@ pub(crate) fn phong_material_from_standard(
     }
 }
 
-/// The fields of `material` that [`PhongMaterial::from`] leaves out because they are set and
-/// Phong has no counterpart, by their names (empty when it maps everything set).
-pub(crate) fn unmapped_standard_features(material: &StandardMaterial) -> Vec<&'static str> {
+/// Bevy's reflectance of a dielectric at normal incidence, per channel, linear RGB:
+/// `0.16 · (reflectance · specular_tint)²` (`StandardMaterial`'s `reflectance` and
+/// `specular_tint`; glTF's `KHR_materials_specular` as Bevy's loader reads it into them).
+pub(crate) fn bevy_dielectric_f0(reflectance: f32, specular_tint: Color) -> Vec3 {
+    let tinted = LinearRgba::from(specular_tint).to_vec3() * reflectance;
+    0.16 * tinted * tinted
+}
+
+/// A part of a PBR material that has no Phong counterpart, named as its source names it,
+/// with what the surface becomes without it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Unmapped {
+    /// The field (or glTF extension).
+    pub(crate) name: &'static str,
+    /// What the Phong surface draws in its place.
+    pub(crate) becomes: &'static str,
+}
+
+/// One warning for `label` listing `unmapped` (none where it is empty).
+pub(crate) fn warn_unmapped(label: &str, unmapped: &[Unmapped]) {
+    if unmapped.is_empty() {
+        return;
+    }
+    let parts: Vec<String> = unmapped
+        .iter()
+        .map(|part| format!("{} ({})", part.name, part.becomes))
+        .collect();
+    warn!(
+        "{label}: PhongMaterial has no counterpart of {}",
+        parts.join("; ")
+    );
+}
+
+/// The parts of `material` that [`PhongMaterial::from`] leaves out because they are set and
+/// Phong has no counterpart (empty when it maps everything set).
+pub(crate) fn unmapped_standard_features(material: &StandardMaterial) -> Vec<Unmapped> {
     [
         (
-            material.metallic_roughness_texture.is_some(),
-            "metallic_roughness_texture",
+            material.depth_map.is_some(),
+            "depth_map",
+            "drawn flat, without parallax",
         ),
-        (material.depth_map.is_some(), "depth_map"),
         (
             material.specular_transmission > 0.0,
             "specular_transmission",
+            TRANSMISSION,
         ),
-        (material.diffuse_transmission > 0.0, "diffuse_transmission"),
-        (material.thickness > 0.0, "thickness"),
-        (material.clearcoat > 0.0, "clearcoat"),
-        (material.anisotropy_strength > 0.0, "anisotropy_strength"),
+        (
+            material.diffuse_transmission > 0.0,
+            "diffuse_transmission",
+            "drawn opaque: no light passes through",
+        ),
+        (material.thickness > 0.0, "thickness", VOLUME),
+        (material.clearcoat > 0.0, "clearcoat", CLEARCOAT),
+        (
+            material.anisotropy_strength > 0.0,
+            "anisotropy_strength",
+            ANISOTROPY,
+        ),
         (
             material.emissive_exposure_weight != 0.0,
             "emissive_exposure_weight",
+            "emissive drawn as bright at every exposure",
         ),
     ]
     .into_iter()
-    .filter_map(|(set, name)| set.then_some(name))
+    .filter_map(|(set, name, becomes)| set.then_some(Unmapped { name, becomes }))
     .collect()
 }
+
+/// What a transmissive surface becomes.
+pub(crate) const TRANSMISSION: &str = "drawn opaque, reflecting only: nothing seen through it";
+/// What a surface with a volume becomes.
+pub(crate) const VOLUME: &str = "drawn without absorption inside it";
+/// What a clear-coated surface becomes.
+pub(crate) const CLEARCOAT: &str = "drawn without its coat's second highlight";
+/// What an anisotropic surface becomes.
+pub(crate) const ANISOTROPY: &str = "its highlight drawn round, not stretched";
 
 #[cfg(test)]
 mod tests {
@@ -253,6 +301,26 @@ mod tests {
     }
 
     #[test]
+    fn the_metallic_roughness_texture_carries_over_with_its_factors() {
+        let map = Handle::<Image>::Uuid(bevy::asset::uuid::Uuid::from_u128(5), Default::default());
+        let material = StandardMaterial {
+            base_color: Color::linear_rgb(1.0, 0.8, 0.3),
+            metallic: 1.0,
+            perceptual_roughness: 1.0,
+            metallic_roughness_texture: Some(map.clone()),
+            ..Default::default()
+        };
+        let phong = PhongMaterial::from(&material);
+        assert_eq!(phong.metallic_roughness_texture, Some(map));
+        assert_eq!(phong.metallic_roughness_channel, UvChannel::Uv0);
+        assert_eq!((phong.metallic, phong.perceptual_roughness), (1.0, 1.0));
+        assert_close(linear(phong.base_color), [1.0, 0.8, 0.3, 1.0], "base");
+        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F₀");
+        assert_eq!(phong.specular_strength, 1.0);
+        assert!(unmapped_standard_features(&material).is_empty());
+    }
+
+    #[test]
     fn fields_without_a_counterpart_are_listed() {
         assert!(unmapped_standard_features(&StandardMaterial::default()).is_empty());
         let material = StandardMaterial {
@@ -261,9 +329,10 @@ mod tests {
             depth_map: Some(Handle::default()),
             ..Default::default()
         };
-        assert_eq!(
-            unmapped_standard_features(&material),
-            ["depth_map", "specular_transmission", "clearcoat"]
-        );
+        let names: Vec<_> = unmapped_standard_features(&material)
+            .iter()
+            .map(|part| part.name)
+            .collect();
+        assert_eq!(names, ["depth_map", "specular_transmission", "clearcoat"]);
     }
 }

@@ -34,6 +34,9 @@ macro_rules! material_maps {
                 "the specular map";
             emissive_texture: texture(7) sampler(8), All, Srgb, uv emissive_channel,
                 "the emissive map";
+            metallic_roughness_texture: texture(30) sampler(31), All, Linear,
+                uv metallic_roughness_channel,
+                "the metallic-roughness map (blue metallic, green roughness)";
             normal_map_texture: texture(9) sampler(10), All, Linear, uv normal_map_channel,
                 "the tangent-space normal map";
             light_map_texture: texture(14) sampler(15), All, Srgb, uv light_map_channel,

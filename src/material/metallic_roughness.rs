@@ -17,8 +17,11 @@
 use super::{PhongMaterial, SpecularModel};
 use crate::limits::{self, Limits};
 use bevy::{
+    asset::Handle,
     color::{Color, LinearRgba},
+    image::Image,
     math::Vec3,
+    mesh::UvChannel,
 };
 
 /// `metallic`: `[0, 1]`, NaN → 0 (a dielectric, the default of both sources).
@@ -37,7 +40,7 @@ pub(crate) const SHININESS_RANGE: (f32, f32) = (1.0, 1e4);
 pub(crate) const DIELECTRIC_F0: f32 = 0.04;
 
 /// A metallic/roughness surface's numbers.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct MetallicRoughness {
     /// The base color, any color space (alpha is the output alpha).
     pub(crate) base_color: Color,
@@ -49,13 +52,39 @@ pub(crate) struct MetallicRoughness {
     pub(crate) dielectric_f0: Vec3,
     /// Shown as its base color, unlit (`KHR_materials_unlit`, `StandardMaterial::unlit`).
     pub(crate) unlit: bool,
+    /// The metallic-roughness map (blue metallic, green roughness, times the factors above)
+    /// and its UV set, if any.
+    pub(crate) map: Option<(Handle<Image>, UvChannel)>,
 }
 
 impl MetallicRoughness {
     /// The [`PhongMaterial`] of these numbers: its colors, exponent, strength and the
     /// Blinn-Phong model, the other fields at their defaults. Never holds a NaN: the numbers
-    /// are brought into their ranges first.
+    /// are brought into their ranges first. With a map (on a lit surface), the shader applies
+    /// the same rules per texel ([`PhongMaterial::metallic_roughness_texture`]): the material
+    /// keeps the base color and the dielectric `F₀` as they are, and the factors.
     pub(crate) fn phong_material(&self) -> PhongMaterial {
+        match &self.map {
+            Some((texture, channel)) if !self.unlit => PhongMaterial {
+                metallic_roughness_texture: Some(texture.clone()),
+                metallic_roughness_channel: channel.clone(),
+                metallic: METALLIC.apply(self.metallic),
+                perceptual_roughness: ROUGHNESS.apply(self.perceptual_roughness),
+                // The dielectric's numbers, read where the map is not (per vertex: the
+                // exponent); the texel's normalization replaces the strength's.
+                specular_strength: 1.0,
+                ..Self {
+                    metallic: 0.0,
+                    ..self.clone()
+                }
+                .without_map()
+            },
+            _ => self.without_map(),
+        }
+    }
+
+    /// The material of these numbers without a map.
+    fn without_map(&self) -> PhongMaterial {
         let metallic = METALLIC.apply(self.metallic);
         let shininess = shininess_from_roughness(self.perceptual_roughness);
         let base = limits::linear_color(self.base_color.to_linear());

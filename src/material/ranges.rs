@@ -4,6 +4,7 @@
 //! a copy into range, and the material's uniform and the reference model read that copy. A
 //! new number of the material is added here once, and all three follow.
 
+use super::metallic_roughness::{METALLIC, ROUGHNESS};
 use super::{DiffuseMode, PhongMaterial, SpecularMode};
 use crate::limits::{self, Limits};
 use bevy::{
@@ -60,6 +61,9 @@ pub(crate) fn visit_numbers(material: &mut PhongMaterial, visitor: &mut impl Num
     if let AlphaMode::Mask(cutoff) = &mut material.alpha_mode {
         visitor.scalar("alpha_mode", cutoff, limits::ALPHA_CUTOFF);
     }
+    visitor.scalar("metallic", &mut material.metallic, METALLIC);
+    let roughness = &mut material.perceptual_roughness;
+    visitor.scalar("perceptual_roughness", roughness, ROUGHNESS);
     visitor.scalar("bump_scale", &mut material.bump_scale, limits::SIGNED_SCALE);
     let normal_map_scale = &mut material.normal_map_scale;
     visitor.scalar(

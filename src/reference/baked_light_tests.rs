@@ -18,6 +18,7 @@ fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
         diffuse_mode: crate::DiffuseMode::Lambert,
         specular_mode: crate::SpecularMode::Smooth,
         rim: crate::reference::Rim::NONE,
+        metallic_roughness: None,
     };
     let lights = Lights {
         hemisphere: None,

@@ -57,6 +57,7 @@ fn material() -> impl Strategy<Value = Material> {
                     diffuse_mode: crate::DiffuseMode::Lambert,
                     specular_mode: crate::SpecularMode::Smooth,
                     rim: crate::reference::Rim::NONE,
+                    metallic_roughness: None,
                 }
             },
         )

@@ -1,6 +1,6 @@
 //! The surface point and the material's terms of the equation (SPEC.md, "Material").
 
-use super::{Rim, ToonRamp};
+use super::{MetallicRoughness, Rim, ToonRamp};
 use crate::material::{DiffuseMode, PhongMaterial, SpecularMode, SpecularModel};
 use bevy::color::{Color, ColorToComponents};
 use glam::DVec3;
@@ -54,6 +54,9 @@ pub struct Material {
     pub specular_mode: SpecularMode,
     /// The rim light.
     pub rim: Rim,
+    /// The factors of the metallic-roughness map, where the material draws one (its texels
+    /// then make the surface: [`Material::mapped`]).
+    pub metallic_roughness: Option<MetallicRoughness>,
 }
 
 /// The material's values brought into their ranges, by the same walk over its numbers as
@@ -78,6 +81,11 @@ impl From<&PhongMaterial> for Material {
                 power: material.rim_power.into(),
                 lit_side: material.rim_lit_side,
             },
+            metallic_roughness: (material.metallic_roughness_texture.is_some() && !material.unlit)
+                .then(|| MetallicRoughness {
+                    metallic: material.metallic.into(),
+                    perceptual_roughness: material.perceptual_roughness.into(),
+                }),
         }
     }
 }

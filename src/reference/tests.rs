@@ -10,7 +10,7 @@ fn close(actual: f64, expected: f64) -> bool {
     (actual - expected).abs() <= EPSILON * expected.abs().max(1.0)
 }
 
-fn matte(diffuse: DVec3) -> Material {
+pub(super) fn matte(diffuse: DVec3) -> Material {
     Material {
         toon_ramp: None,
         diffuse,
@@ -23,6 +23,7 @@ fn matte(diffuse: DVec3) -> Material {
         diffuse_mode: crate::DiffuseMode::Lambert,
         specular_mode: crate::SpecularMode::Smooth,
         rim: crate::reference::Rim::NONE,
+        metallic_roughness: None,
     }
 }
 

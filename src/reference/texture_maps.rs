@@ -2,7 +2,7 @@
 //! terms of the equation (SPEC.md, "Texture maps").
 
 use super::Material;
-use glam::{DVec3, DVec4};
+use glam::{DVec2, DVec3, DVec4};
 
 /// The values a fragment's maps gave it, as the sampler returns them (linear; `None` for a
 /// map the material does not have).
@@ -22,18 +22,28 @@ pub struct Texels {
     pub ao_map: Option<f64>,
     /// The alpha map's green channel; multiplies the output alpha only.
     pub alpha_map: Option<f64>,
+    /// The metallic-roughness map's blue and green channels, as `(metallic, roughness)`
+    /// (before the material's factors).
+    pub metallic_roughness: Option<DVec2>,
 }
 
 impl Material {
     /// This material at a fragment whose maps gave `texels`: each present map multiplies
-    /// its color, channel by channel.
+    /// its color, channel by channel; then, where the material draws a metallic-roughness
+    /// map, its texel makes the surface ([`Material::at_metallic_roughness_texel`]).
     pub fn mapped(&self, texels: &Texels) -> Material {
         let times = |color: DVec3, texel: Option<DVec3>| texel.map_or(color, |t| color * t);
-        Material {
+        let mapped = Material {
             diffuse: times(self.diffuse, texels.base_color.map(|t| t.truncate())),
             specular: times(self.specular, texels.specular),
             emissive: times(self.emissive, texels.emissive),
             ..self.clone()
+        };
+        match (self.metallic_roughness, texels.metallic_roughness) {
+            (Some(factors), Some(texel)) => {
+                mapped.at_metallic_roughness_texel(factors, texel.x, texel.y)
+            }
+            _ => mapped,
         }
     }
 }
@@ -56,6 +66,7 @@ mod tests {
             diffuse_mode: crate::DiffuseMode::Lambert,
             specular_mode: crate::SpecularMode::Smooth,
             rim: crate::reference::Rim::NONE,
+            metallic_roughness: None,
         }
     }
 
@@ -74,6 +85,7 @@ mod tests {
             light_map: Some(DVec3::ONE),
             ao_map: Some(0.5),
             alpha_map: Some(0.5),
+            metallic_roughness: None,
         };
         let mapped = material().mapped(&texels);
         assert_eq!(mapped.diffuse, DVec3::new(0.25, 0.3, 0.7));

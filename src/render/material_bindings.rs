@@ -35,7 +35,7 @@ macro_rules! surface_bindings {
     )*) => {
         /// The bindings a [`PhongMaterial`] brings itself, laid out by Bevy's derive: binding
         /// 0 the uniform, 26 the displacement's uniform (read in the vertex stage), and each
-        /// texture map's as `material_maps!` declares them (3 to 10, 14 to 25, 27).
+        /// texture map's as `material_maps!` declares them (3 to 10, 14 to 25, 27, 30, 31).
         #[derive(AsBindGroup)]
         struct SurfaceBindings {
             #[uniform(0)]

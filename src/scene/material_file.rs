@@ -163,6 +163,10 @@ macro_rules! material_description {
             pub emissive: SceneColor,
             /// `Opaque`, `Mask(cutoff)` or `Blend`. Default `Opaque`.
             pub alpha_mode: AlphaModeDescription,
+            /// Multiplies the metallic-roughness map's blue channel, `[0, 1]`. Default `1`.
+            pub metallic: f32,
+            /// Multiplies the metallic-roughness map's green channel, `[0, 1]`. Default `1`.
+            pub perceptual_roughness: f32,
             /// Negate the normal map's green channel. Default `false`.
             pub flip_normal_map_y: bool,
             /// The factors on the normal map's `n.x` and `n.y`. Default `(1, 1)`.
@@ -237,6 +241,8 @@ macro_rules! material_description {
                     rim_lit_side: material.rim_lit_side,
                     emissive: SceneColor::black(),
                     alpha_mode: AlphaModeDescription::Opaque,
+                    metallic: material.metallic,
+                    perceptual_roughness: material.perceptual_roughness,
                     flip_normal_map_y: false,
                     normal_map_scale: material.normal_map_scale.into(),
                     bump_scale: material.bump_scale,
@@ -300,6 +306,8 @@ macro_rules! material_description {
                         AlphaModeDescription::Mask(cutoff) => AlphaMode::Mask(cutoff),
                         AlphaModeDescription::Blend => AlphaMode::Blend,
                     },
+                    metallic: self.metallic,
+                    perceptual_roughness: self.perceptual_roughness,
                     flip_normal_map_y: self.flip_normal_map_y,
                     normal_map_scale: self.normal_map_scale.into(),
                     bump_scale: self.bump_scale,

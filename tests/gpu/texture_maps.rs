@@ -338,3 +338,58 @@ fn maps_on_the_second_uv_set_follow_the_reference_model() {
     ];
     assert_follows_the_reference(harness, objects, "maps on the second UV set");
 }
+
+/// A metallic-roughness map (glTF's `metallicRoughnessTexture`): each texel's blue metallic
+/// and green roughness, times the material's factors, make the surface by the reference
+/// model's rules (`reference::Material::at_metallic_roughness_texel`). A material converted
+/// from a `StandardMaterial` as most tools export one (factors 1, the values in the texture,
+/// a base color map), beside one with its own factors, a specular map and the Phong model on
+/// the second UV set. Roughness texels in `[0.3, 1]` keep the exponent at most 245: the
+/// frame tests' tolerance is for `f32`'s `pow` at such exponents.
+#[test]
+fn metallic_roughness_maps_follow_the_reference_model() {
+    let mut harness = Harness::new(SIZE, SIZE);
+    let world = harness.world_mut();
+    spawn_map_lights(world);
+    let maps = TestMaps::add(world);
+    let metallic_roughness = world.resource_mut::<Assets<Image>>().add(float_map(|x, y| {
+        [
+            0.0,
+            scatter(x, y, 1, 0.3, 1.0),
+            scatter(x, y, 2, 0.0, 1.0),
+            1.0,
+        ]
+    }));
+    let exported = PhongMaterial::from(&StandardMaterial {
+        base_color: Color::linear_rgb(1.0, 0.8, 0.5),
+        base_color_texture: Some(maps.base_color.clone()),
+        metallic: 1.0,
+        perceptual_roughness: 1.0,
+        metallic_roughness_texture: Some(metallic_roughness.clone()),
+        ..default()
+    });
+    let own_factors = PhongMaterial {
+        base_color: Color::linear_rgb(0.9, 0.6, 0.3),
+        specular_color: Color::linear_rgb(0.1, 0.2, 0.3),
+        specular_texture: Some(maps.specular.clone()),
+        specular_strength: 0.8,
+        metallic_roughness_texture: Some(metallic_roughness),
+        metallic_roughness_channel: UvChannel::Uv1,
+        metallic: 0.7,
+        perceptual_roughness: 0.9,
+        ..default()
+    };
+    let objects = [
+        (
+            tangent_sphere(1.2),
+            Transform::from_xyz(0.0, 0.0, 0.0),
+            exported,
+        ),
+        (
+            with_second_uvs(Cuboid::new(1.2, 1.2, 1.2).into()),
+            Transform::from_xyz(-2.4, -0.3, 0.5).with_rotation(Quat::from_rotation_y(0.6)),
+            own_factors,
+        ),
+    ];
+    assert_follows_the_reference(harness, objects, "metallic-roughness maps");
+}

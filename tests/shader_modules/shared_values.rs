@@ -228,7 +228,7 @@ fn each_material_map_has_its_declared_binding_where_its_devices_bind_it() {
     let needed = PhongSceneBindings::STORAGE_BUFFERS_NEEDED;
     let group = bevy::pbr::MATERIAL_BIND_GROUP_INDEX as u32;
     let maps = bevy_phong::testing::material_map_bindings();
-    assert_eq!(maps.len(), 11, "the material's eleven maps");
+    assert_eq!(maps.len(), 12, "the material's twelve maps");
     for storage_buffers in [needed, needed - 1] {
         let mut defs = variants::plain_material().swap_remove(0).defs;
         defs.extend(device_defs(storage_buffers));

@@ -311,6 +311,12 @@ fn extra_features() -> Vec<Extra> {
         F::ALPHA_MAP_UV_B,
         F::NORMAL_MAP_UV_B,
         F::BUMP_MAP_UV_B,
+        F::METALLIC_ROUGHNESS_MAP,
+        F::METALLIC_ROUGHNESS_MAP_UV_B,
+        F::METALLIC_ROUGHNESS_MAP.with(F::VERTEX_LIGHTING),
+        F::METALLIC_ROUGHNESS_MAP
+            .with(environment)
+            .with(F::ENV_CAMERA),
         F::BASE_COLOR_TEXTURE_UV_B
             .with(F::SPECULAR_TEXTURE_UV_B)
             .with(F::EMISSIVE_TEXTURE_UV_B)
@@ -318,7 +324,8 @@ fn extra_features() -> Vec<Extra> {
             .with(F::NORMAL_MAP_UV_B)
             .with(F::BUMP_MAP_UV_B)
             .with(F::LIGHT_MAP_UV_B)
-            .with(F::AO_MAP_UV_B),
+            .with(F::AO_MAP_UV_B)
+            .with(F::METALLIC_ROUGHNESS_MAP_UV_B),
     ]
     .into_iter()
     .map(|features| (features, F::NONE))

@@ -264,6 +264,13 @@ pub fn texels_at<M: Material>(
             .ok()?
             .map(|texel| texel.y)
             .filter(|_| inputs.every_map_bound),
+        // Blue metallic, green roughness.
+        metallic_roughness: sample_at(
+            &material.metallic_roughness_texture,
+            &material.metallic_roughness_channel,
+        )
+        .ok()?
+        .map(|texel| DVec2::new(texel.z, texel.y)),
     })
 }
 
@@ -408,6 +415,7 @@ pub fn reads_srgb_map(material: &PhongMaterial, images: &HashMap<AssetId<Image>,
         &material.light_map_texture,
         &material.ao_map_texture,
         &material.alpha_map_texture,
+        &material.metallic_roughness_texture,
     ]
     .into_iter()
     .flatten()
