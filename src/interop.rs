@@ -18,6 +18,11 @@
 //! | `RectLight { intensity: Φ lumens, color, width, height, range }` | `PhongRectLight` of `color · e · Φ / π²`, the same `width`, `height` and `range`, one-sided |
 //! | `GlobalAmbientLight { brightness: L cd/m², color }` | `color · e · L` |
 //!
+//! Under the mirrored ambient light, a material converted from a `StandardMaterial` shows
+//! Bevy's ambient term: its `ambient_factor` 0.4524 is Bevy's weight on the diffuse color,
+//! and its `ambient_specular` reflects the ambient light by its specular color as Bevy does
+//! (SPEC.md, "Ambient specular").
+//!
 //! The point light's decay `1 / (10⁴ d²)` (and its color, ×10⁴) reproduce Bevy's
 //! inverse-square fall-off `1 / max(d², 10⁻⁴)` exactly: the `min(1, …)` of SPEC.md's
 //! attenuation clamps where Bevy's `max` does, at 1 cm.

@@ -291,10 +291,21 @@ pub struct PhongMaterial {
     /// with [`metallic_roughness_texture`](Self::metallic_roughness_texture). Default `1`
     /// (the texel as it is, glTF's default factor).
     pub metallic: f32,
-    /// Multiplies the metallic-roughness map's green channel, `[0, 1]` (NaN → 0.5). Read
-    /// only with [`metallic_roughness_texture`](Self::metallic_roughness_texture). Default
+    /// The surface's perceptual roughness, `[0, 1]` (NaN → 0.5): it multiplies the
+    /// metallic-roughness map's green channel, and it shapes the
+    /// [`ambient_specular`](Self::ambient_specular) weights. Read only with either. Default
     /// `1` (the texel as it is, glTF's default factor).
     pub perceptual_roughness: f32,
+    /// Also reflects the ambient and hemisphere light by the specular color, as
+    /// `StandardMaterial` reflects its ambient light: the indirect term gains
+    /// `(ambient + hemisphere(N)) ⊙ (k_s · A + B)` times the ambient occlusion, with `(A, B)`
+    /// Bevy's fit of the split-sum integral of its GGX lobe (bevy_pbr's `F_AB`) at
+    /// [`perceptual_roughness`](Self::perceptual_roughness) (times the metallic-roughness
+    /// map's green) and `N·V` (SPEC.md, "Ambient specular"). `k_s` is the specular color with
+    /// its maps, without `specular_strength` (a strength of 0 turns the term off too), so a
+    /// metal's body is lit by its ambient light as a `StandardMaterial` metal's is. The
+    /// conversions from `StandardMaterial` and glTF set it. Default `false`.
+    pub ambient_specular: bool,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
     /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
     /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
@@ -484,6 +495,7 @@ impl Default for PhongMaterial {
             metallic_roughness_channel: UvChannel::Uv0,
             metallic: 1.0,
             perceptual_roughness: 1.0,
+            ambient_specular: false,
             normal_map_texture: None,
             normal_map_channel: UvChannel::Uv0,
             flip_normal_map_y: false,

@@ -163,6 +163,7 @@ fn load_shaders(app: &mut App) {
         load_shader_library!(app, "shaders/view_key.wesl");
         load_shader_library!(app, "shaders/clusters.wesl");
         load_shader_library!(app, "shaders/shading.wesl");
+        load_shader_library!(app, "shaders/ambient_specular.wesl");
         load_shader_library!(app, "shaders/normals.wesl");
         load_shader_library!(app, "shaders/uv.wesl");
         load_shader_library!(app, "shaders/environment.wesl");

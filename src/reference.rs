@@ -31,6 +31,7 @@
 //! closed forms the shader uses (`area_closed_forms`, test-only, and
 //! `shaders/area_light.wesl`) are measured against it.
 
+mod ambient_specular;
 mod area;
 #[cfg(test)]
 mod area_closed_forms;
@@ -49,6 +50,7 @@ pub(crate) mod stylized;
 mod surface;
 mod surface_inputs;
 mod texture_maps;
+pub use ambient_specular::{AmbientSpecular, environment_brdf};
 pub use area::{AreaLight, AreaShape, area_light_contribution, visible_area_light_contribution};
 pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use cookies::{Cookie, CookieProjection, cube_face_uv};

@@ -22,7 +22,7 @@ use bevy::gltf::GltfMaterial;
 /// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` (`PhongGltfPlugin` then reads the file's `strength`, which `GltfMaterial` drops) |
 /// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: BlinnPhong`, `specular_color = mix(F₀, base_color, m)` with Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
 /// | `metallic_roughness_texture` (metallicRoughnessTexture), `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are, `specular_strength = 1` (`PhongGltfPlugin` reads the texture's `KHR_texture_transform` `texCoord`) |
-/// | | `ambient_factor = 1` |
+/// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
 ///
 /// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
 /// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`. The
@@ -155,7 +155,11 @@ mod tests {
         // r = 1: 2/1 − 2 = 0, clamped up to 1; its lobe's normalization (1 + 8)/8.
         assert_eq!(phong.shininess, 1.0);
         assert_eq!(phong.specular_strength, 9.0 / 8.0);
-        assert_eq!(phong.ambient_factor, 1.0);
+        // Bevy's ambient weights: F_AB(1, ·).x on the diffuse color, and the specular color's
+        // own at the roughness.
+        assert_eq!(phong.ambient_factor, 0.4524);
+        assert!(phong.ambient_specular);
+        assert_eq!(phong.perceptual_roughness, 1.0);
     }
 
     #[test]

@@ -232,6 +232,10 @@ material_features! {
         ["PHONG_METALLIC_ROUGHNESS_MAP", "PHONG_METALLIC_ROUGHNESS_UV_B"], Uv1,
         |m, u| has_metallic_roughness_map(m)
             && map_at(&m.metallic_roughness_texture, &m.metallic_roughness_channel, true);
+    /// The ambient light reflected by the specular color (`PHONG_AMBIENT_SPECULAR`; a
+    /// strength of 0 leaves nothing to reflect).
+    AMBIENT_SPECULAR: "ambient_specular", ["PHONG_AMBIENT_SPECULAR"], Nothing,
+        |m, u| m.ambient_specular && !m.unlit && u.specular_strength > 0.0;
     /// An emissive map on the first UV set (`PHONG_EMISSIVE_TEXTURE`).
     EMISSIVE_TEXTURE: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE"], Uv0,
         |m, u| !m.unlit && map_at(&m.emissive_texture, &m.emissive_channel, false);

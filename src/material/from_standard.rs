@@ -20,6 +20,7 @@ use bevy::{
 /// | `occlusion_texture`, `occlusion_channel` | `ao_map_texture`, `ao_map_channel` (intensity 1) |
 /// | `alpha_mode`, `double_sided`, `cull_mode`, `unlit`, `fog_enabled`, `depth_bias`, `uv_transform` | the same |
 /// | `metallic_roughness_texture`, `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are, `specular_strength = 1` |
+/// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
 ///
 /// What has no counterpart is left out, with one warning that lists it and says what the
 /// surface becomes without it: parallax (`depth_map`), transmission, thickness, clearcoat,

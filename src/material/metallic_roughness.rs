@@ -13,6 +13,9 @@
 //!   Blinn-Phong BRDF is `(n + 8)/(8π) · cos^n(θ_h)`, and the crate's diffuse term
 //!   `k_d · max(N·L, 0)` is the Lambert BRDF `k_d/π` times π, so the same π gives
 //!   `(n + 8)/8`.
+//! - the ambient light as `StandardMaterial` weighs it: `ambient_factor` [`BEVY_DIFFUSE_AMBIENT`]
+//!   on the diffuse color, and the specular color's reflection of it
+//!   (`ambient_specular`, at the perceptual roughness).
 
 use super::{PhongMaterial, SpecularModel};
 use crate::limits::{self, Limits};
@@ -38,6 +41,12 @@ pub(crate) const SHININESS_RANGE: (f32, f32) = (1.0, 1e4);
 /// The specular reflectance of a dielectric at normal incidence (glTF's `F₀`, and Bevy's at
 /// its default reflectance 0.5).
 pub(crate) const DIELECTRIC_F0: f32 = 0.04;
+
+/// Bevy's weight on a `StandardMaterial`'s diffuse color under its ambient light:
+/// bevy_pbr's `ambient_light` takes `EnvBRDFApprox(diffuse, F_AB(1, N·V))`, whose scale
+/// `F_AB(1, ·).x = 0.468 − 1.04 · 0.015 = 0.4524` does not depend on `N·V` (its bias, 5e-5,
+/// is left out).
+pub(crate) const BEVY_DIFFUSE_AMBIENT: f32 = 0.4524;
 
 /// A metallic/roughness surface's numbers.
 #[derive(Clone, Debug)]
@@ -106,7 +115,9 @@ impl MetallicRoughness {
                 base.blue * diffuse,
                 base.alpha,
             )),
-            ambient_factor: 1.0,
+            ambient_factor: BEVY_DIFFUSE_AMBIENT,
+            ambient_specular: !self.unlit,
+            perceptual_roughness: ROUGHNESS.apply(self.perceptual_roughness),
             specular_color: Color::linear_rgb(
                 specular(f0[0], base.red),
                 specular(f0[1], base.green),

@@ -19,6 +19,7 @@ fn the_light_map_adds_to_the_ambient_light_and_the_ao_map_scales_both() {
         specular_mode: crate::SpecularMode::Smooth,
         rim: crate::reference::Rim::NONE,
         metallic_roughness: None,
+        ambient_specular: None,
     };
     let lights = Lights {
         hemisphere: None,

@@ -1,7 +1,7 @@
 //! A metallic-roughness map in the reference model (SPEC.md, "Metallic-roughness map"): the
 //! metallic/roughness surface of one texel, as Blinn-Phong or Phong terms.
 
-use super::Material;
+use super::{AmbientSpecular, Material};
 
 /// The factors on a metallic-roughness map's channels (`PhongMaterial::metallic`,
 /// `PhongMaterial::perceptual_roughness`, in their ranges).
@@ -33,7 +33,8 @@ impl Material {
     /// map whose blue and green channels are `metallic` and `roughness`: with
     /// `m = metallic · factor` and `r = roughness · factor` clamped to `[0, 1]`,
     /// `k_d · (1 − m)`, `k_s = mix(k_s, k_d, m)`, `α` from `r`
-    /// ([`shininess_from_roughness`]) and the strength times `(α + 8) / 8`.
+    /// ([`shininess_from_roughness`]) and the strength times `(α + 8) / 8`; `r` is also the
+    /// ambient specular's roughness.
     pub fn at_metallic_roughness_texel(
         &self,
         factors: MetallicRoughness,
@@ -48,6 +49,9 @@ impl Material {
             specular: self.specular + (self.diffuse - self.specular) * m,
             specular_strength: self.specular_strength * (shininess + 8.0) / 8.0,
             shininess,
+            ambient_specular: self.ambient_specular.map(|_| AmbientSpecular {
+                perceptual_roughness: r,
+            }),
             ..self.clone()
         }
     }

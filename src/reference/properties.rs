@@ -58,6 +58,7 @@ fn material() -> impl Strategy<Value = Material> {
                     specular_mode: crate::SpecularMode::Smooth,
                     rim: crate::reference::Rim::NONE,
                     metallic_roughness: None,
+                    ambient_specular: None,
                 }
             },
         )

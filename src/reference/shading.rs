@@ -45,15 +45,15 @@ impl BakedLight {
 }
 
 /// [`shade`] with the light of a material's baked maps: the indirect light
-/// `(ambient ⊙ k_a + light map) ⊙ k_d` scaled by the AO map's factor.
+/// `(ambient ⊙ k_a + light map) ⊙ k_d` (and the ambient specular) scaled by the AO map's
+/// factor.
 pub fn shade_baked(
     surface: &SurfacePoint,
     material: &Material,
     lights: &Lights,
     baked: &BakedLight,
 ) -> DVec3 {
-    let indirect = lights.indirect(surface.normal) * material.ambient_factor + baked.light_map;
-    let ambient = indirect * material.diffuse * baked.occlusion;
+    let ambient = ambient_term(surface, material, lights, baked);
     lights
         .lights
         .iter()
@@ -107,6 +107,21 @@ impl Shadowing {
     }
 }
 
+/// The indirect term: `((ambient + hemisphere(N)) ⊙ k_a + light map) ⊙ k_d` plus
+/// `(ambient + hemisphere(N)) ⊙` the ambient specular reflectance, scaled by the AO map's
+/// factor.
+fn ambient_term(
+    surface: &SurfacePoint,
+    material: &Material,
+    lights: &Lights,
+    baked: &BakedLight,
+) -> DVec3 {
+    let indirect = lights.indirect(surface.normal);
+    let diffuse = (indirect * material.ambient_factor + baked.light_map) * material.diffuse;
+    let specular = indirect * material.ambient_specular_reflectance(surface);
+    (diffuse + specular) * baked.occlusion
+}
+
 /// [`shade`] with each light's share scaled by its [`Shadowing`] (`shadowing[i]` for
 /// `lights.lights[i]`; lights past the end of `shadowing`, and `lights.others`, are lit).
 pub fn shade_shadowed(
@@ -115,7 +130,7 @@ pub fn shade_shadowed(
     lights: &Lights,
     shadowing: &[Shadowing],
 ) -> DVec3 {
-    let ambient = lights.indirect(surface.normal) * material.ambient_factor * material.diffuse;
+    let ambient = ambient_term(surface, material, lights, &BakedLight::NONE);
     lights
         .lights
         .iter()

@@ -1,6 +1,6 @@
 //! The surface point and the material's terms of the equation (SPEC.md, "Material").
 
-use super::{MetallicRoughness, Rim, ToonRamp};
+use super::{AmbientSpecular, MetallicRoughness, Rim, ToonRamp};
 use crate::material::{DiffuseMode, PhongMaterial, SpecularMode, SpecularModel};
 use bevy::color::{Color, ColorToComponents};
 use glam::DVec3;
@@ -57,6 +57,9 @@ pub struct Material {
     /// The factors of the metallic-roughness map, where the material draws one (its texels
     /// then make the surface: [`Material::mapped`]).
     pub metallic_roughness: Option<MetallicRoughness>,
+    /// The ambient light reflected by `k_s` (`PhongMaterial::ambient_specular`), where the
+    /// material draws it: [`Material::ambient_specular_reflectance`].
+    pub ambient_specular: Option<AmbientSpecular>,
 }
 
 /// The material's values brought into their ranges, by the same walk over its numbers as
@@ -84,6 +87,12 @@ impl From<&PhongMaterial> for Material {
             metallic_roughness: (material.metallic_roughness_texture.is_some() && !material.unlit)
                 .then(|| MetallicRoughness {
                     metallic: material.metallic.into(),
+                    perceptual_roughness: material.perceptual_roughness.into(),
+                }),
+            ambient_specular: (material.ambient_specular
+                && !material.unlit
+                && material.specular_strength > 0.0)
+                .then(|| AmbientSpecular {
                     perceptual_roughness: material.perceptual_roughness.into(),
                 }),
         }

@@ -47,6 +47,7 @@ mod tests {
             specular_mode: crate::SpecularMode::Smooth,
             rim: crate::reference::Rim::NONE,
             metallic_roughness: None,
+            ambient_specular: None,
         };
         let colored = material.with_vertex_color(DVec4::new(0.5, 1.0, 0.25, 0.3));
         assert_eq!(colored.diffuse, DVec3::new(0.25, 0.6, 0.2));

@@ -24,6 +24,7 @@ pub(super) fn matte(diffuse: DVec3) -> Material {
         specular_mode: crate::SpecularMode::Smooth,
         rim: crate::reference::Rim::NONE,
         metallic_roughness: None,
+        ambient_specular: None,
     }
 }
 

@@ -67,6 +67,7 @@ mod tests {
             specular_mode: crate::SpecularMode::Smooth,
             rim: crate::reference::Rim::NONE,
             metallic_roughness: None,
+            ambient_specular: None,
         }
     }
 

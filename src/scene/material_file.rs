@@ -165,8 +165,12 @@ macro_rules! material_description {
             pub alpha_mode: AlphaModeDescription,
             /// Multiplies the metallic-roughness map's blue channel, `[0, 1]`. Default `1`.
             pub metallic: f32,
-            /// Multiplies the metallic-roughness map's green channel, `[0, 1]`. Default `1`.
+            /// Multiplies the metallic-roughness map's green channel and shapes the ambient
+            /// specular, `[0, 1]`. Default `1`.
             pub perceptual_roughness: f32,
+            /// Also reflect the ambient light by the specular color, as `StandardMaterial`
+            /// does. Default `false`.
+            pub ambient_specular: bool,
             /// Negate the normal map's green channel. Default `false`.
             pub flip_normal_map_y: bool,
             /// The factors on the normal map's `n.x` and `n.y`. Default `(1, 1)`.
@@ -243,6 +247,7 @@ macro_rules! material_description {
                     alpha_mode: AlphaModeDescription::Opaque,
                     metallic: material.metallic,
                     perceptual_roughness: material.perceptual_roughness,
+                    ambient_specular: material.ambient_specular,
                     flip_normal_map_y: false,
                     normal_map_scale: material.normal_map_scale.into(),
                     bump_scale: material.bump_scale,
@@ -308,6 +313,7 @@ macro_rules! material_description {
                     },
                     metallic: self.metallic,
                     perceptual_roughness: self.perceptual_roughness,
+                    ambient_specular: self.ambient_specular,
                     flip_normal_map_y: self.flip_normal_map_y,
                     normal_map_scale: self.normal_map_scale.into(),
                     bump_scale: self.bump_scale,

@@ -2,6 +2,9 @@
 //!
 //! - `adoption`: the minimal example's scene, and a scene of Bevy's own materials and
 //!   lights switched to Phong, against the reference model;
+//! - `ambient_specular`: materials converted from `StandardMaterial`, metals and
+//!   dielectrics, reflecting the ambient and hemisphere light by their specular color,
+//!   against the reference model;
 //! - `area_lights`: rectangle lights against the reference model's quadrature over their
 //!   area, every pixel: the exact diffuse light and integer highlights, and each
 //!   approximation within its stated share of the largest highlight;
@@ -70,6 +73,7 @@
 //! CPU time of its process, which it must have to itself.
 
 mod adoption;
+mod ambient_specular;
 mod area_lights;
 mod area_shadows;
 mod bevy_light_textures;
