@@ -37,8 +37,10 @@
 //! What does not carry over: Bevy fades a light smoothly to zero toward its `range`, a Phong
 //! light is cut off there (a rectangle's range is measured from its center in Bevy, from its
 //! nearest point in Phong); Bevy stretches a rectangle by its transform's scale, a
-//! `PhongRectLight` ignores scale (give the size in `width` and `height`); Bevy's spot edge is `smoothstep`-like (a squared ramp), a Phong
-//! spot's is linear; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
+//! `PhongRectLight` ignores scale (give the size in `width` and `height`); Bevy's spot edge is the square `t²` of the linear ramp `t`
+//! across the edge, a mirrored spot's is `t` ([`ConeEdge::Linear`]): they differ by
+//! `t − t² ≤ 1/4` of the light, the most at the middle of the edge, and Bevy's meets the dark
+//! outside without a kink; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
 //! specular intensity is its diffuse color, shaped by the material's shininess (a mirrored
 //! rectangle's highlight integrated over its area, [`AreaHighlight::Exact`](crate::AreaHighlight)).
 //! Per-camera `AmbientLight` overrides are not mirrored.

@@ -3,6 +3,7 @@
 mod features;
 mod from_standard;
 mod key;
+mod map_checks;
 mod maps;
 pub(crate) mod metallic_roughness;
 mod ranges;
@@ -16,6 +17,7 @@ pub(crate) use from_standard::{
 pub use key::PhongMaterialKey;
 #[cfg(feature = "testing")]
 pub(crate) use key::culled_in_view;
+pub(crate) use map_checks::check_metallic_roughness_maps;
 pub(crate) use maps::{MapDevices, map_images, material_maps};
 pub(crate) use metallic_roughness::MetallicRoughness;
 pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};

@@ -13,7 +13,7 @@ use crate::{
         AreaHighlight, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight,
         PhongLightCookie, PhongShadows,
     },
-    material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
+    material::{PhongMaterial, PhongSceneMaterial, SpecularModel, check_metallic_roughness_maps},
     render::{
         ExtensionClusterSlots, PhongCookies, PhongLightBuffer, PhongLightClusters,
         SharedEpsilonLights, assign_lights_to_clusters, carry_scene_variants, gather_cookies,
@@ -132,6 +132,7 @@ fn add_validation_and_gathers(app: &mut App) {
             validate_ambient_light,
             validate_hemisphere_light,
             validate_materials,
+            check_metallic_roughness_maps.run_if(resource_exists::<Assets<Image>>),
         )
             .in_set(PhongSystems::Validate),
     )
