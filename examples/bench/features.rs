@@ -7,6 +7,9 @@
 //!   `Lightmap` component) and an AO map (Standard's `occlusion_texture`);
 //! - environment: the camera's `EnvironmentMapLight` reflected (Phong's `camera_environment`
 //!   with `reflectivity` 0.5; Standard at roughness 0.2, metallic 0.5);
+//! - converted PBR: a material as glTF exporters write one, a base color map and a
+//!   metallic-roughness map with factors 1 (Standard's own; Phong's `PhongMaterial::from` it:
+//!   the map read per texel and the ambient specular);
 //!
 //! and each stylized mode alone, for `PhongMaterial` only (`--stylized`): wrapped diffuse,
 //! toon bands, a toon ramp, a toon highlight, a rim everywhere and on the lit side, a
@@ -34,6 +37,9 @@ pub enum Features {
     SurfaceInputs,
     BakedLight,
     Environment,
+    /// A base color map and a metallic-roughness map with factors 1, Phong's converted from
+    /// Standard's.
+    Converted,
     /// `DiffuseMode::Wrap(0.5)`.
     Wrap,
     /// `DiffuseMode::Toon { bands: 3, smoothing: 0.1 }`.
@@ -59,6 +65,7 @@ impl Features {
             Features::SurfaceInputs => "surface inputs",
             Features::BakedLight => "baked light",
             Features::Environment => "environment",
+            Features::Converted => "converted PBR",
             Features::Wrap => "wrap diffuse",
             Features::ToonBands => "toon bands",
             Features::ToonRamp => "toon ramp",
@@ -213,6 +220,15 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
         ]
     }));
     let cube = images.add(cube_map());
+    // Metallic in blue (stripes of metal and dielectric), roughness in green.
+    let metallic_roughness = images.add(image(256, false, |x, y| {
+        [
+            0.0,
+            0.25 + 0.7 * wave(y, 256, 3.0),
+            (wave(x, 256, 4.0) > 0.5) as u32 as f32,
+            1.0,
+        ]
+    }));
     let ramp = images.add(image(4, false, |x, _| {
         [[0.15, 0.3, 0.75, 1.0][x as usize], 0.0, 0.0, 1.0]
     }));
@@ -294,6 +310,16 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                     material.camera_environment = true;
                     material.reflectivity = 0.5;
                 }
+                Features::Converted => {
+                    *material = PhongMaterial::from(&StandardMaterial {
+                        base_color: material.base_color,
+                        base_color_texture: Some(base_color.clone()),
+                        metallic: 1.0,
+                        perceptual_roughness: 1.0,
+                        metallic_roughness_texture: Some(metallic_roughness.clone()),
+                        ..default()
+                    });
+                }
                 Features::Wrap => material.diffuse_mode = DiffuseMode::Wrap(0.5),
                 Features::ToonBands => {
                     material.diffuse_mode = DiffuseMode::Toon {
@@ -332,6 +358,12 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                 Features::Environment => {
                     material.perceptual_roughness = 0.2;
                     material.metallic = 0.5;
+                }
+                Features::Converted => {
+                    material.base_color_texture = Some(base_color.clone());
+                    material.metallic = 1.0;
+                    material.perceptual_roughness = 1.0;
+                    material.metallic_roughness_texture = Some(metallic_roughness.clone());
                 }
                 _ => {}
             }

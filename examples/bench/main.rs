@@ -563,18 +563,20 @@ fn material_costs(options: &Options, directory: &Path) {
         Some(features::Features::SurfaceInputs),
         Some(features::Features::BakedLight),
         Some(features::Features::Environment),
+        Some(features::Features::Converted),
     ];
+    const GROUPS: usize = 5;
     let scene = |group: Option<features::Features>| group.map_or(Scene::Showcase, Scene::Featured);
     let mut csv = String::from("size,scene,shading,round,median_ms\n");
     // Each row's picture (from its first round), to show that its features are drawn.
-    let mut pictures: [Vec<u8>; 8] = [const { Vec::new() }; 8];
-    let times: [f64; 8] = alternating_medians(options.rounds, |row, round| {
-        let (name, shading) = if row < 4 {
+    let mut pictures: [Vec<u8>; 2 * GROUPS] = [const { Vec::new() }; 2 * GROUPS];
+    let times: [f64; 2 * GROUPS] = alternating_medians(options.rounds, |row, round| {
+        let (name, shading) = if row < GROUPS {
             ("Phong", phong)
         } else {
             ("Standard", Shading::Standard)
         };
-        let scene = scene(groups[row % 4]);
+        let scene = scene(groups[row % GROUPS]);
         let (median, picture) = median_frame_time_and_picture(
             scene,
             size,
@@ -598,16 +600,16 @@ fn material_costs(options: &Options, directory: &Path) {
         "| scene | Phong ms | Standard ms | Phong / Standard | Phong / plain Phong | Standard / plain Standard | pixels changed, Phong / Standard |\n|---|---|---|---|---|---|---|\n",
     );
     for (row, group) in groups.iter().enumerate() {
-        let (phong, standard) = (times[row], times[4 + row]);
+        let (phong, standard) = (times[row], times[GROUPS + row]);
         let _ = writeln!(
             table,
             "| {} | {phong:.1} | {standard:.1} | {:.2} | {:.2} | {:.2} | {:.0} % / {:.0} % |",
             scene(*group).name(),
             phong / standard,
             phong / times[0],
-            standard / times[4],
+            standard / times[GROUPS],
             ablation::changed_percent(&pictures[0], &pictures[row]),
-            ablation::changed_percent(&pictures[4], &pictures[4 + row]),
+            ablation::changed_percent(&pictures[GROUPS], &pictures[GROUPS + row]),
         );
     }
     println!(
