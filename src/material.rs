@@ -3,7 +3,6 @@
 mod features;
 mod from_standard;
 mod key;
-mod map_checks;
 mod maps;
 pub(crate) mod metallic_roughness;
 mod ranges;
@@ -17,7 +16,6 @@ pub(crate) use from_standard::{
 pub use key::PhongMaterialKey;
 #[cfg(feature = "testing")]
 pub(crate) use key::culled_in_view;
-pub(crate) use map_checks::check_metallic_roughness_maps;
 pub(crate) use maps::{MapDevices, map_images, material_maps};
 pub(crate) use metallic_roughness::MetallicRoughness;
 pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};
@@ -275,14 +273,15 @@ pub struct PhongMaterial {
     ///
     /// - `k_d ← k_d · (1 − m)`, with `k_d` the base color as its map and the vertex colors
     ///   give it;
-    /// - `k_s ← mix(k_s, k_d, m)`, with `k_s` the dielectric reflectance at normal incidence
-    ///   (`specular_color` and its map; glTF's 0.04);
-    /// - `α ← clamp(2 / r⁴ − 2, 1, 10⁴)` and `strength ← strength · (α + 8) / 8`, the
-    ///   lobe's energy normalization.
+    /// - `k_s ← k · (1 + k · (1/E − 1))` with `k = mix(k_s, k_d, m)`, `k_s` the dielectric
+    ///   reflectance at normal incidence (`specular_color` and its map; glTF's 0.04) and
+    ///   `E` the single-scattering albedo of a GGX lobe of roughness `r` (Bevy's compensation
+    ///   for multiple scattering);
+    /// - `α ← clamp(2 / r⁴ − 2, 1, 10⁴)`, the width of a GGX lobe of roughness `r`.
     ///
     /// So `shininess` is not read where the map is drawn (a material lit per vertex takes it
-    /// at its vertices), and `specular_strength` stays a factor on the highlight (1 for a
-    /// converted material). Load the map as linear data (`is_srgb: false`). A mesh without
+    /// at its vertices), and `specular_strength` stays a factor on the highlight (π for a
+    /// converted material, drawn with `SpecularModel::NormalizedBlinnPhong`). Load the map as linear data (`is_srgb: false`). A mesh without
     /// the map's UV set draws the material's plain fields, with a warning. Default none.
     #[dependency]
     pub metallic_roughness_texture: Option<Handle<Image>>,

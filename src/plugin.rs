@@ -13,7 +13,7 @@ use crate::{
         AreaHighlight, Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight,
         PhongLightCookie, PhongShadows,
     },
-    material::{PhongMaterial, PhongSceneMaterial, SpecularModel, check_metallic_roughness_maps},
+    material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
     render::{
         ExtensionClusterSlots, PhongCookies, PhongLightBuffer, PhongLightClusters,
         SharedEpsilonLights, assign_lights_to_clusters, carry_scene_variants, gather_cookies,
@@ -24,7 +24,8 @@ use crate::{
     shadows::PhongLit,
     storage_buffer::{LightBufferResized, init_shader_buffers},
     validation::{
-        InvalidInput, validate_ambient_light, validate_hemisphere_light, validate_materials,
+        InvalidInput, check_metallic_roughness_maps, validate_ambient_light,
+        validate_hemisphere_light, validate_materials,
     },
 };
 use bevy::{

@@ -57,7 +57,10 @@ pub use cookies::{Cookie, CookieProjection, cube_face_uv};
 pub use environment::{cube_direction, environment_direction, environment_lod, with_environment};
 pub use hemisphere::Hemisphere;
 pub use lights::{Light, Lights, OtherLights, ReferenceLight, attenuation, rgb, spot_cone};
-pub use metallic_roughness::{MAX_SHININESS, MetallicRoughness, shininess_from_roughness};
+pub use metallic_roughness::{
+    MAX_SHININESS, MEAN_N_DOT_V, MetallicRoughness, shininess_from_roughness,
+    with_multiple_scattering,
+};
 pub use normals::{bumped_normal, face_normal, mapped_normal};
 pub use per_vertex::VertexLight;
 pub use shading::{

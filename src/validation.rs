@@ -40,6 +40,8 @@
 //! Each replacement is also sent as an [`InvalidInput`] message, for tools and tests. Its
 //! value is quoted at most 80 characters long.
 
+mod map_checks;
+
 use crate::{
     lights::{Decay, PhongAmbientLight, PhongCascades, PhongHemisphereLight, PhongShadows},
     limits::{self, Limits},
@@ -59,6 +61,7 @@ use bevy::{
     math::{Affine2, Vec3},
 };
 use core::fmt;
+pub(crate) use map_checks::check_metallic_roughness_maps;
 
 /// What was invalid and what replaced it; also logged as a warning.
 #[derive(Message, Clone, Debug, PartialEq)]

@@ -20,17 +20,18 @@ use bevy::gltf::GltfMaterial;
 /// | each texture's `texCoord` (the `*_channel` fields) | the map's `*_channel`; `PhongGltfPlugin` reads `KHR_texture_transform`'s `texCoord` from the file, which overrides it and which Bevy's loader drops |
 /// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
 /// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` (`PhongGltfPlugin` then reads the file's `strength`, which `GltfMaterial` drops) |
-/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: BlinnPhong`, `specular_color = mix(F₀, base_color, m)` with Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
-/// | `metallic_roughness_texture` (metallicRoughnessTexture), `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are, `specular_strength = 1` (`PhongGltfPlugin` reads the texture's `KHR_texture_transform` `texCoord`) |
+/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(F₀, base_color, m)`, Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = π` |
+/// | `metallic_roughness_texture` (metallicRoughnessTexture), `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are (`PhongGltfPlugin` reads the texture's `KHR_texture_transform` `texCoord`) |
 /// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
 ///
 /// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
 /// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`. The
-/// strength is the lobe's energy normalization: the normalized Blinn-Phong BRDF is
-/// `(n + 8)/(8π) · cos^n(θ_h)`, and the crate's diffuse term `k_d · max(N·L, 0)` is the
-/// Lambert BRDF `k_d/π` times π, so the same π gives `(n + 8)/8`. A glTF highlight then
-/// reflects about `F₀` of the light whatever its roughness, as in PBR: a rough one spreads
-/// it wide and dim, a smooth one gathers it into a bright point.
+/// normalized Blinn-Phong model is three.js's BRDF `F · (n + 2)/(8π) · cos^n(θ_h)` times
+/// `N·L`, with Schlick's Fresnel; the crate's diffuse term `k_d · max(N·L, 0)` is the
+/// Lambert BRDF `k_d/π` times π, so the strength π draws the BRDF in the same units. A glTF
+/// highlight then reflects about `F₀` of the light whatever its roughness, as in PBR: a
+/// rough one spreads it wide and dim, a smooth one gathers it into a bright point
+/// (docs/switching.md measures it against Bevy's).
 ///
 /// Invalid numbers are replaced, never propagated: a NaN `metallic` becomes 0 and a NaN
 /// roughness 0.5 (`METALLIC`, `ROUGHNESS`; both are clamped to `[0, 1]`), and the
@@ -53,7 +54,10 @@ use bevy::gltf::GltfMaterial;
 /// };
 /// let phong = phong_material_from_gltf(&gold, None);
 /// assert_eq!(phong.base_color, Color::linear_rgb(0.0, 0.0, 0.0)); // a metal has no diffuse
-/// assert_eq!(phong.specular_color, Color::linear_rgb(1.0, 0.8, 0.3));
+/// // Its color as specular, brightened where Bevy adds the light a rough lobe scatters
+/// // more than once: never darker than the color.
+/// let specular = phong.specular_color.to_linear();
+/// assert!(specular.red >= 1.0 && specular.green >= 0.8 && specular.blue >= 0.3);
 /// assert_eq!(phong.shininess, 30.0); // 2 / 0.5⁴ − 2
 /// ```
 pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) -> PhongMaterial {
@@ -130,7 +134,7 @@ mod tests {
             .map(|part| part.name)
             .collect()
     }
-    use crate::material::metallic_roughness::tests::{assert_close, linear};
+    use crate::material::metallic_roughness::tests::{assert_close, compensated, linear};
     use crate::{SpecularModel, limits, material::metallic_roughness::shininess_from_roughness};
     use bevy::{
         asset::Handle,
@@ -150,11 +154,15 @@ mod tests {
         };
         let phong = phong_material_from_gltf(&material, None);
         assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 1.0], "base color");
-        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
-        assert_eq!(phong.specular_model, SpecularModel::BlinnPhong);
-        // r = 1: 2/1 − 2 = 0, clamped up to 1; its lobe's normalization (1 + 8)/8.
+        assert_close(
+            linear(phong.specular_color),
+            compensated([0.04, 0.04, 0.04, 1.0], 1.0),
+            "F0",
+        );
+        assert_eq!(phong.specular_model, SpecularModel::NormalizedBlinnPhong);
+        // r = 1: 2/1 − 2 = 0, clamped up to 1; the BRDF drawn times π.
         assert_eq!(phong.shininess, 1.0);
-        assert_eq!(phong.specular_strength, 9.0 / 8.0);
+        assert_eq!(phong.specular_strength, core::f32::consts::PI);
         // Bevy's ambient weights: F_AB(1, ·).x on the diffuse color, and the specular color's
         // own at the roughness.
         assert_eq!(phong.ambient_factor, 0.4524);
@@ -172,7 +180,11 @@ mod tests {
         };
         let phong = phong_material_from_gltf(&material, None);
         assert_close(linear(phong.base_color), [0.0, 0.0, 0.0, 0.5], "base color");
-        assert_close(linear(phong.specular_color), [1.0, 0.8, 0.3, 1.0], "F0");
+        assert_close(
+            linear(phong.specular_color),
+            compensated([1.0, 0.8, 0.3, 1.0], 0.5),
+            "F0",
+        );
         assert_eq!(phong.shininess, 30.0, "2 / 0.5⁴ − 2");
     }
 
@@ -192,7 +204,7 @@ mod tests {
         );
         assert_close(
             linear(phong.specular_color),
-            [0.27, 0.52, 0.02, 1.0],
+            compensated([0.27, 0.52, 0.02, 1.0], 0.25),
             "mix(0.04, c, 0.5)",
         );
         // 2 / 0.25⁴ − 2 = 510.
@@ -247,7 +259,11 @@ mod tests {
             [0.0, 0.5, limits::MAX_INTENSITY, 1.0],
             "base color",
         );
-        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
+        assert_close(
+            linear(phong.specular_color),
+            compensated([0.04, 0.04, 0.04, 1.0], 0.5),
+            "F0",
+        );
         assert_eq!(phong.emissive, LinearRgba::new(0.0, 2.0, 0.0, 1.0));
         assert_eq!(phong.shininess, 30.0, "NaN roughness taken as 0.5");
     }
@@ -264,7 +280,12 @@ mod tests {
             None,
         );
         assert_close(linear(over.base_color), [0.0, 0.0, 0.0, 1.0], "m = 1");
-        assert_close(linear(over.specular_color), [0.2, 0.4, 0.6, 1.0], "m = 1");
+        let r = GltfMaterial::default().perceptual_roughness;
+        assert_close(
+            linear(over.specular_color),
+            compensated([0.2, 0.4, 0.6, 1.0], r),
+            "m = 1",
+        );
         let under = phong_material_from_gltf(
             &GltfMaterial {
                 base_color,
@@ -421,7 +442,7 @@ mod tests {
         // Not darkened by the factor: the texel's metallic does that.
         assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 0.5], "base color");
         assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
-        assert_eq!(phong.specular_strength, 1.0);
+        assert_eq!(phong.specular_strength, core::f32::consts::PI);
         assert_eq!(phong.shininess, 30.0, "the factor's, for the vertices");
         assert!(
             crate::MaterialFeatures::of(&phong)
@@ -462,7 +483,10 @@ mod tests {
         // 0.16 · (0.25, 0.125, 0.5)² = (0.01, 0.0025, 0.04).
         assert_close(
             linear(phong.specular_color),
-            [0.01, 0.0025, 0.04, 1.0],
+            compensated(
+                [0.01, 0.0025, 0.04, 1.0],
+                GltfMaterial::default().perceptual_roughness,
+            ),
             "F0",
         );
     }

@@ -6,12 +6,12 @@
 //! How a glTF material maps to a Phong one, and where the look differs from Bevy's PBR:
 //!
 //! - the base color is the diffuse color times `1 − metallic`; the specular color is the
-//!   Fresnel reflectance at normal incidence `F₀ = mix(0.04, base color, metallic)`, on a
-//!   Blinn-Phong highlight of exponent `n = 2 / r⁴ − 2` for roughness `r` (clamped to
-//!   `[1, 10⁴]`), the width of a GGX lobe of the same roughness, with strength
-//!   `(n + 8) / 8`, the lobe's energy normalization;
-//! - there is no Fresnel rise toward grazing angles and no geometry term: highlights at
-//!   grazing angles are dimmer than in PBR;
+//!   Fresnel reflectance at normal incidence `F₀ = mix(0.04, base color, metallic)` with
+//!   Bevy's compensation for multiple scattering, on a normalized Blinn-Phong highlight
+//!   (three.js's: Schlick's Fresnel and `N·L`) of exponent `n = 2 / r⁴ − 2` for roughness `r`
+//!   (clamped to `[1, 10⁴]`), the width of a GGX lobe of the same roughness, at strength π;
+//! - there is no geometry term, and the Blinn-Phong lobe lacks GGX's long tails
+//!   (docs/switching.md measures the difference);
 //! - there is no image-based lighting: metals lit only by punctual lights look darker than
 //!   PBR metals under an environment map;
 //! - the metallic/roughness and occlusion maps and the other material extensions are not

@@ -14,12 +14,12 @@ use bevy::{
 /// | `StandardMaterial` | `PhongMaterial` |
 /// |---|---|
 /// | `base_color`, `base_color_texture`, `base_color_channel` | `base_color = base_color · (1 − metallic)` in linear RGB (alpha kept), the same texture and UV set |
-/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ, `specular_tint` t | `specular_model: BlinnPhong`, `specular_color = mix(0.16 · (ρ·t)², base_color, m)` (Bevy's `F₀`; 0.04 at the default ρ = 0.5), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = (n + 8) / 8` |
+/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ, `specular_tint` t | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(0.16 · (ρ·t)², base_color, m)` (Bevy's `F₀`; 0.04 at the default ρ = 0.5) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = π` |
 /// | `emissive`, `emissive_texture`, `emissive_channel` | the same |
 /// | `normal_map_texture`, `normal_map_channel`, `flip_normal_map_y` | the same |
 /// | `occlusion_texture`, `occlusion_channel` | `ao_map_texture`, `ao_map_channel` (intensity 1) |
 /// | `alpha_mode`, `double_sided`, `cull_mode`, `unlit`, `fog_enabled`, `depth_bias`, `uv_transform` | the same |
-/// | `metallic_roughness_texture`, `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are, `specular_strength = 1` |
+/// | `metallic_roughness_texture`, `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are |
 /// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
 ///
 /// What has no counterpart is left out, with one warning that lists it and says what the
@@ -39,7 +39,8 @@ use bevy::{
 /// };
 /// let phong = PhongMaterial::from(&plastic);
 /// assert_eq!(phong.shininess, 30.0); // 2 / 0.5⁴ − 2
-/// assert_eq!(phong.specular_strength, 4.75); // (30 + 8) / 8
+/// assert_eq!(phong.specular_model, SpecularModel::NormalizedBlinnPhong);
+/// assert_eq!(phong.specular_strength, std::f32::consts::PI); // the BRDF drawn times π
 /// ```
 impl From<&StandardMaterial> for PhongMaterial {
     fn from(material: &StandardMaterial) -> Self {
@@ -164,7 +165,7 @@ pub(crate) const ANISOTROPY: &str = "its highlight drawn round, not stretched";
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::metallic_roughness::tests::{assert_close, linear};
+    use crate::material::metallic_roughness::tests::{assert_close, compensated, linear};
     use bevy::{
         asset::Handle,
         color::{Color, LinearRgba},
@@ -180,11 +181,22 @@ mod tests {
         // Bevy's defaults: white, metallic 0, perceptual roughness 0.5, reflectance 0.5.
         let phong = PhongMaterial::from(&StandardMaterial::default());
         assert_close(linear(phong.base_color), [1.0, 1.0, 1.0, 1.0], "base");
-        // 0.16 · 0.5² = 0.04, worked by hand.
-        assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F₀");
+        // 0.16 · 0.5² = 0.04, worked by hand, then compensated at r = 0.5.
+        assert_close(
+            linear(phong.specular_color),
+            compensated([0.04, 0.04, 0.04, 1.0], 0.5),
+            "F₀",
+        );
         assert_eq!(phong.shininess, 30.0, "2 / 0.5⁴ − 2");
-        assert_eq!(phong.specular_strength, 4.75, "(30 + 8) / 8");
-        assert_eq!(phong.specular_model, crate::SpecularModel::BlinnPhong);
+        assert_eq!(
+            phong.specular_strength,
+            core::f32::consts::PI,
+            "the BRDF times π"
+        );
+        assert_eq!(
+            phong.specular_model,
+            crate::SpecularModel::NormalizedBlinnPhong
+        );
     }
 
     #[test]
@@ -198,7 +210,7 @@ mod tests {
         let phong = PhongMaterial::from(&material);
         assert_close(
             linear(phong.specular_color),
-            [0.1024, 0.0256, 0.0064, 1.0],
+            compensated([0.1024, 0.0256, 0.0064, 1.0], 0.5),
             "F₀",
         );
     }
@@ -215,7 +227,7 @@ mod tests {
         assert_close(linear(phong.base_color), [0.0, 0.0, 0.0, 1.0], "base");
         assert_close(
             linear(phong.specular_color),
-            [1.0, 0.8, 0.3, 1.0],
+            compensated([1.0, 0.8, 0.3, 1.0], 0.25),
             "specular",
         );
         assert_eq!(phong.shininess, 510.0, "2 / 0.25⁴ − 2");
@@ -316,8 +328,9 @@ mod tests {
         assert_eq!(phong.metallic_roughness_channel, UvChannel::Uv0);
         assert_eq!((phong.metallic, phong.perceptual_roughness), (1.0, 1.0));
         assert_close(linear(phong.base_color), [1.0, 0.8, 0.3, 1.0], "base");
+        // F₀ as it is: the shader mixes and compensates it per texel.
         assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F₀");
-        assert_eq!(phong.specular_strength, 1.0);
+        assert_eq!(phong.specular_strength, core::f32::consts::PI);
         assert!(unmapped_standard_features(&material).is_empty());
     }
 

@@ -7,12 +7,14 @@
 //! - `specular_color = mix(F₀, base, metallic)`, `F₀` the dielectric reflectance at normal
 //!   incidence (0.04 for glTF; `0.16 · (reflectance · specular_tint)²` for
 //!   `StandardMaterial`, Bevy's `calculate_F0_dielectric`);
-//! - a Blinn-Phong highlight of exponent `n = clamp(2 / r⁴ − 2, 1, 10⁴)` for perceptual
-//!   roughness `r`, the width of a GGX / Beckmann lobe of `α = r²` (`n = 2/α² − 2`, Walter et
-//!   al. 2007), with strength `(n + 8) / 8`, the lobe's energy normalization: the normalized
-//!   Blinn-Phong BRDF is `(n + 8)/(8π) · cos^n(θ_h)`, and the crate's diffuse term
-//!   `k_d · max(N·L, 0)` is the Lambert BRDF `k_d/π` times π, so the same π gives
-//!   `(n + 8)/8`.
+//! - `specular_color` times Bevy's compensation for multiple scattering,
+//!   `k · (1 + k · (1/E − 1))` per channel ([`with_multiple_scattering`]);
+//! - three.js's normalized Blinn-Phong highlight ([`SpecularModel::NormalizedBlinnPhong`]:
+//!   `F · (n + 2)/(8π) · cos^n(θ_h) · N·L`, Schlick's Fresnel on `f₀ = k_s · strength`) of
+//!   exponent `n = clamp(2 / r⁴ − 2, 1, 10⁴)` for perceptual roughness `r`, the width of a
+//!   GGX / Beckmann lobe of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007), with strength π:
+//!   the crate's diffuse term `k_d · max(N·L, 0)` is the Lambert BRDF `k_d/π` times π, so a
+//!   BRDF is drawn times π;
 //! - the ambient light as `StandardMaterial` weighs it: `ambient_factor` [`BEVY_DIFFUSE_AMBIENT`]
 //!   on the diffuse color, and the specular color's reflection of it
 //!   (`ambient_specular`, at the perceptual roughness).
@@ -48,6 +50,31 @@ pub(crate) const DIELECTRIC_F0: f32 = 0.04;
 /// is left out).
 pub(crate) const BEVY_DIFFUSE_AMBIENT: f32 = 0.4524;
 
+/// The mean `N·V` over the visible half of a sphere, weighted by its projected area
+/// (`∫cos² / ∫cos` over the hemisphere): where [`single_scattering_albedo`] is evaluated.
+const MEAN_N_DOT_V: f32 = 2.0 / 3.0;
+
+/// `E = A + B` of Bevy's `F_AB(r, N·V)` (Karis's fit of the split-sum integral, as Bevy
+/// draws it by default) at [`MEAN_N_DOT_V`]: the share of the light a GGX lobe of perceptual
+/// roughness `r` reflects in one scattering when `F₀ = 1`.
+pub(crate) fn single_scattering_albedo(r: f32) -> f32 {
+    let c = [
+        1.0 - r,
+        0.0425 - 0.0275 * r,
+        1.04 - 0.572 * r,
+        0.022 * r - 0.04,
+    ];
+    let a004 = (c[0] * c[0]).min((-9.28 * MEAN_N_DOT_V).exp2()) * c[0] + c[1];
+    (c[2] - 1.04 * a004).max(5e-5) + (1.04 * a004 + c[3]).max(5e-5)
+}
+
+/// `k · (1 + k · (1/E − 1))` with `E` the [`single_scattering_albedo`] of roughness `r`: Bevy's
+/// compensation of a specular reflectance `k` for the light a rough lobe scatters more than
+/// once (bevy_pbr's `specular_multiscatter`, Filament's), at [`MEAN_N_DOT_V`].
+pub(crate) fn with_multiple_scattering(reflectance: f32, r: f32) -> f32 {
+    reflectance * (1.0 + reflectance * (1.0 / single_scattering_albedo(r) - 1.0))
+}
+
 /// A metallic/roughness surface's numbers.
 #[derive(Clone, Debug)]
 pub(crate) struct MetallicRoughness {
@@ -68,10 +95,11 @@ pub(crate) struct MetallicRoughness {
 
 impl MetallicRoughness {
     /// The [`PhongMaterial`] of these numbers: its colors, exponent, strength and the
-    /// Blinn-Phong model, the other fields at their defaults. Never holds a NaN: the numbers
-    /// are brought into their ranges first. With a map (on a lit surface), the shader applies
-    /// the same rules per texel ([`PhongMaterial::metallic_roughness_texture`]): the material
-    /// keeps the base color and the dielectric `F₀` as they are, and the factors.
+    /// normalized Blinn-Phong model, the other fields at their defaults. Never holds a NaN:
+    /// the numbers are brought into their ranges first. With a map (on a lit surface), the
+    /// shader applies the same rules per texel
+    /// ([`PhongMaterial::metallic_roughness_texture`]): the material keeps the base color and
+    /// the dielectric `F₀` as they are, and the factors.
     pub(crate) fn phong_material(&self) -> PhongMaterial {
         match &self.map {
             Some((texture, channel)) if !self.unlit => PhongMaterial {
@@ -79,9 +107,8 @@ impl MetallicRoughness {
                 metallic_roughness_channel: channel.clone(),
                 metallic: METALLIC.apply(self.metallic),
                 perceptual_roughness: ROUGHNESS.apply(self.perceptual_roughness),
-                // The dielectric's numbers, read where the map is not (per vertex: the
-                // exponent); the texel's normalization replaces the strength's.
-                specular_strength: 1.0,
+                // The dielectric's F₀ as it is: the texel's rules mix it and compensate it.
+                specular_color: Color::LinearRgba(self.dielectric_f0_in_range()),
                 ..Self {
                     metallic: 0.0,
                     ..self.clone()
@@ -97,17 +124,15 @@ impl MetallicRoughness {
         let metallic = METALLIC.apply(self.metallic);
         let shininess = shininess_from_roughness(self.perceptual_roughness);
         let base = limits::linear_color(self.base_color.to_linear());
-        let f0 = self.dielectric_f0.to_array().map(|channel| {
-            if channel.is_nan() {
-                DIELECTRIC_F0
-            } else {
-                channel.clamp(0.0, 1.0)
-            }
-        });
+        let f0 = self.dielectric_f0_in_range();
+        let f0 = [f0.red, f0.green, f0.blue];
+        let r = ROUGHNESS.apply(self.perceptual_roughness);
         // An unlit material shows its base color as it is (KHR_materials_unlit).
         let diffuse = if self.unlit { 1.0 } else { 1.0 - metallic };
-        // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly.
-        let specular = |f0: f32, channel: f32| f0 * diffuse + channel * metallic;
+        // mix(F₀, c, m), written so that m = 0 and m = 1 give F₀ and c exactly, with Bevy's
+        // compensation for multiple scattering.
+        let specular =
+            |f0: f32, channel: f32| with_multiple_scattering(f0 * diffuse + channel * metallic, r);
         PhongMaterial {
             base_color: Color::LinearRgba(LinearRgba::new(
                 base.red * diffuse,
@@ -117,25 +142,33 @@ impl MetallicRoughness {
             )),
             ambient_factor: BEVY_DIFFUSE_AMBIENT,
             ambient_specular: !self.unlit,
-            perceptual_roughness: ROUGHNESS.apply(self.perceptual_roughness),
+            perceptual_roughness: r,
             specular_color: Color::linear_rgb(
                 specular(f0[0], base.red),
                 specular(f0[1], base.green),
                 specular(f0[2], base.blue),
             ),
-            specular_strength: normalization(shininess),
+            specular_strength: core::f32::consts::PI,
             shininess,
-            specular_model: SpecularModel::BlinnPhong,
+            specular_model: SpecularModel::NormalizedBlinnPhong,
             unlit: self.unlit,
             ..PhongMaterial::default()
         }
     }
 }
 
-/// The energy normalization of a Blinn-Phong lobe of exponent `shininess` in the crate's
-/// units: `(n + 8) / 8` (see the module docs).
-pub(crate) fn normalization(shininess: f32) -> f32 {
-    (shininess + 8.0) / 8.0
+impl MetallicRoughness {
+    /// The dielectric `F₀` per channel in `[0, 1]` (NaN → [`DIELECTRIC_F0`]), alpha 1.
+    fn dielectric_f0_in_range(&self) -> LinearRgba {
+        let [red, green, blue] = self.dielectric_f0.to_array().map(|channel| {
+            if channel.is_nan() {
+                DIELECTRIC_F0
+            } else {
+                channel.clamp(0.0, 1.0)
+            }
+        });
+        LinearRgba::rgb(red, green, blue)
+    }
 }
 
 /// The Blinn-Phong exponent of roughness `r`: `clamp(2 / r⁴ − 2, 1, 10⁴)`; NaN is taken as
@@ -167,6 +200,14 @@ pub(crate) mod tests {
     /// `color` in linear RGBA.
     pub(crate) fn linear(color: Color) -> [f32; 4] {
         color.to_linear().to_f32_array()
+    }
+
+    /// `color` (linear RGBA) with each RGB channel compensated for multiple scattering at
+    /// roughness `r`, as the conversions' specular color is.
+    pub(crate) fn compensated(color: [f32; 4], r: f32) -> [f32; 4] {
+        let [red, green, blue, alpha] = color;
+        let [red, green, blue] = [red, green, blue].map(|k| super::with_multiple_scattering(k, r));
+        [red, green, blue, alpha]
     }
 
     /// Exact up to f32 rounding of a product or a `mix` (a few ulps of values ≤ 1).

@@ -1,7 +1,8 @@
 //! A metallic-roughness map in the reference model (SPEC.md, "Metallic-roughness map"): the
 //! metallic/roughness surface of one texel, as Blinn-Phong or Phong terms.
 
-use super::{AmbientSpecular, Material};
+use super::{AmbientSpecular, Material, environment_brdf};
+use glam::DVec3;
 
 /// The factors on a metallic-roughness map's channels (`PhongMaterial::metallic`,
 /// `PhongMaterial::perceptual_roughness`, in their ranges).
@@ -28,13 +29,27 @@ pub fn shininess_from_roughness(r: f64) -> f64 {
     }
 }
 
+/// The mean `N·V` over the visible half of a sphere, weighted by its projected area
+/// (`∫cos² dω / ∫cos dω` over the hemisphere).
+pub const MEAN_N_DOT_V: f64 = 2.0 / 3.0;
+
+/// `k · (1 + k · (1/E − 1))` per channel, `E = A + B` of [`environment_brdf`]`(r,`
+/// [`MEAN_N_DOT_V`]`)`: Bevy's compensation of a specular reflectance `k` for the light a
+/// GGX lobe of perceptual roughness `r` scatters more than once (bevy_pbr's
+/// `specular_multiscatter`), at the mean `N·V`.
+pub fn with_multiple_scattering(reflectance: DVec3, r: f64) -> DVec3 {
+    let weights = environment_brdf(r, MEAN_N_DOT_V);
+    let albedo = weights.x + weights.y;
+    reflectance * (DVec3::ONE + reflectance * (1.0 / albedo - 1.0))
+}
+
 impl Material {
     /// This material (its maps and vertex color applied) at a texel of its metallic-roughness
     /// map whose blue and green channels are `metallic` and `roughness`: with
     /// `m = metallic · factor` and `r = roughness · factor` clamped to `[0, 1]`,
-    /// `k_d · (1 − m)`, `k_s = mix(k_s, k_d, m)`, `α` from `r`
-    /// ([`shininess_from_roughness`]) and the strength times `(α + 8) / 8`; `r` is also the
-    /// ambient specular's roughness.
+    /// `k_d · (1 − m)`, `k_s = mix(k_s, k_d, m)` compensated for multiple scattering
+    /// ([`with_multiple_scattering`]) and `α` from `r` ([`shininess_from_roughness`]); `r` is
+    /// also the ambient specular's roughness. The strength stays the material's.
     pub fn at_metallic_roughness_texel(
         &self,
         factors: MetallicRoughness,
@@ -44,10 +59,10 @@ impl Material {
         let m = (metallic * factors.metallic).clamp(0.0, 1.0);
         let r = (roughness * factors.perceptual_roughness).clamp(0.0, 1.0);
         let shininess = shininess_from_roughness(r);
+        let reflectance = self.specular + (self.diffuse - self.specular) * m;
         Material {
             diffuse: self.diffuse * (1.0 - m),
-            specular: self.specular + (self.diffuse - self.specular) * m,
-            specular_strength: self.specular_strength * (shininess + 8.0) / 8.0,
+            specular: with_multiple_scattering(reflectance, r),
             shininess,
             ambient_specular: self.ambient_specular.map(|_| AmbientSpecular {
                 perceptual_roughness: r,
@@ -60,7 +75,6 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
 
     fn plastic() -> Material {
         Material {
@@ -81,10 +95,13 @@ mod tests {
     fn a_metal_texel_reflects_its_base_color_and_has_no_diffuse() {
         let metal = plastic().at_metallic_roughness_texel(FACTORS_ONE, 1.0, 0.5);
         assert_eq!(metal.diffuse, DVec3::ZERO);
-        assert_eq!(metal.specular, DVec3::new(0.8, 0.4, 0.2));
-        // 2 / 0.5⁴ − 2 = 30, worked by hand; (30 + 8) / 8.
+        assert_eq!(
+            metal.specular,
+            with_multiple_scattering(DVec3::new(0.8, 0.4, 0.2), 0.5)
+        );
+        // 2 / 0.5⁴ − 2 = 30, worked by hand; the strength stays the material's.
         assert_eq!(metal.shininess, 30.0);
-        assert_eq!(metal.specular_strength, 4.75);
+        assert_eq!(metal.specular_strength, 1.0);
     }
 
     #[test]
@@ -97,17 +114,30 @@ mod tests {
         let texel = plastic().at_metallic_roughness_texel(half, 0.5, 1.0);
         let expected_diffuse = DVec3::new(0.6, 0.3, 0.15);
         assert!((texel.diffuse - expected_diffuse).abs().max_element() < 1e-15);
-        // mix(0.04, 0.8, 0.25) = 0.23 in red.
-        assert!(
-            (texel.specular.x - 0.23).abs() < 1e-15,
-            "{}",
-            texel.specular
-        );
+        // mix(0.04, 0.8, 0.25) = 0.23 in red, compensated at r = 0.5.
+        let red = with_multiple_scattering(DVec3::splat(0.23), 0.5).x;
+        assert!((texel.specular.x - red).abs() < 1e-15, "{}", texel.specular);
         assert_eq!(texel.shininess, 30.0);
         let dielectric = plastic().at_metallic_roughness_texel(FACTORS_ONE, 0.0, 1.0);
         assert_eq!(dielectric.diffuse, plastic().diffuse);
-        assert_eq!(dielectric.specular, plastic().specular);
+        assert_eq!(
+            dielectric.specular,
+            with_multiple_scattering(plastic().specular, 1.0)
+        );
         assert_eq!(dielectric.shininess, 1.0, "r = 1 gives 0, clamped to 1");
+    }
+
+    #[test]
+    fn multiple_scattering_adds_what_a_rough_lobe_loses_and_nothing_to_a_smooth_one() {
+        // E = A + B of F_AB(1, 2/3): A = 0.4524, B = 5e-5 (worked in ambient_specular's
+        // tests), so a white metal at r = 1 reflects 1/E.
+        let white = with_multiple_scattering(DVec3::ONE, 1.0);
+        assert!((white.x - 1.0 / (0.4524 + 5e-5)).abs() < 1e-9, "{white}");
+        // A black specular color stays black; a smooth lobe loses nothing: at r = 0,
+        // a004 = 2^(−9.28·2/3) + 0.0425, A = 1.04 − 1.04·a004, B = 1.04·a004 − 0.04, E = 1.
+        assert_eq!(with_multiple_scattering(DVec3::ZERO, 0.5), DVec3::ZERO);
+        let smooth = with_multiple_scattering(DVec3::splat(0.9), 0.0).x;
+        assert!((smooth - 0.9).abs() < 1e-12, "{smooth}");
     }
 
     #[test]

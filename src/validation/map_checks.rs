@@ -11,8 +11,8 @@
 //!   and the material is not drawn while its map is missing (Bevy's rule for a material's
 //!   textures).
 
-use super::PhongMaterial;
-use crate::validation::{InvalidInput, Owner};
+use super::{InvalidInput, Owner};
+use crate::material::PhongMaterial;
 use bevy::{
     asset::{AssetEvent, AssetId, Assets},
     image::Image,
