@@ -66,9 +66,9 @@
 //! - `three_js`: a scene described as three.js describes it, converted with
 //!   `bevy_phong::from_three`, against the reference model and against three.js r187's own
 //!   picture of it (rendered in headless Chromium), pixel by pixel;
-//! - `switching`: a scene of Bevy's own materials and lights rendered as Bevy draws it and
-//!   switched to Phong, side by side: each object's sRGB difference within its measured
-//!   bound (docs/switching.md);
+//! - `switching`: scenes of Bevy's own materials and lights (spheres of every kind, props
+//!   with their maps) rendered as Bevy draws them and switched to Phong, side by side: each
+//!   object's sRGB difference within its measured bound (docs/switching.md);
 //! - `two_apps`: two apps in one process, one with shadows, a cookie and a hemisphere light
 //!   and one without, their frames interleaved: each renders as it does alone.
 //!
