@@ -1,7 +1,8 @@
 //! The field tables of the docs against the types: every field of a light, of its settings
 //! and of [`PhongMaterial`](crate::PhongMaterial) is a row of the table under the heading that
 //! names its type (docs/lights.md, docs/material.md). A field added to a type without a row
-//! fails here, naming the type, the field and the file.
+//! fails here, naming the type, the field and the file. Every built-in light kind (a folder
+//! of `src/light_kind/`) is named by `PhongLightKind`'s docs and by docs/lights.md.
 
 use bevy::reflect::{TypeInfo, Typed};
 use std::{collections::BTreeSet, fs, path::Path};
@@ -93,4 +94,40 @@ fn the_readme_shows_the_minimal_example_whole() {
         readme.contains(code),
         "README.md's \"Use it\" block is no longer examples/minimal.rs: copy the example there"
     );
+}
+
+/// The light kinds built in: each folder of `src/light_kind/` whose `mod.rs` declares a
+/// `pub struct Phong…Light`, by that name.
+fn built_in_kinds() -> Vec<String> {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/light_kind");
+    let mut kinds: Vec<String> = fs::read_dir(&folder)
+        .expect("src/light_kind is readable")
+        .filter_map(|entry| fs::read_to_string(entry.ok()?.path().join("mod.rs")).ok())
+        .flat_map(|source| {
+            source
+                .lines()
+                .filter_map(|line| line.strip_prefix("pub struct Phong"))
+                .filter_map(|rest| rest.split([' ', '{', '<']).next())
+                .filter(|name| name.ends_with("Light"))
+                .map(|name| format!("Phong{name}"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    kinds.sort();
+    kinds
+}
+
+#[test]
+fn every_built_in_light_kind_is_named_by_the_trait_docs_and_the_lights_page() {
+    let kinds = built_in_kinds();
+    assert!(kinds.len() >= 5, "found {kinds:?}");
+    for file in ["src/light_kind.rs", "docs/lights.md"] {
+        let text = fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(file))
+            .unwrap_or_else(|error| panic!("{file}: {error}"));
+        let missing: Vec<&String> = kinds
+            .iter()
+            .filter(|kind| !text.contains(&format!("{kind}`")))
+            .collect();
+        assert!(missing.is_empty(), "{file} does not name {missing:?}");
+    }
 }

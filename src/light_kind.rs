@@ -42,7 +42,8 @@ use std::sync::Arc;
 
 /// A kind of light: what the crate needs to know of it, from its GPU record to its shadows.
 /// The built-in kinds ([`PhongDirectionalLight`](crate::PhongDirectionalLight),
-/// [`PhongPointLight`](crate::PhongPointLight), [`PhongSpotLight`](crate::PhongSpotLight))
+/// [`PhongPointLight`](crate::PhongPointLight), [`PhongSpotLight`](crate::PhongSpotLight),
+/// [`PhongRectLight`](crate::PhongRectLight), [`PhongDiskLight`](crate::PhongDiskLight))
 /// implement it, and so does a kind an extension adds, whose lights
 /// [`PhongLightKindPlugin`](crate::extension::PhongLightKindPlugin) gathers into a GPU
 /// buffer of their own.

@@ -14,8 +14,9 @@
 //!   (docs/switching.md measures the difference);
 //! - there is no image-based lighting: metals lit only by punctual lights look darker than
 //!   PBR metals under an environment map;
-//! - the metallic/roughness and occlusion maps and the other material extensions are not
-//!   used: one warning per material that has them, naming the material.
+//! - the metallic-roughness map is read per texel and the occlusion map is the AO map;
+//!   transmission, volume, clearcoat and anisotropy are not used: one warning per material
+//!   that has them, naming the material and what the surface becomes without each.
 
 mod handler;
 mod material;

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 /// lobe integrated over the light's shape, a fitted lobe integrated over it, or the lobe
 /// taken toward one point of it. The diffuse light is exact either way. Each choice's error, against the
 /// reference model's quadrature, is in SPEC.md ("Area lights") and on the time-against-error
-/// plot of docs/design/performance.md.
+/// plot of docs/performance.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Reflect)]
 #[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
 #[reflect(Default, Debug, PartialEq, Clone)]

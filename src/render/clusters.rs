@@ -16,8 +16,8 @@
 //! `bias` as `f32` bits; `first` the word where its cluster records start); then every
 //! view's cluster records (x fastest, then y, then slice) of the header's `cluster_words`
 //! each ([`cluster_words`]); then the entries they point into. The lights come in slots
-//! ([`ClusterSlot`]: the built-in point lights, the spot lights, then each extension
-//! kind's); a cluster record `[s_0, s_1, …, s_K]` (zero-padded) lists slot `k`'s lights as
+//! ([`ClusterSlot`]: the built-in local lights, point and spot, then the built-in area
+//! lights, rectangle and disk, then each extension kind's); a cluster record `[s_0, s_1, …, s_K]` (zero-padded) lists slot `k`'s lights as
 //! the entries `data[s_k..s_{k+1}]`, each the index of a light in its slot's buffer. With
 //! the two built-in slots a record is `[s_0, s_1, s_2, 0]`: one 16-byte texel.
 
