@@ -11,12 +11,11 @@
 //!   and the material is not drawn while its map is missing (Bevy's rule for a material's
 //!   textures).
 
-use super::{InvalidInput, Owner};
+use super::{Checker, InvalidInput, Owner};
 use crate::material::PhongMaterial;
 use bevy::{
     asset::{AssetEvent, AssetId, Assets},
     image::Image,
-    log::warn,
     platform::collections::HashMap,
     prelude::{Local, MessageReader, MessageWriter, Res},
 };
@@ -70,26 +69,16 @@ pub(crate) fn check_metallic_roughness_maps(
         }
     }
     waiting.retain(|&material, &mut image| {
-        let (value, replacement) = match images.get(image) {
-            Some(loaded) => match format_problem(loaded) {
-                Some(problem) => (
-                    format!("an image in {:?}", loaded.texture_descriptor.format),
-                    problem,
-                ),
-                None => return false,
-            },
-            // Not loaded yet, or never: Bevy logs a failed load with its path.
-            None => return true,
+        // Not loaded yet, or never: Bevy logs a failed load with its path.
+        let Some(loaded) = images.get(image) else {
+            return true;
         };
-        let invalid = InvalidInput {
-            owner: Owner::Material(material),
-            component: "PhongMaterial",
-            field: FIELD,
-            value: crate::quoting::bounded(&value),
-            replacement,
-        };
-        warn!("{invalid}");
-        messages.write(invalid);
+        if let Some(problem) = format_problem(loaded) {
+            let mut checker = Checker::new(Owner::Material(material), "PhongMaterial");
+            let value = format!("an image in {:?}", loaded.texture_descriptor.format);
+            checker.replace(FIELD, value, problem);
+            checker.report(&mut messages);
+        }
         false
     });
 }
