@@ -21,7 +21,9 @@
 //! Under the mirrored ambient light, a material converted from a `StandardMaterial` shows
 //! Bevy's ambient term: its `ambient_factor` 0.4524 is Bevy's weight on the diffuse color,
 //! and its `ambient_specular` reflects the ambient light by its specular color as Bevy does
-//! (SPEC.md, "Ambient specular").
+//! (SPEC.md, "Ambient specular"). Bevy's `EnvironmentMapLight` on a camera needs no mirror:
+//! a converted material's `environment_light` reads it as `StandardMaterial` does (SPEC.md,
+//! "Environment light").
 //!
 //! The point light's decay `1 / (10⁴ d²)` (and its color, ×10⁴) reproduce Bevy's
 //! inverse-square fall-off `1 / max(d², 10⁻⁴)` exactly: the `min(1, …)` of SPEC.md's

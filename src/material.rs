@@ -307,6 +307,20 @@ pub struct PhongMaterial {
     /// metal's body is lit by its ambient light as a `StandardMaterial` metal's is. The
     /// conversions from `StandardMaterial` and glTF set it. Default `false`.
     pub ambient_specular: bool,
+    /// Lights the surface with the camera's Bevy `EnvironmentMapLight` as it lights a
+    /// `StandardMaterial`: its diffuse cube, read along the normal, lights
+    /// `k_d ⊙ (1 − S)`, and its specular cube, read along the lobe's dominant direction at
+    /// mip level `r · (levels − 1)` (`r` the
+    /// [`perceptual_roughness`](Self::perceptual_roughness), times the metallic-roughness
+    /// map's green), is reflected by `S`, the [`ambient_specular`](Self::ambient_specular)
+    /// reflectance (zero without it: then the cube lights the diffuse color only); both
+    /// times the light's `intensity` and rotated by its `rotation`, times the camera's
+    /// exposure, and added to the ambient term before the ambient occlusion (SPEC.md,
+    /// "Environment light"). A camera without one adds nothing. Independent of
+    /// [`camera_environment`](Self::camera_environment), three.js's reflection, which
+    /// joins a cube to the lit color by a combine mode. The conversions from
+    /// `StandardMaterial` and glTF set it. Default `false`.
+    pub environment_light: bool,
     /// A tangent-space normal map: texel `t` gives `n = 2t − 1`, and the normal is
     /// `n.x·T + n.y·B + n.z·N` with the interpolated normal `N`, tangent `T` and
     /// `B = T.w · N × T` (MikkTSpace's convention, as Bevy's own materials). Default none.
@@ -497,6 +511,7 @@ impl Default for PhongMaterial {
             metallic: 1.0,
             perceptual_roughness: 1.0,
             ambient_specular: false,
+            environment_light: false,
             normal_map_texture: None,
             normal_map_channel: UvChannel::Uv0,
             flip_normal_map_y: false,

@@ -169,6 +169,7 @@ fn load_shaders(app: &mut App) {
         load_shader_library!(app, "shaders/normals.wesl");
         load_shader_library!(app, "shaders/uv.wesl");
         load_shader_library!(app, "shaders/environment.wesl");
+        load_shader_library!(app, "shaders/environment_light.wesl");
         load_shader_library!(app, "shaders/texture_maps.wesl");
         load_shader_library!(app, "shaders/shadows.wesl");
         load_shader_library!(app, "shaders/camera_effects.wesl");

@@ -25,7 +25,7 @@
 //! `surface` (the surface point and the material's terms, "Material"), `lights` (each
 //! light kind, fall-off and the spot cone, "Light types" and "The equation"), `shading` (the
 //! sum and each light's term, "The equation" and "Shadows"), `stylized`, `hemisphere`,
-//! `environment`, `cookies`, `normals`, `texture_maps`, `surface_inputs`, `per_vertex` and
+//! `environment`, `environment_light`, `cookies`, `normals`, `texture_maps`, `surface_inputs`, `per_vertex` and
 //! `camera_effects` (the sections of the same names). `area` integrates an area light
 //! (docs/design/area-lights.md) over its area by adaptive quadrature (`quadrature`); the
 //! closed forms the shader uses (`area_closed_forms`, test-only, and
@@ -39,6 +39,9 @@ mod area_pieces;
 mod camera_effects;
 mod cookies;
 mod environment;
+mod environment_light;
+#[cfg(test)]
+mod ggx_fit;
 mod hemisphere;
 mod lights;
 mod metallic_roughness;
@@ -55,6 +58,7 @@ pub use area::{AreaLight, AreaShape, area_light_contribution, visible_area_light
 pub use camera_effects::{directional_scattering, fogged, reinhard};
 pub use cookies::{Cookie, CookieProjection, cube_face_uv};
 pub use environment::{cube_direction, environment_direction, environment_lod, with_environment};
+pub use environment_light::{environment_light_direction, environment_light_level};
 pub use hemisphere::Hemisphere;
 pub use lights::{Light, Lights, OtherLights, ReferenceLight, attenuation, rgb, spot_cone};
 pub use metallic_roughness::{

@@ -10,6 +10,8 @@
 //! - converted PBR: a material as glTF exporters write one, a base color map and a
 //!   metallic-roughness map with factors 1 (Standard's own; Phong's `PhongMaterial::from` it:
 //!   the map read per texel and the ambient specular);
+//! - converted PBR under an environment map: the same, with the camera's
+//!   `EnvironmentMapLight` (Phong's `environment_light`, which the conversion sets);
 //!
 //! and each stylized mode alone, for `PhongMaterial` only (`--stylized`): wrapped diffuse,
 //! toon bands, a toon ramp, a toon highlight, a rim everywhere and on the lit side, a
@@ -40,6 +42,8 @@ pub enum Features {
     /// A base color map and a metallic-roughness map with factors 1, Phong's converted from
     /// Standard's.
     Converted,
+    /// [`Features::Converted`] with the camera's `EnvironmentMapLight`.
+    ConvertedEnvironment,
     /// `DiffuseMode::Wrap(0.5)`.
     Wrap,
     /// `DiffuseMode::Toon { bands: 3, smoothing: 0.1 }`.
@@ -66,6 +70,7 @@ impl Features {
             Features::BakedLight => "baked light",
             Features::Environment => "environment",
             Features::Converted => "converted PBR",
+            Features::ConvertedEnvironment => "converted PBR, environment map",
             Features::Wrap => "wrap diffuse",
             Features::ToonBands => "toon bands",
             Features::ToonRamp => "toon ramp",
@@ -258,7 +263,10 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
     }
     let uv_transform = Affine2::from_scale_angle_translation(Vec2::splat(2.0), 0.3, Vec2::ZERO);
 
-    if features == Features::Environment {
+    if matches!(
+        features,
+        Features::Environment | Features::ConvertedEnvironment
+    ) {
         let cameras: Vec<Entity> = world
             .query_filtered::<Entity, With<Camera3d>>()
             .iter(world)
@@ -310,7 +318,7 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                     material.camera_environment = true;
                     material.reflectivity = 0.5;
                 }
-                Features::Converted => {
+                Features::Converted | Features::ConvertedEnvironment => {
                     *material = PhongMaterial::from(&StandardMaterial {
                         base_color: material.base_color,
                         base_color_texture: Some(base_color.clone()),
@@ -359,7 +367,7 @@ pub fn apply(world: &mut World, features: Features, shading: Shading) {
                     material.perceptual_roughness = 0.2;
                     material.metallic = 0.5;
                 }
-                Features::Converted => {
+                Features::Converted | Features::ConvertedEnvironment => {
                     material.base_color_texture = Some(base_color.clone());
                     material.metallic = 1.0;
                     material.perceptual_roughness = 1.0;

@@ -564,8 +564,9 @@ fn material_costs(options: &Options, directory: &Path) {
         Some(features::Features::BakedLight),
         Some(features::Features::Environment),
         Some(features::Features::Converted),
+        Some(features::Features::ConvertedEnvironment),
     ];
-    const GROUPS: usize = 5;
+    const GROUPS: usize = 6;
     let scene = |group: Option<features::Features>| group.map_or(Scene::Showcase, Scene::Featured);
     let mut csv = String::from("size,scene,shading,round,median_ms\n");
     // Each row's picture (from its first round), to show that its features are drawn.

@@ -23,6 +23,7 @@ use bevy::gltf::GltfMaterial;
 /// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(F₀, base_color, m)`, Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = π` |
 /// | `metallic_roughness_texture` (metallicRoughnessTexture), `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are (`PhongGltfPlugin` reads the texture's `KHR_texture_transform` `texCoord`) |
 /// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
+/// | (Bevy's `EnvironmentMapLight` on the camera) | `environment_light: true`: its diffuse cube lights the diffuse color, its specular cube is reflected by the same weights (SPEC.md, "Environment light") |
 ///
 /// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
 /// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`. The
@@ -167,6 +168,7 @@ mod tests {
         // own at the roughness.
         assert_eq!(phong.ambient_factor, 0.4524);
         assert!(phong.ambient_specular);
+        assert!(phong.environment_light);
         assert_eq!(phong.perceptual_roughness, 1.0);
     }
 

@@ -236,6 +236,9 @@ material_features! {
     /// strength of 0 leaves nothing to reflect).
     AMBIENT_SPECULAR: "ambient_specular", ["PHONG_AMBIENT_SPECULAR"], Nothing,
         |m, u| m.ambient_specular && !m.unlit && u.specular_strength > 0.0;
+    /// The camera's environment map light (`PHONG_ENV_LIGHT`), on a lit material.
+    ENV_LIGHT: "environment_light", ["PHONG_ENV_LIGHT"], Nothing,
+        |m, u| m.environment_light && !m.unlit;
     /// An emissive map on the first UV set (`PHONG_EMISSIVE_TEXTURE`).
     EMISSIVE_TEXTURE: "emissive_texture", ["PHONG_EMISSIVE_TEXTURE"], Uv0,
         |m, u| !m.unlit && map_at(&m.emissive_texture, &m.emissive_channel, false);

@@ -21,6 +21,7 @@ use bevy::{
 /// | `alpha_mode`, `double_sided`, `cull_mode`, `unlit`, `fog_enabled`, `depth_bias`, `uv_transform` | the same |
 /// | `metallic_roughness_texture`, `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are |
 /// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
+/// | (Bevy's `EnvironmentMapLight` on the camera) | `environment_light: true`: its diffuse cube lights the diffuse color, its specular cube is reflected by the same weights (SPEC.md, "Environment light") |
 ///
 /// What has no counterpart is left out, with one warning that lists it and says what the
 /// surface becomes without it: parallax (`depth_map`), transmission, thickness, clearcoat,

@@ -17,7 +17,9 @@
 //!   BRDF is drawn times π;
 //! - the ambient light as `StandardMaterial` weighs it: `ambient_factor` [`BEVY_DIFFUSE_AMBIENT`]
 //!   on the diffuse color, and the specular color's reflection of it
-//!   (`ambient_specular`, at the perceptual roughness).
+//!   (`ambient_specular`, at the perceptual roughness);
+//! - the camera's `EnvironmentMapLight` as `StandardMaterial` weighs it
+//!   (`environment_light`).
 
 use super::{PhongMaterial, SpecularModel};
 use crate::limits::{self, Limits};
@@ -142,6 +144,7 @@ impl MetallicRoughness {
             )),
             ambient_factor: BEVY_DIFFUSE_AMBIENT,
             ambient_specular: !self.unlit,
+            environment_light: !self.unlit,
             perceptual_roughness: r,
             specular_color: Color::linear_rgb(
                 specular(f0[0], base.red),

@@ -171,6 +171,9 @@ macro_rules! material_description {
             /// Also reflect the ambient light by the specular color, as `StandardMaterial`
             /// does. Default `false`.
             pub ambient_specular: bool,
+            /// Lit by the camera's Bevy `EnvironmentMapLight` as `StandardMaterial` is.
+            /// Default `false`.
+            pub environment_light: bool,
             /// Negate the normal map's green channel. Default `false`.
             pub flip_normal_map_y: bool,
             /// The factors on the normal map's `n.x` and `n.y`. Default `(1, 1)`.
@@ -248,6 +251,7 @@ macro_rules! material_description {
                     metallic: material.metallic,
                     perceptual_roughness: material.perceptual_roughness,
                     ambient_specular: material.ambient_specular,
+                    environment_light: material.environment_light,
                     flip_normal_map_y: false,
                     normal_map_scale: material.normal_map_scale.into(),
                     bump_scale: material.bump_scale,
@@ -314,6 +318,7 @@ macro_rules! material_description {
                     metallic: self.metallic,
                     perceptual_roughness: self.perceptual_roughness,
                     ambient_specular: self.ambient_specular,
+                    environment_light: self.environment_light,
                     flip_normal_map_y: self.flip_normal_map_y,
                     normal_map_scale: self.normal_map_scale.into(),
                     bump_scale: self.bump_scale,

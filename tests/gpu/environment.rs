@@ -54,13 +54,17 @@ fn cube_texel(face: u32, level: u32, x: u32, y: u32) -> [f32; 4] {
     ]
 }
 
-/// A cube map of `cube_size` texels a side with [`CUBE_LEVELS`] levels whose texel `(x, y)` of face
-/// `face` at level `level` is `texel(face, level, x, y)`, stored layer by layer (each face's
-/// levels together, as Bevy's images order them), nearest-sampled.
-fn cube_map(cube_size: u32, texel: impl Fn(u32, u32, u32, u32) -> [f32; 4]) -> Image {
+/// A cube map of `cube_size` texels a side with `levels` mip levels whose texel `(x, y)` of
+/// face `face` at level `level` is `texel(face, level, x, y)`, stored layer by layer (each
+/// face's levels together, as Bevy's images order them), nearest-sampled.
+pub(crate) fn cube_map(
+    cube_size: u32,
+    levels: u32,
+    texel: impl Fn(u32, u32, u32, u32) -> [f32; 4],
+) -> Image {
     let mut data = Vec::new();
     for face in 0..6 {
-        for level in 0..CUBE_LEVELS {
+        for level in 0..levels {
             let size = cube_size >> level;
             for y in 0..size {
                 for x in 0..size {
@@ -79,7 +83,7 @@ fn cube_map(cube_size: u32, texel: impl Fn(u32, u32, u32, u32) -> [f32; 4]) -> I
                 height: cube_size,
                 depth_or_array_layers: 6,
             },
-            mip_level_count: CUBE_LEVELS,
+            mip_level_count: levels,
             sample_count: 1,
             dimension: TextureDimension::D2,
             format: TextureFormat::Rgba8Unorm,
@@ -98,7 +102,7 @@ fn cube_map(cube_size: u32, texel: impl Fn(u32, u32, u32, u32) -> [f32; 4]) -> I
 
 /// The face a lookup along `direction` reads and its coordinates `(s, t)` on it, each in
 /// `[-1, 1]` (Vulkan's cube map face selection).
-fn cube_face(direction: DVec3) -> (u32, [f64; 2]) {
+pub(crate) fn cube_face(direction: DVec3) -> (u32, [f64; 2]) {
     let [x, y, z] = direction.to_array();
     let (ax, ay, az) = (x.abs(), y.abs(), z.abs());
     // (face, sc, tc, ma) for +X, -X, +Y, -Y, +Z, -Z.
@@ -145,7 +149,7 @@ fn cube_texel_at(direction: DVec3, level: u32) -> Option<DVec4> {
 }
 
 /// The lights of the environment tests: ambient and a point light.
-fn spawn_lights(world: &mut World) {
+pub(crate) fn spawn_lights(world: &mut World) {
     world.insert_resource(PhongAmbientLight {
         color: Color::srgb(0.2, 0.2, 0.25),
     });
@@ -270,9 +274,10 @@ fn environment_maps_follow_the_reference_model() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     spawn_lights(world);
-    let cube = world
-        .resource_mut::<Assets<Image>>()
-        .add(cube_map(CUBE_SIZE, cube_texel));
+    let cube =
+        world
+            .resource_mut::<Assets<Image>>()
+            .add(cube_map(CUBE_SIZE, CUBE_LEVELS, cube_texel));
     let objects = reflective_objects(world, CUBE_SIZE, |material| PhongMaterial {
         environment_map: Some(cube.clone()),
         ..material
@@ -326,11 +331,11 @@ fn the_cameras_environment_map_light_is_reflected_as_the_materials_own_map() {
     let mut harness = Harness::new(SIZE, SIZE);
     let world = harness.world_mut();
     spawn_lights(world);
-    let cube = world
-        .resource_mut::<Assets<Image>>()
-        .add(cube_map(CAMERA_CUBE_SIZE, |face, level, _, _| {
-            face_color(face, level)
-        }));
+    let cube = world.resource_mut::<Assets<Image>>().add(cube_map(
+        CAMERA_CUBE_SIZE,
+        CUBE_LEVELS,
+        |face, level, _, _| face_color(face, level),
+    ));
     let exposure = f64::from(bevy::camera::Exposure::default().exposure());
     let intensity = 1.2 / exposure as f32;
     let rotation = Quat::from_rotation_y(0.7) * Quat::from_rotation_x(0.3);

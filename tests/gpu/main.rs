@@ -45,6 +45,8 @@
 //! - `bevy_light_textures`: Bevy's spot, directional and point light textures (each cube
 //!   layout) on mirrored lights, each pixel's texel found with Bevy's own formulas;
 //! - `environment`: environment cube maps reflected and refracted, each combine mode;
+//! - `environment_light`: the camera's `EnvironmentMapLight` lighting converted and plain
+//!   materials, its diffuse and specular cubes against the reference model;
 //! - `gltf`: a glTF file loaded with `PhongGltfPlugin`: its primitives' Phong materials,
 //!   skin, morph weights, animation players and lights; posed at a fixed animation time,
 //!   each primitive covers the pixels `StandardMaterial` covers, and the scene is lit as the
@@ -67,7 +69,7 @@
 //!   `bevy_phong::from_three`, against the reference model and against three.js r187's own
 //!   picture of it (rendered in headless Chromium), pixel by pixel;
 //! - `switching`: scenes of Bevy's own materials and lights (spheres of every kind, props
-//!   with their maps) rendered as Bevy draws them and switched to Phong, side by side: each
+//!   with their maps, spheres under an environment map) rendered as Bevy draws them and switched to Phong, side by side: each
 //!   object's sRGB difference within its measured bound (docs/switching.md);
 //! - `two_apps`: two apps in one process, one with shadows, a cookie and a hemisphere light
 //!   and one without, their frames interleaved: each renders as it does alone.
@@ -88,6 +90,7 @@ mod cookies;
 mod culling;
 mod displacement;
 mod environment;
+mod environment_light;
 mod frames;
 mod fuzzed_scenes;
 mod game_features;

@@ -6,7 +6,9 @@
 //! compared in sRGB (each channel clamped to `[0, 1]` and encoded, as a display shows the
 //! frames): the mean absolute difference over its channels, the 95th percentile and the
 //! share of pixels with a channel off by more than 0.1. The scenes: `spheres`, dielectrics
-//! and metals from rough to smooth; `textured`, props as glTF exporters write them.
+//! and metals from rough to smooth; `textured`, props as glTF exporters write them, both
+//! under Bevy's three light kinds and its ambient light ([`bevy_lights`]); `environment`,
+//! spheres lit by the camera's `EnvironmentMapLight` and a sun.
 //!
 //! What cannot match is the model: Bevy's GGX lobe has long tails, a geometry term and
 //! Burley's diffuse beside it, the converted normalized Blinn-Phong lobe and Lambert's
@@ -15,6 +17,7 @@
 //! 0.005 on the means and 2 percentage points on the shares: they hold what the switch
 //! achieves, so that a regression fails.
 
+mod environment;
 mod spheres;
 mod textured;
 
@@ -40,19 +43,19 @@ struct Object {
 /// images).
 type Objects = fn(&mut World) -> Vec<Object>;
 
+/// How a scene is lit: what it spawns besides its objects (lights, the camera's
+/// environment map light), in the world they light.
+type Lighting = fn(&mut World);
+
 /// A bound on one object (or on the whole scene, named "scene"): its name, the largest mean
 /// difference and the largest share of pixels off by more than 0.1.
 type Bound = (&'static str, f32, f32);
 
-/// Spawns `objects` (each with its own material) and Bevy's lights; returns the objects'
+/// Spawns `objects` (each with its own material) lit by `lighting`; returns the objects'
 /// entities in order.
-fn spawn_scene(world: &mut World, objects: Objects) -> Vec<Entity> {
-    world.insert_resource(GlobalAmbientLight {
-        color: Color::WHITE,
-        brightness: 300.0,
-        ..default()
-    });
-    let entities = objects(world)
+fn spawn_scene(world: &mut World, objects: Objects, lighting: Lighting) -> Vec<Entity> {
+    lighting(world);
+    objects(world)
         .into_iter()
         .map(|object| {
             let mesh = world.resource_mut::<Assets<Mesh>>().add(object.mesh);
@@ -63,7 +66,17 @@ fn spawn_scene(world: &mut World, objects: Objects) -> Vec<Entity> {
                 .spawn((Mesh3d(mesh), MeshMaterial3d(material), object.transform))
                 .id()
         })
-        .collect();
+        .collect()
+}
+
+/// Bevy's ambient light and its three light kinds: a point light, a bluish spot light and a
+/// directional light, none casting shadows.
+fn bevy_lights(world: &mut World) {
+    world.insert_resource(GlobalAmbientLight {
+        color: Color::WHITE,
+        brightness: 300.0,
+        ..default()
+    });
     world.spawn((
         PointLight {
             intensity: 300_000.0,
@@ -93,12 +106,11 @@ fn spawn_scene(world: &mut World, objects: Objects) -> Vec<Entity> {
         },
         Transform::from_xyz(1.0, 3.0, 2.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
-    entities
 }
 
-/// Renders `objects` as Bevy draws them and switched, writes both frames to
-/// `target/render-tests/{picture}.png` and asserts each object within its bound.
-fn assert_switched_within(objects: Objects, picture: &str, bounds: &[Bound]) {
+/// Renders `objects` lit by `lighting` as Bevy draws them and switched, writes both frames
+/// to `target/render-tests/{picture}.png` and asserts each object within its bound.
+fn assert_switched_within(objects: Objects, lighting: Lighting, picture: &str, bounds: &[Bound]) {
     let (mut bevy, mut phong) = Harness::side_by_side(
         SIZE,
         SIZE,
@@ -107,8 +119,8 @@ fn assert_switched_within(objects: Objects, picture: &str, bounds: &[Bound]) {
             app.add_plugins((PhongStandardMaterialPlugin, PhongBevyLightsPlugin));
         },
     );
-    spawn_scene(bevy.world_mut(), objects);
-    let entities = spawn_scene(phong.world_mut(), objects);
+    spawn_scene(bevy.world_mut(), objects, lighting);
+    let entities = spawn_scene(phong.world_mut(), objects, lighting);
     for harness in [&mut bevy, &mut phong] {
         harness.look_from(CAMERA);
         harness.settle();

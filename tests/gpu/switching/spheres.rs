@@ -2,7 +2,7 @@
 //! a plastic with Bevy's specular tint (top row); a rough and a smooth gold sphere and a
 //! half-metallic one (bottom row).
 
-use super::{Bound, Object, assert_switched_within};
+use super::{Bound, Object, assert_switched_within, bevy_lights};
 use bevy::prelude::*;
 
 /// The floor and six spheres: two dielectrics (rough and smooth), a tinted plastic with
@@ -108,5 +108,5 @@ const BOUNDS: [Bound; 8] = [
 
 #[test]
 fn switched_spheres_stay_near_bevys_own_picture_of_them() {
-    assert_switched_within(objects, "switching", &BOUNDS);
+    assert_switched_within(objects, bevy_lights, "switching", &BOUNDS);
 }

@@ -2,7 +2,7 @@
 //! metallic-roughness map (blue metallic stripes, green roughness rising up the map), with a
 //! base color map, a normal map, an occlusion map and an emissive map, beside the floor.
 
-use super::{Bound, Object, assert_switched_within};
+use super::{Bound, Object, assert_switched_within, bevy_lights};
 use bevy::{
     asset::RenderAssetUsages,
     image::ImageSampler,
@@ -148,5 +148,5 @@ const BOUNDS: [Bound; 5] = [
 
 #[test]
 fn switched_props_with_their_maps_stay_near_bevys_own_picture_of_them() {
-    assert_switched_within(objects, "switching_textured", &BOUNDS);
+    assert_switched_within(objects, bevy_lights, "switching_textured", &BOUNDS);
 }
