@@ -157,7 +157,7 @@ fn load_shaders(app: &mut App) {
     if app.world().contains_resource::<Assets<Shader>>() {
         load_shader_library!(app, "shaders/types.wesl");
         load_shader_library!(app, "shaders/lighting.wesl");
-        load_shader_library!(app, "shaders/area_light.wesl");
+        load_shader_library!(app, "shaders/area_integrals.wesl");
         load_shader_library!(app, "shaders/area_lighting.wesl");
         load_shader_library!(app, "shaders/bindings.wesl");
         load_shader_library!(app, "shaders/data_texture.wesl");

@@ -29,7 +29,7 @@
 //! `camera_effects` (the sections of the same names). `area` integrates an area light
 //! (docs/design/area-lights.md) over its area by adaptive quadrature (`quadrature`); the
 //! closed forms the shader uses (`area_closed_forms`, test-only, and
-//! `shaders/area_light.wesl`) are measured against it.
+//! `shaders/area_integrals.wesl`) are measured against it.
 
 mod ambient_specular;
 mod area;

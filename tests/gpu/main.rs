@@ -23,7 +23,7 @@
 //! - `culling`: light clusters and ε culling against the reference model;
 //! - `contract`: the WGSL lighting functions themselves, run in a compute kernel on batches of
 //!   thousands of cases (millions with `PHONG_CONTRACT_CASES`) against the reference model;
-//!   and the area lights' closed forms (`shaders/area_light.wesl`) against the reference
+//!   and the area lights' closed forms (`shaders/area_integrals.wesl`) against the reference
 //!   model's quadrature over the light's area;
 //! - `game_features`: double-sided materials, fog, HDR, bloom, tonemapping, MSAA, blending,
 //!   prepasses, SSAO and the deferred renderer, each against its own formula;

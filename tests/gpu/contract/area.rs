@@ -1,4 +1,4 @@
-//! The area lights' closed forms in WGSL (`bevy_phong::shaders::area_light`), run on the
+//! The area lights' closed forms in WGSL (`bevy_phong::shaders::area_integrals`), run on the
 //! render device on random rectangular lights and surface points, against the reference
 //! model's quadrature over the light's area (`reference::area_light_contribution`).
 
