@@ -19,7 +19,7 @@ use crate::frames::SIZE;
 use crate::texture_maps::{SrgbDecoding, assert_pixels_follow, lit_color, lit_normal, texels_at};
 use bevy::{image::ImageSampler, prelude::*};
 use bevy_phong::{prelude::*, reference};
-use bevy_phong_headless::{Harness, HarnessCamera, SurfaceInputs, pixel_model::mapped_material};
+use bevy_phong_headless::{Harness, SurfaceInputs, pixel_model::mapped_material};
 use glam::{DQuat, DVec3, DVec4};
 use std::collections::HashMap;
 
@@ -76,11 +76,7 @@ fn the_cameras_environment_map_light_lights_surfaces_as_the_reference_model_says
     let exposure = f64::from(bevy::camera::Exposure::default().exposure());
     let intensity = 0.9 / exposure as f32;
     let rotation = Quat::from_rotation_y(-0.5) * Quat::from_rotation_x(0.2);
-    let camera = world
-        .query_filtered::<Entity, With<HarnessCamera>>()
-        .single(world)
-        .expect("the harness's camera");
-    world.entity_mut(camera).insert(EnvironmentMapLight {
+    harness.camera_mut().insert(EnvironmentMapLight {
         diffuse_map: diffuse,
         specular_map: specular,
         intensity,
