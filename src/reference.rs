@@ -25,8 +25,8 @@
 //! `surface` (the surface point and the material's terms, "Material"), `lights` (each
 //! light kind, fall-off and the spot cone, "Light types" and "The equation"), `shading` (the
 //! sum and each light's term, "The equation" and "Shadows"), `stylized`, `hemisphere`,
-//! `environment`, `environment_light`, `cookies`, `normals`, `texture_maps`, `surface_inputs`, `per_vertex` and
-//! `camera_effects` (the sections of the same names). `area` integrates an area light
+//! `environment`, `environment_light`, `cookies`, `normals`, `texture_maps`,
+//! `surface_inputs`, `per_vertex` and `camera_effects` (the sections of the same names). `area` integrates an area light
 //! (docs/design/area-lights.md) over its area by adaptive quadrature (`quadrature`); the
 //! closed forms the shader uses (`area_closed_forms`, test-only, and
 //! `shaders/area_integrals.wesl`) are measured against it.

@@ -57,27 +57,53 @@ fn samples() -> Vec<[f64; 4]> {
     samples
 }
 
-/// The distance of the converted lobe of exponent `alpha` and strength `scale` (1: π) from
-/// Bevy's of GGX roughness `a`.
-fn distance(samples: &[[f64; 4]], a: f64, alpha: f64, scale: f64) -> f64 {
-    let (mut error, mut norm) = (0.0, 0.0);
-    for &[n_dot_h, n_dot_v, n_dot_l, solid_angle] in samples {
-        let bevy = bevy_lobe(a, n_dot_h, n_dot_v, n_dot_l);
-        error += (bevy - scale * converted_lobe(alpha, n_dot_h, n_dot_l)).powi(2) * solid_angle;
-        norm += bevy * bevy * solid_angle;
-    }
-    (error / norm).sqrt()
+/// Bevy's lobe of GGX roughness `a` at each of `samples`, with their directions and solid
+/// angles: what each candidate lobe is measured against, computed once.
+struct Target {
+    /// `(N·H, N·L, dω, Bevy's lobe)` per sample.
+    samples: Vec<[f64; 4]>,
+    /// `∫g² dω`.
+    norm: f64,
 }
 
-/// The strength (1: π) that fits Bevy's lobe best for the exponent `alpha`.
-fn best_scale(samples: &[[f64; 4]], a: f64, alpha: f64) -> f64 {
-    let (mut both, mut converted) = (0.0, 0.0);
-    for &[n_dot_h, n_dot_v, n_dot_l, solid_angle] in samples {
-        let lobe = converted_lobe(alpha, n_dot_h, n_dot_l);
-        both += bevy_lobe(a, n_dot_h, n_dot_v, n_dot_l) * lobe * solid_angle;
-        converted += lobe * lobe * solid_angle;
+impl Target {
+    fn new(samples: &[[f64; 4]], a: f64) -> Self {
+        let samples: Vec<[f64; 4]> = samples
+            .iter()
+            .map(|&[n_dot_h, n_dot_v, n_dot_l, solid_angle]| {
+                let bevy = bevy_lobe(a, n_dot_h, n_dot_v, n_dot_l);
+                [n_dot_h, n_dot_l, solid_angle, bevy]
+            })
+            .collect();
+        let norm = samples
+            .iter()
+            .map(|&[_, _, dw, bevy]| bevy * bevy * dw)
+            .sum();
+        Self { samples, norm }
     }
-    both / converted
+
+    /// The distance of the converted lobe of exponent `alpha` and strength `scale` (1: π).
+    fn distance(&self, alpha: f64, scale: f64) -> f64 {
+        let error: f64 = self
+            .samples
+            .iter()
+            .map(|&[n_dot_h, n_dot_l, dw, bevy]| {
+                (bevy - scale * converted_lobe(alpha, n_dot_h, n_dot_l)).powi(2) * dw
+            })
+            .sum();
+        (error / self.norm).sqrt()
+    }
+
+    /// The strength (1: π) that fits best for the exponent `alpha`.
+    fn best_scale(&self, alpha: f64) -> f64 {
+        let (mut both, mut converted) = (0.0, 0.0);
+        for &[n_dot_h, n_dot_l, dw, bevy] in &self.samples {
+            let lobe = converted_lobe(alpha, n_dot_h, n_dot_l);
+            both += bevy * lobe * dw;
+            converted += lobe * lobe * dw;
+        }
+        both / converted
+    }
 }
 
 /// The exponent in `[alpha / 8, 4 · alpha]` that minimizes `cost` (golden-section search on
@@ -104,16 +130,14 @@ fn the_converted_exponent_fits_bevys_lobe_as_well_as_any_exponent_at_its_strengt
     println!("| r | α | distance | best α (×) | distance | best α, strength (×π) | distance |");
     println!("|---|---|---|---|---|---|---|");
     for r in [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9] {
-        let a = r * r;
+        let target = Target::new(&samples, r * r);
         let alpha = shininess_from_roughness(r);
-        let converted = distance(&samples, a, alpha, 1.0);
-        let fitted = best_exponent(alpha, |x| distance(&samples, a, x, 1.0));
-        let fitted_distance = distance(&samples, a, fitted, 1.0);
-        let scaled = best_exponent(alpha, |x| {
-            distance(&samples, a, x, best_scale(&samples, a, x))
-        });
-        let scale = best_scale(&samples, a, scaled);
-        let scaled_distance = distance(&samples, a, scaled, scale);
+        let converted = target.distance(alpha, 1.0);
+        let fitted = best_exponent(alpha, |x| target.distance(x, 1.0));
+        let fitted_distance = target.distance(fitted, 1.0);
+        let scaled = best_exponent(alpha, |x| target.distance(x, target.best_scale(x)));
+        let scale = target.best_scale(scaled);
+        let scaled_distance = target.distance(scaled, scale);
         println!(
             "| {r} | {alpha:.1} | {converted:.3} | {fitted:.1} (×{:.2}) | {fitted_distance:.3} | \
              {scaled:.1}, {scale:.2} | {scaled_distance:.3} |",

@@ -221,6 +221,24 @@ fn reflective_objects(
     ]
 }
 
+/// The color `color(face)` as stored (8-bit) of the face a linear lookup along `direction`
+/// (in the cube's frame) reads, on a cube of one color per face and `size` texels a side;
+/// `None` within half a texel (2 / size in the face's coordinates, halved) and 1 % of a
+/// face's edge, where linear filtering reaches the next face.
+pub(crate) fn face_texel(
+    direction: DVec3,
+    size: u32,
+    color: impl Fn(u32) -> [f32; 4],
+) -> Option<DVec3> {
+    let (face, coordinates) = cube_face(direction);
+    let margin = 1.0 - 1.01 / f64::from(size);
+    if coordinates.iter().any(|s| s.abs() > margin) {
+        return None;
+    }
+    let stored = color(face).map(|channel| f64::from((channel * 255.0).round() as u8) / 255.0);
+    Some(DVec4::from_array(stored).truncate())
+}
+
 /// The environment a test's surfaces reflect: whether it is drawn at all, its cube's size
 /// (texels a side) and its color along a world direction at a level (`None` where it cannot
 /// be judged).
@@ -370,16 +388,10 @@ fn the_cameras_environment_map_light_is_reflected_as_the_materials_own_map() {
                     lights: &reference::Lights| {
         let environment_at = |direction, level: u32| {
             let turned = reference::cube_direction(direction, rotation);
-            let (face, coordinates) = cube_face(turned);
-            // Half a texel (2 / size in these coordinates, halved) and 1 %: where bilinear
-            // filtering reaches the next face.
-            let margin = 1.0 - 1.01 / f64::from(CAMERA_CUBE_SIZE >> level);
-            if coordinates.iter().any(|s| s.abs() > margin) {
-                return None;
-            }
-            let stored = face_color(face, level)
-                .map(|channel| f64::from((channel * 255.0).round() as u8) / 255.0);
-            Some(DVec4::from_array(stored).truncate() * f64::from(intensity) * exposure)
+            let texel = face_texel(turned, CAMERA_CUBE_SIZE >> level, |face| {
+                face_color(face, level)
+            })?;
+            Some(texel * f64::from(intensity) * exposure)
         };
         reflected_color(
             material,

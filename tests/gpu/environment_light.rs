@@ -14,13 +14,13 @@
 //! (Vulkan filters across the edges of a cube's faces). Tolerance: the frame tests'
 //! ([`crate::frames::TOLERANCE`]): the term adds two texel reads and a few `f32` products.
 
-use crate::environment::{cube_face, cube_map, spawn_lights};
+use crate::environment::{cube_map, face_texel, spawn_lights};
 use crate::frames::SIZE;
 use crate::texture_maps::{SrgbDecoding, assert_pixels_follow, lit_color, lit_normal, texels_at};
 use bevy::{image::ImageSampler, prelude::*};
 use bevy_phong::{prelude::*, reference};
 use bevy_phong_headless::{Harness, SurfaceInputs, pixel_model::mapped_material};
-use glam::{DQuat, DVec3, DVec4};
+use glam::{DQuat, DVec3};
 use std::collections::HashMap;
 
 /// Texels a side of the specular cube's first level, and its mip levels (64 down to 1).
@@ -44,18 +44,6 @@ fn specular_color(face: u32, level: u32) -> [f32; 4] {
 /// The diffuse cube's color on face `face`.
 fn diffuse_color(face: u32) -> [f32; 4] {
     [0.8 - 0.1 * face as f32, 0.3 + 0.1 * face as f32, 0.5, 1.0]
-}
-
-/// The color of `color(face)` as stored (8-bit), along `direction` in the cube's frame on a
-/// cube of `size` texels a side; `None` within half a texel (and 1 %) of a face's edge.
-fn face_texel(direction: DVec3, size: u32, color: impl Fn(u32) -> [f32; 4]) -> Option<DVec3> {
-    let (face, coordinates) = cube_face(direction);
-    let margin = 1.0 - 1.01 / f64::from(size);
-    if coordinates.iter().any(|s| s.abs() > margin) {
-        return None;
-    }
-    let stored = color(face).map(|channel| f64::from((channel * 255.0).round() as u8) / 255.0);
-    Some(DVec4::from_array(stored).truncate())
 }
 
 #[test]
