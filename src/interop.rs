@@ -1,6 +1,7 @@
 //! Lighting `PhongMaterial` meshes with Bevy's own lights: [`PhongBevyLightsPlugin`] mirrors
-//! Bevy's `PointLight`, `SpotLight`, `DirectionalLight`, `RectLight` and `GlobalAmbientLight` into this
-//! crate's lights, on the same entities, so an existing scene needs no new entities.
+//! Bevy's `PointLight`, `SpotLight`, `DirectionalLight` and `RectLight` into this crate's
+//! lights, on the same entities, and lights each camera's view with its Bevy ambient light
+//! (`AmbientLight`, `GlobalAmbientLight`), so an existing scene needs no new entities.
 //!
 //! # The conversion
 //!
@@ -16,7 +17,12 @@
 //! | `PointLight { intensity: Φ lumens, color, range }` | `color · e · Φ / (4π²) · 10⁴`, `Decay::new(0, 0, 10⁴)`, `range` |
 //! | `SpotLight` | as `PointLight`, with its `inner_angle` and `outer_angle` |
 //! | `RectLight { intensity: Φ lumens, color, width, height, range }` | `PhongRectLight` of `color · e · Φ / π²`, the same `width`, `height` and `range`, one-sided |
-//! | `GlobalAmbientLight { brightness: L cd/m², color }` | `color · e · L` |
+//! | `GlobalAmbientLight { brightness: L cd/m², color }`, or a camera's `AmbientLight` | `color · e · L`, in that camera's view |
+//!
+//! Each camera's view is lit by its own Bevy ambient light, as Bevy lights it: the camera's
+//! `AmbientLight` where it has one, else `GlobalAmbientLight`. The shader reads it from
+//! Bevy's uniform of that view; [`PhongAmbientLight`] is set to none when the plugin is
+//! added, and one a game sets adds to Bevy's.
 //!
 //! Under the mirrored ambient light, a material converted from a `StandardMaterial` shows
 //! Bevy's ambient term: its `ambient_factor` 0.4524 is Bevy's weight on the diffuse color,
@@ -44,8 +50,9 @@
 //! `t − t² ≤ 1/4` of the light, the most at the middle of the edge, and Bevy's meets the dark
 //! outside without a kink; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
 //! specular intensity is its diffuse color, shaped by the material's shininess (a mirrored
-//! rectangle's highlight integrated over its area, [`AreaHighlight::Exact`](crate::AreaHighlight)).
-//! Per-camera `AmbientLight` overrides are not mirrored.
+//! rectangle's highlight integrated over its area, [`AreaHighlight::Exact`](crate::AreaHighlight));
+//! Bevy's ambient light on a mesh with a `Lightmap` follows its `affects_lightmapped_meshes`,
+//! a Phong material's ambient term lights every mesh.
 //!
 //! Shadows carry over as settings: a Bevy light's `shadow_maps_enabled`, `shadow_depth_bias`
 //! and `shadow_normal_bias` (the same units) and, for point and spot lights,
@@ -65,13 +72,17 @@
 //! A mirrored light is updated whenever its Bevy light changes, and removed with it. Do not
 //! also put a Phong light of the same kind on a Bevy light's entity: the mirror owns it.
 
+mod ambient;
 mod standard_material;
 
 pub use standard_material::PhongStandardMaterialPlugin;
 
 use crate::light_kind::{PhongDirectionalLight, PhongPointLight, PhongRectLight, PhongSpotLight};
 use crate::{
-    lights::{ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongLightCookie, PhongShadows},
+    lights::{
+        BevyAmbientPerView, ConeEdge, Decay, PhongAmbientLight, PhongCascades, PhongLightCookie,
+        PhongShadows,
+    },
     schedule::PhongSystems,
 };
 use bevy::{
@@ -86,7 +97,7 @@ use bevy::{
         query::Changed,
         resource::Resource,
         schedule::IntoScheduleConfigs,
-        system::{Commands, Query, Res, ResMut},
+        system::{Commands, Query, Res},
     },
     light::{
         DirectionalLight, DirectionalLightTexture, GlobalAmbientLight, PointLight,
@@ -204,7 +215,8 @@ impl BevyLightExposure {
         }
     }
 
-    /// The Phong ambient light that shows like `light`.
+    /// The Phong ambient light that shows like `light` (the mirror itself lights each view by
+    /// its camera's Bevy ambient light: see the [module docs](self)).
     pub fn ambient(&self, light: &GlobalAmbientLight) -> PhongAmbientLight {
         PhongAmbientLight {
             color: scaled(light.color, self.factor() * light.brightness),
@@ -243,6 +255,8 @@ impl Plugin for PhongBevyLightsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<BevyLightExposure>()
             .register_type::<BevyLightExposure>()
+            .insert_resource(BevyAmbientPerView { scale: 0.0 })
+            .insert_resource(PhongAmbientLight::NONE)
             .add_systems(
                 PostUpdate,
                 (
@@ -255,7 +269,8 @@ impl Plugin for PhongBevyLightsPlugin {
                     mirror::<SpotLightTexture, PhongLightCookie>(spot_cookie),
                     mirror::<PointLightTexture, PhongLightCookie>(point_cookie),
                     mirror::<DirectionalLightTexture, PhongLightCookie>(directional_cookie),
-                    mirror_ambient_light,
+                    ambient::mirror_ambient_scale,
+                    ambient::validate_bevy_ambient_lights,
                 )
                     .before(PhongSystems::Validate),
             );
@@ -324,20 +339,6 @@ fn mirror<B: Component, P: Component>(
                 entity.try_remove::<P>();
             }
         }
-    }
-}
-
-/// Keeps [`PhongAmbientLight`] equal to Bevy's [`GlobalAmbientLight`], converted.
-fn mirror_ambient_light(
-    exposure: Res<BevyLightExposure>,
-    bevy_ambient: Option<Res<GlobalAmbientLight>>,
-    mut ambient: ResMut<PhongAmbientLight>,
-) {
-    let Some(bevy_ambient) = bevy_ambient else {
-        return;
-    };
-    if bevy_ambient.is_changed() || exposure.is_changed() {
-        *ambient = exposure.ambient(&bevy_ambient);
     }
 }
 
@@ -556,11 +557,14 @@ mod tests {
             world.get::<PhongRectLight>(panel),
             Some(&exposure.rect(&RectLight::default()))
         );
+        // Bevy's ambient light is read per view, from Bevy's uniform, times the factor.
         assert_eq!(
             *world.resource::<PhongAmbientLight>(),
-            exposure.ambient(&GlobalAmbientLight::default())
+            PhongAmbientLight::NONE
         );
         let header = *world.resource::<crate::render::PhongLightBuffer>().header();
+        assert_eq!(header.ambient, [0.0; 3]);
+        assert_eq!(header.bevy_ambient_scale, exposure.factor());
         assert_eq!(header.directional_count, 1);
         assert_eq!(header.light_count(), 4);
         assert_eq!(header.area_count + header.clustered_area_count, 1);

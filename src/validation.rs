@@ -81,11 +81,12 @@ pub struct InvalidInput {
 /// The holder of an invalid field.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Owner {
-    /// A light entity.
+    /// An entity: a light, or a camera (its Bevy `AmbientLight`).
     Entity(Entity),
     /// A material asset.
     Material(AssetId<PhongMaterial>),
-    /// The ambient light resource.
+    /// A resource (the ambient or hemisphere light, Bevy's `GlobalAmbientLight`): the
+    /// component names which.
     Resource,
 }
 

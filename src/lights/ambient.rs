@@ -9,7 +9,9 @@ use serde::{Deserialize, Serialize};
 /// a highlight. It adds `color ⊙ ambient_factor ⊙ base_color` to every [`PhongMaterial`]
 /// (see SPEC.md's equation).
 ///
-/// There is one per scene: change it with `ResMut<PhongAmbientLight>`.
+/// There is one per scene: change it with `ResMut<PhongAmbientLight>`. Under
+/// [`PhongBevyLightsPlugin`](crate::PhongBevyLightsPlugin), which sets it to none when it
+/// is added, each camera's Bevy ambient light adds to it in that camera's view.
 ///
 /// [`PhongMaterial`]: crate::PhongMaterial
 #[derive(Resource, Clone, Debug, PartialEq, Reflect)]
@@ -36,4 +38,16 @@ impl Default for PhongAmbientLight {
             color: Color::linear_rgb(0.1, 0.1, 0.1),
         }
     }
+}
+
+/// Each camera's own Bevy ambient light, added to [`PhongAmbientLight`] in that camera's view
+/// ([`PhongBevyLightsPlugin`](crate::PhongBevyLightsPlugin) inserts it): the camera's Bevy
+/// `AmbientLight`, else the `GlobalAmbientLight` resource, `color × brightness` as Bevy
+/// writes it into each view's light uniform, times `scale`. Without this resource no Bevy
+/// ambient light is read.
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub(crate) struct BevyAmbientPerView {
+    /// The factor from Bevy's ambient light to Phong's: the mirror's exposure factor
+    /// (`BevyLightExposure::factor`), finite and `≥ 0`.
+    pub scale: f32,
 }

@@ -20,6 +20,7 @@ mod reach;
 mod reach_tests;
 mod shadows;
 
+pub(crate) use ambient::BevyAmbientPerView;
 pub use ambient::PhongAmbientLight;
 pub use area_highlight::AreaHighlight;
 pub use cone_edge::ConeEdge;

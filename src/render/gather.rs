@@ -11,8 +11,8 @@ use crate::light_kind::{
     RecordCache, local_sphere,
 };
 use crate::lights::{
-    LightQuery, PhongAmbientLight, PhongHemisphereLight, TrackedLightQuery, lit_lights,
-    lit_tracked_lights,
+    BevyAmbientPerView, LightQuery, PhongAmbientLight, PhongHemisphereLight, TrackedLightQuery,
+    lit_lights, lit_tracked_lights,
 };
 use crate::scene_variants::SceneVariants;
 use crate::shadows::ShadowSlots;
@@ -349,12 +349,14 @@ fn order_by_reach(
     counts
 }
 
-/// What the gather reads besides the light entities: the ambient and hemisphere lights, ε and
+/// What the gather reads besides the light entities: the ambient and hemisphere lights (and
+/// the share of each view's Bevy ambient light, under the Bevy-light mirror), ε and
 /// the clusters ([`PhongLightCulling`]), the lights of extension kinds that share ε, and this
 /// frame's shadow and cookie slots.
 #[derive(SystemParam)]
 pub struct SceneLighting<'w> {
     ambient: Res<'w, PhongAmbientLight>,
+    bevy_ambient: Option<Res<'w, BevyAmbientPerView>>,
     hemisphere: Option<Res<'w, PhongHemisphereLight>>,
     culling: Res<'w, PhongLightCulling>,
     sharing: Res<'w, SharedEpsilonLights>,
@@ -367,6 +369,10 @@ impl SceneLighting<'_> {
     /// (`had_hemisphere`: whether the last gather had one).
     fn changed(&self, had_hemisphere: bool) -> bool {
         self.ambient.is_changed()
+            || self
+                .bevy_ambient
+                .as_ref()
+                .is_some_and(DetectChanges::is_changed)
             || self
                 .hemisphere
                 .as_ref()
@@ -432,7 +438,7 @@ pub fn gather_lights(
         area_count,
         clustered_area_count,
         hemisphere_up,
-        padding_up: 0,
+        bevy_ambient_scale: scene.bevy_ambient.map_or(0.0, |bevy| bevy.scale),
         hemisphere_half_difference,
         padding_difference: 0,
     };

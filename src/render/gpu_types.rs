@@ -74,8 +74,10 @@ pub struct GpuLightsHeader {
     pub clustered_area_count: u32,
     /// The hemisphere light's unit `up` direction (zero without one).
     pub hemisphere_up: [f32; 3],
-    /// Unused.
-    pub padding_up: u32,
+    /// The share of each view's Bevy ambient light (Bevy's `lights.ambient_color`, the
+    /// camera's `AmbientLight` or else `GlobalAmbientLight`) added to `ambient` in that view:
+    /// the Bevy-light mirror's exposure factor, `0` without the mirror.
+    pub bevy_ambient_scale: f32,
     /// Half the hemisphere light's sky color minus its ground color, linear RGB: what
     /// `N·up` scales (zero without one).
     pub hemisphere_half_difference: [f32; 3],

@@ -168,3 +168,44 @@ fn a_scene_of_bevys_own_types_switched_to_phong_follows_the_reference_model() {
         .compare_with_reference(&rendered)
         .assert_within("Bevy's types switched to Phong", TOLERANCE);
 }
+
+/// Under the mirror each view is lit by its own camera's Bevy ambient light: the camera's
+/// `AmbientLight` where it has one, else `GlobalAmbientLight` (Bevy's per-view uniform, read
+/// by the shader). The two are far apart (an orange light 25 times as bright as a faint
+/// blue one), so that a view lit by the other one fails the comparison by far more than the
+/// render tests' tolerance.
+#[test]
+fn each_camera_is_lit_by_its_own_bevy_ambient_light() {
+    let mut harness = Harness::with_plugins(SIZE, SIZE, |app| {
+        app.add_plugins((PhongStandardMaterialPlugin, PhongBevyLightsPlugin));
+    });
+    harness.world_mut().insert_resource(GlobalAmbientLight {
+        color: Color::srgb(0.3, 0.5, 1.0),
+        brightness: 60.0,
+        ..default()
+    });
+    spawn_bevy_scene(harness.world_mut());
+    harness.camera_mut().insert(AmbientLight {
+        color: Color::srgb(1.0, 0.6, 0.2),
+        brightness: 1_500.0,
+        ..default()
+    });
+    harness.look_from(Vec3::new(0.0, 2.5, 6.0));
+    harness.settle();
+    // Without any Phong ambient light of its own, the scene's is the camera's, converted.
+    assert_eq!(
+        *harness.world_mut().resource::<PhongAmbientLight>(),
+        PhongAmbientLight::NONE
+    );
+    let rendered = harness.render_next_frame();
+    harness
+        .compare_with_reference(&rendered)
+        .assert_within("the camera's own AmbientLight", TOLERANCE);
+
+    harness.camera_mut().remove::<AmbientLight>();
+    harness.settle();
+    let rendered = harness.render_next_frame();
+    harness
+        .compare_with_reference(&rendered)
+        .assert_within("GlobalAmbientLight, the camera having none", TOLERANCE);
+}

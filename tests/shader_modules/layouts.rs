@@ -98,6 +98,10 @@ fn light_buffer_header_matches_wgsl_phong_lights() {
         ),
         ("hemisphere_up", offset_of!(GpuLightsHeader, hemisphere_up)),
         (
+            "bevy_ambient_scale",
+            offset_of!(GpuLightsHeader, bevy_ambient_scale),
+        ),
+        (
             "hemisphere_half_difference",
             offset_of!(GpuLightsHeader, hemisphere_half_difference),
         ),

@@ -542,7 +542,7 @@ impl Harness {
         let world = self.app.world_mut();
         // The lights of kinds added with `PhongLightKindPlugin`, each as its kind gives it.
         let others = reference::OtherLights(bevy_phong::extension::reference_lights(world));
-        let ambient = world.resource::<PhongAmbientLight>().into();
+        let ambient = DVec3::from(world.resource::<PhongAmbientLight>()) + bevy_view_ambient(world);
         let hemisphere = world
             .get_resource::<bevy_phong::PhongHemisphereLight>()
             .map(reference::Hemisphere::from);
@@ -897,4 +897,30 @@ fn lit_per_vertex(material: &PhongMaterial) -> bool {
 pub fn asks_for_webgl2_limits() -> bool {
     std::env::var("WGPU_SETTINGS_PRIO")
         .is_ok_and(|priority| priority.eq_ignore_ascii_case("webgl2"))
+}
+
+/// The harness camera's own Bevy ambient light as the Bevy-light mirror lights its view
+/// (`bevy_phong::BevyLightExposure`'s module docs): the camera's `AmbientLight`, else
+/// `GlobalAmbientLight`, converted by the mirror's exposure; zero without the mirror.
+fn bevy_view_ambient(world: &mut World) -> DVec3 {
+    let Some(exposure) = world.get_resource::<BevyLightExposure>().copied() else {
+        return DVec3::ZERO;
+    };
+    let camera = world
+        .query_filtered::<Option<&AmbientLight>, With<HarnessCamera>>()
+        .single(world)
+        .expect("the harness has one camera")
+        .cloned();
+    let light = match camera {
+        Some(light) => GlobalAmbientLight {
+            color: light.color,
+            brightness: light.brightness,
+            affects_lightmapped_meshes: light.affects_lightmapped_meshes,
+        },
+        None => world
+            .get_resource::<GlobalAmbientLight>()
+            .cloned()
+            .unwrap_or(GlobalAmbientLight::NONE),
+    };
+    DVec3::from(&exposure.ambient(&light))
 }
