@@ -67,9 +67,9 @@ fn layer_of(module: &str) -> Option<(usize, &'static str)> {
 
 /// A word or a punctuation character of Rust source, with its line.
 #[derive(Clone, Debug)]
-struct Token {
-    text: String,
-    line: usize,
+pub(super) struct Token {
+    pub text: String,
+    pub line: usize,
 }
 
 fn is_ident_char(c: char) -> bool {
@@ -195,7 +195,7 @@ fn tokens(source: &str) -> Vec<Token> {
 }
 
 /// Whether the tokens at `i` read `texts`.
-fn reads(tokens: &[Token], i: usize, texts: &[&str]) -> bool {
+pub(super) fn reads(tokens: &[Token], i: usize, texts: &[&str]) -> bool {
     tokens.len() >= i + texts.len()
         && texts
             .iter()
@@ -204,7 +204,7 @@ fn reads(tokens: &[Token], i: usize, texts: &[&str]) -> bool {
 }
 
 /// The index of the `}` that closes the `{` at `open`.
-fn closing_brace(tokens: &[Token], open: usize) -> usize {
+pub(super) fn closing_brace(tokens: &[Token], open: usize) -> usize {
     let mut depth = 0;
     for (k, token) in tokens.iter().enumerate().skip(open) {
         match token.text.as_str() {
@@ -242,13 +242,13 @@ fn item_end(tokens: &[Token], start: usize) -> usize {
 
 /// A file's tokens, which of them are test code, and the modules it declares in files of
 /// their own (`mod name;`), each with whether it is test code.
-struct Scanned {
-    tokens: Vec<Token>,
-    test: Vec<bool>,
-    children: Vec<(String, bool)>,
+pub(super) struct Scanned {
+    pub tokens: Vec<Token>,
+    pub test: Vec<bool>,
+    pub children: Vec<(String, bool)>,
 }
 
-fn scan(source: &str) -> Scanned {
+pub(super) fn scan(source: &str) -> Scanned {
     let tokens = tokens(source);
     let mut test = vec![false; tokens.len()];
     let mut i = 0;
@@ -287,8 +287,8 @@ enum Target {
 
 /// What a path from the crate root can start with: the top-level modules (each leading to
 /// itself) and the names lib.rs re-exports (each leading to its module).
-struct Root {
-    names: BTreeMap<String, String>,
+pub(super) struct Root {
+    pub names: BTreeMap<String, String>,
 }
 
 impl Root {
@@ -345,7 +345,7 @@ impl Root {
 
 /// The top-level modules lib.rs declares (each with whether it is test code), and the root
 /// that its re-exports make.
-fn read_lib(lib: &str) -> (Vec<(String, bool)>, Root) {
+pub(super) fn read_lib(lib: &str) -> (Vec<(String, bool)>, Root) {
     let scanned = scan(lib);
     let modules = scanned.children.clone();
     let mut names: BTreeMap<String, String> = modules
@@ -384,7 +384,7 @@ fn read_lib(lib: &str) -> (Vec<(String, bool)>, Root) {
 }
 
 /// The folder that the modules `file` declares live in.
-fn children_folder(file: &Path) -> PathBuf {
+pub(super) fn children_folder(file: &Path) -> PathBuf {
     let parent = file.parent().expect("a file in src/");
     match file.file_stem().and_then(|stem| stem.to_str()) {
         Some("mod" | "lib") => parent.to_path_buf(),
@@ -394,7 +394,7 @@ fn children_folder(file: &Path) -> PathBuf {
 }
 
 /// The file of module `name` declared in `folder`.
-fn module_file(folder: &Path, name: &str) -> PathBuf {
+pub(super) fn module_file(folder: &Path, name: &str) -> PathBuf {
     let flat = folder.join(format!("{name}.rs"));
     let nested = folder.join(name).join("mod.rs");
     if flat.exists() {
@@ -443,11 +443,11 @@ fn violation(file: &str, line: usize, module: &str, target: &str) -> Option<Stri
     })
 }
 
-fn src() -> PathBuf {
+pub(super) fn src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
 }
 
-fn lib_source() -> String {
+pub(super) fn lib_source() -> String {
     fs::read_to_string(src().join("lib.rs")).expect("src/lib.rs")
 }
 

@@ -136,7 +136,8 @@
 //!
 //! Tests are exempt (the `#[cfg(test)]` items and files, such as `test_app`): they may use
 //! any layer. A unit test (`layering_tests`) reads the sources and fails on an import that
-//! points up or sideways.
+//! points up or sideways; another (`file_circle_tests`) fails where two files use each
+//! other, so that within a module too each file's imports point one way.
 //!
 //! ## Worlds
 //!
@@ -188,6 +189,8 @@ mod view_key;
 
 #[cfg(test)]
 mod docs_tests;
+#[cfg(test)]
+mod file_circle_tests;
 #[cfg(test)]
 mod layering_tests;
 

@@ -5,7 +5,7 @@
 use super::{
     deformed::Poses,
     displaced::CasterDisplacement,
-    gather::{CasterSource, ShadowInstance},
+    instance::{CasterSource, ShadowInstance},
     masked::CasterMask,
     views::Bounds,
 };

@@ -5,9 +5,8 @@ use super::{
     MAX_SHADOW_VIEWS,
     cameras::{PhongLit, ShadowCamera, ShadowCameraQuery, shadow_cameras},
     casters::{Caster, CasterSet},
-    displaced::CasterDisplacement,
     gpu_types::{GpuShadowView, GpuShadowViewsHeader},
-    masked::CasterMask,
+    instance::ShadowInstance,
     request::{PhongShadowProjection, ShadowRequest, ShadowRequests},
     views::{
         Bounds, MAX_CONE_MAP_ANGLE, ShadowLightView, beam_view, cascade_views, cone_view,
@@ -19,7 +18,7 @@ use crate::limits;
 use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use bevy::{
-    asset::{AssetId, Assets, Handle, uuid_handle},
+    asset::{Assets, Handle, uuid_handle},
     camera::primitives::{Frustum, Sphere},
     ecs::{
         entity::{Entity, EntityHashMap, EntityHashSet},
@@ -30,7 +29,6 @@ use bevy::{
     },
     log::warn,
     math::{Mat4, Vec3A, Vec4},
-    mesh::Mesh,
     render::storage::ShaderBuffer,
 };
 use core::ops::Range;
@@ -70,36 +68,6 @@ pub(crate) struct ShadowPass {
     pub resolution: u32,
     /// The casters it draws, in [`ShadowFrame::instances`].
     pub instances: Range<usize>,
-}
-
-/// Where a caster's triangles come from.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) enum CasterSource {
-    /// A mesh as stored (in its local space).
-    Mesh(AssetId<Mesh>),
-    /// A skinned or morphed mesh, posed on the GPU as Bevy poses it to draw it: by the
-    /// joint matrices and morph weights Bevy prepared for `entity` this frame
-    /// (`shadows::posed`).
-    Posed {
-        entity: Entity,
-        mesh: AssetId<Mesh>,
-        /// Whether its joints place it (in world space); otherwise it is in its local space.
-        skinned: bool,
-    },
-}
-
-/// A caster drawn into one map.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct ShadowInstance {
-    /// Its triangles.
-    pub source: CasterSource,
-    /// The triangles' space (the mesh's local space, or world space for skinned ones) to
-    /// the map's clip space.
-    pub clip_from_local: Mat4,
-    /// How its material's displacement map moves its vertices, if it has one.
-    pub displacement: Option<CasterDisplacement>,
-    /// Where its material's alpha mask cuts holes, if it is masked.
-    pub mask: Option<CasterMask>,
 }
 
 /// The shadow maps of this frame, which the render world draws.
@@ -476,13 +444,13 @@ fn in_view(clip_from_world: &Mat4, bounds: &Bounds) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{PhongPointLight, test_app::test_app};
+    use crate::{PhongPointLight, shadows::instance::CasterSource, test_app::test_app};
     use bevy::{
         asset::{AssetApp, Handle},
         camera::primitives::Aabb,
         math::Vec3,
         mesh::{
-            Mesh3d, MeshBuilder, Meshable,
+            Mesh, Mesh3d, MeshBuilder, Meshable,
             morph::MeshMorphWeights,
             skinning::{SkinnedMesh, SkinnedMeshInverseBindposes},
         },

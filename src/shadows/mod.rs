@@ -52,6 +52,7 @@ mod deformed;
 mod displaced;
 mod gather;
 mod gpu_types;
+mod instance;
 mod masked;
 mod posed;
 mod render;

@@ -8,7 +8,8 @@ use super::{
         CasterInstance, INSTANCE_SIZE, MaskKey, ShadowCasterKey, ShadowCasterPipeline,
     },
     displaced::DisplacedBindGroups,
-    gather::{CasterSource, ShadowFrame, ShadowInstance},
+    gather::ShadowFrame,
+    instance::{CasterSource, ShadowInstance},
     masked::{CasterMask, MaskMaps, MaskedBindGroups},
     posed::{BevyDeformation, PosedBindGroups, PosedCaster, PosedDraw, PosedLayouts},
 };

@@ -1,7 +1,7 @@
 //! The render world's part: each material's class (the materials that can share one bind
 //! group), the class's shared material, and the meshes pointed at it.
 
-use super::records::MaterialRecord;
+use super::records::{MaterialRecord, MaterialRecordBuffer, RecordBufferReplaced};
 use super::slots::MaterialSlots;
 use crate::material::{PhongMaterial, PhongMaterialKey, map_images};
 use bevy::asset::uuid::Uuid;
@@ -13,7 +13,7 @@ use bevy::{
         message::MessageReader,
         query::{Changed, Or},
         resource::Resource,
-        system::{Query, Res, ResMut, StaticSystemParam},
+        system::{Query, Res, ResMut, StaticSystemParam, SystemParam},
     },
     image::Image,
     pbr::{MeshMaterial3d, PreparedMaterial, RenderMaterialInstances},
@@ -76,8 +76,6 @@ pub(crate) struct MaterialClasses {
     slots: HashMap<AssetId<PhongMaterial>, u32>,
     classes: HashMap<ClassKey, Class>,
     class_of: HashMap<AssetId<PhongMaterial>, ClassKey>,
-    /// Records to write this frame, by slot.
-    records: Vec<(u32, MaterialRecord)>,
     /// Shared materials whose class has no member left, to unload.
     to_unload: Vec<AssetId<PhongMaterial>>,
     /// Classes made so far: each gets the next id.
@@ -87,13 +85,8 @@ pub(crate) struct MaterialClasses {
 }
 
 impl MaterialClasses {
-    /// The records extracted since the last call.
-    pub fn take_records(&mut self) -> Vec<(u32, MaterialRecord)> {
-        core::mem::take(&mut self.records)
-    }
-
     /// Marks every class's bind group to be made again (the record buffer was replaced).
-    pub fn prepare_all_again(&mut self) {
+    fn prepare_all_again(&mut self) {
         for class in self.classes.values_mut() {
             class.to_prepare = true;
         }
@@ -181,12 +174,12 @@ pub(crate) fn is_shared_material(id: bevy::asset::UntypedAssetId) -> bool {
 /// where some material moved to a class (added, or changed in its key or maps).
 pub(crate) fn extract_material_classes(
     mut classes: ResMut<MaterialClasses>,
+    mut records: ResMut<MaterialRecordBuffer>,
     mut instances: ResMut<RenderMaterialInstances>,
     slots: Extract<Res<MaterialSlots>>,
     materials: Extract<Res<Assets<PhongMaterial>>>,
     mut events: Extract<MessageReader<AssetEvent<PhongMaterial>>>,
-    changed_meshes: Extract<Query<ExtractedMesh, MaterialInstanceExtracted>>,
-    meshes: Extract<Query<(Entity, &MeshMaterial3d<PhongMaterial>)>>,
+    meshes: PhongMeshes,
 ) {
     for &(id, slot) in slots.changes() {
         match slot {
@@ -202,7 +195,7 @@ pub(crate) fn extract_material_classes(
                 else {
                     continue;
                 };
-                classes.records.push((slot, MaterialRecord::from(material)));
+                records.queue(slot, MaterialRecord::from(material));
                 if classes.file(id, material) {
                     moved.insert(id);
                 }
@@ -219,18 +212,27 @@ pub(crate) fn extract_material_classes(
             instance.asset_id = shared.untyped();
         }
     };
-    for (entity, visibility, material) in &changed_meshes {
+    for (entity, visibility, material) in &meshes.extracted_again {
         if visibility.get() {
             point(entity, material.id());
         }
     }
     if !moved.is_empty() {
-        for (entity, material) in &meshes {
+        for (entity, material) in &meshes.all {
             if moved.contains(&material.id()) {
                 point(entity, material.id());
             }
         }
     }
+}
+
+/// The main world's meshes drawn with a `PhongMaterial`: those whose material instance Bevy
+/// extracts again this frame, and all of them.
+#[derive(SystemParam)]
+pub(crate) struct PhongMeshes<'w, 's> {
+    extracted_again:
+        Extract<'w, 's, Query<'static, 'static, ExtractedMesh, MaterialInstanceExtracted>>,
+    all: Extract<'w, 's, Query<'static, 'static, (Entity, &'static MeshMaterial3d<PhongMaterial>)>>,
 }
 
 /// A mesh drawn with a `PhongMaterial`: what Bevy's extraction of material instances reads.
@@ -250,16 +252,21 @@ type MaterialInstanceExtracted = Or<(
 type PrepareParam = <MeshMaterial3d<PhongMaterial> as ErasedRenderAsset>::Param;
 
 /// Unloads the shared materials of classes left empty and prepares (again) those marked,
-/// through Bevy's own preparation of a material: a class that cannot be prepared yet
-/// (the scene's buffers not uploaded) is tried again next frame.
+/// and every class where the record buffer was replaced, through Bevy's own preparation of
+/// a material: a class that cannot be prepared yet (the scene's buffers not uploaded) is
+/// tried again next frame.
 ///
 /// Runs after Bevy prepares the materials of the frame and the records are written.
 pub(crate) fn prepare_material_classes(
     mut classes: ResMut<MaterialClasses>,
+    mut replaced: ResMut<RecordBufferReplaced>,
     mut prepared: ResMut<ErasedRenderAssets<PreparedMaterial>>,
     mut param: StaticSystemParam<PrepareParam>,
 ) {
     let classes = &mut *classes;
+    if replaced.take() {
+        classes.prepare_all_again();
+    }
     for id in classes.to_unload.drain(..) {
         prepared.remove(id);
         <MeshMaterial3d<PhongMaterial> as ErasedRenderAsset>::unload_asset(id, &mut param);

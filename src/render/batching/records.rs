@@ -2,7 +2,6 @@
 //! render world that every class's bind group holds (binding 29,
 //! `bevy_phong::shaders::bindings::material_records`).
 
-use super::classes::MaterialClasses;
 use crate::displacement::DisplacementUniform;
 use crate::material::{PhongMaterial, PhongMaterialUniform};
 use crate::storage_buffer::{MIN_CAPACITY, STORAGE_BUFFERS_NEEDED};
@@ -60,17 +59,38 @@ fn record_bytes(record: &MaterialRecord) -> Vec<u8> {
     bytes
 }
 
-/// The records on the GPU, and a copy of their bytes to fill a larger buffer from.
+/// The records on the GPU, a copy of their bytes to fill a larger buffer from, and the
+/// records extracted this frame, still to write.
 #[derive(Resource)]
 pub(crate) struct MaterialRecordBuffer {
     buffer: Buffer,
     bytes: Vec<u8>,
+    /// Records to write this frame, by slot.
+    pending: Vec<(u32, MaterialRecord)>,
+}
+
+/// Whether [`MaterialRecordBuffer`]'s buffer was replaced (every bind group that holds it is
+/// to be made again) since [`Self::take`] last said so. A resource of its own: the systems
+/// that make bind groups read the buffer itself.
+#[derive(Resource, Default)]
+pub(crate) struct RecordBufferReplaced(bool);
+
+impl RecordBufferReplaced {
+    /// Whether the buffer was replaced since the last call.
+    pub fn take(&mut self) -> bool {
+        core::mem::take(&mut self.0)
+    }
 }
 
 impl MaterialRecordBuffer {
     /// The buffer that bind groups take (replaced when the records outgrow it).
     pub fn buffer(&self) -> &Buffer {
         &self.buffer
+    }
+
+    /// Queues `record` to be written into slot `slot` this frame.
+    pub fn queue(&mut self, slot: u32, record: MaterialRecord) {
+        self.pending.push((slot, record));
     }
 
     fn capacity(&self) -> usize {
@@ -94,7 +114,9 @@ pub(crate) fn create_record_buffer(mut commands: Commands, device: Res<RenderDev
         commands.insert_resource(MaterialRecordBuffer {
             buffer: new_buffer(&device, MIN_CAPACITY),
             bytes: vec![0; MIN_CAPACITY * record_stride()],
+            pending: Vec::new(),
         });
+        commands.init_resource::<RecordBufferReplaced>();
     }
 }
 
@@ -105,14 +127,14 @@ pub(crate) fn buffer_exists(buffer: Option<Res<MaterialRecordBuffer>>) -> bool {
 
 /// Writes the records extracted this frame: one upload of the range they span, or, where
 /// a slot is past the buffer's end, a buffer twice as large (or more) holding every record,
-/// after which every class's bind group is made again around it.
+/// which every class's bind group is then made again around ([`RecordBufferReplaced`]).
 pub(crate) fn write_records(
     device: Res<RenderDevice>,
     queue: Res<RenderQueue>,
     mut records: ResMut<MaterialRecordBuffer>,
-    mut classes: ResMut<MaterialClasses>,
+    mut replaced: ResMut<RecordBufferReplaced>,
 ) {
-    let written = classes.take_records();
+    let written = core::mem::take(&mut records.pending);
     let Some(last) = written.iter().map(|(slot, _)| *slot as usize).max() else {
         return;
     };
@@ -122,7 +144,7 @@ pub(crate) fn write_records(
         let capacity = (last + 1).next_power_of_two();
         records.bytes.resize(capacity * stride, 0);
         records.buffer = new_buffer(&device, capacity);
-        classes.prepare_all_again();
+        replaced.0 = true;
     }
     let first = written
         .iter()
