@@ -131,3 +131,39 @@ fn every_built_in_light_kind_is_named_by_the_trait_docs_and_the_lights_page() {
         assert!(missing.is_empty(), "{file} does not name {missing:?}");
     }
 }
+
+/// The `.rs` files under `folder`, recursively.
+fn rust_files(folder: &Path) -> Vec<std::path::PathBuf> {
+    let mut files = Vec::new();
+    for entry in fs::read_dir(folder).expect("src is readable").flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            files.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|extension| extension == "rs") {
+            files.push(path);
+        }
+    }
+    files
+}
+
+#[test]
+fn nothing_public_is_hidden_from_the_docs() {
+    // A public item or field hidden from the docs is still a game's to use and to see in
+    // `Debug`, without being told what it is: what the crate keeps to itself is
+    // `pub(crate)`, and what the render world needs of a material lives there.
+    let attribute = concat!("#[doc", "(hidden)]");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let hidden: Vec<String> = rust_files(&src)
+        .iter()
+        .flat_map(|path| {
+            let source = fs::read_to_string(path).unwrap_or_default();
+            source
+                .lines()
+                .enumerate()
+                .filter(|(_, line)| line.trim() == attribute)
+                .map(|(index, _)| format!("{}:{}", path.display(), index + 1))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(hidden.is_empty(), "hidden from the docs: {hidden:?}");
+}

@@ -22,7 +22,6 @@ pub(crate) use ranges::{NumberVisitor, visit_color, visit_numbers};
 
 use crate::displacement::DisplacementUniform;
 use crate::limits;
-use crate::scene_variants::SceneVariants;
 use bevy::{
     asset::{Asset, Handle},
     color::{Color, ColorToComponents, LinearRgba},
@@ -35,8 +34,11 @@ use bevy::{
     },
     prelude::{AlphaMode, ReflectDefault},
     reflect::Reflect,
-    render::render_resource::{
-        Face, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+    render::{
+        combined_bind_group::CombinedBindGroupData,
+        render_resource::{
+            Face, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+        },
     },
     shader::{ShaderDefVal, ShaderRef},
 };
@@ -466,18 +468,6 @@ pub struct PhongMaterial {
     /// indices `η` (three.js's `refractionRatio`, 0.98 there; glass in air ≈ 0.66), `≥ 0`.
     /// Default `None`.
     pub refraction_ratio: Option<f32>,
-    /// The scene's shader variant (shadows, soft shadows, hemisphere light, cookies), which
-    /// the plugin keeps equal to the app's, so that it travels to the render world with the
-    /// material. Leave it at its default.
-    #[doc(hidden)]
-    #[reflect(ignore, clone)]
-    pub scene_variants: SceneVariants,
-    /// Whether the shader reads the numbers from the array of every material's records, by
-    /// the mesh instance's tag, instead of this material's uniform: set only on the bind
-    /// group a class of materials shares (`render::batching`). Leave it at its default.
-    #[doc(hidden)]
-    #[reflect(ignore, clone)]
-    pub from_records: bool,
 }
 
 impl Default for PhongMaterial {
@@ -542,8 +532,6 @@ impl Default for PhongMaterial {
             environment_combine: EnvironmentCombine::Multiply,
             reflectivity: 1.0,
             refraction_ratio: None,
-            from_records: false,
-            scene_variants: SceneVariants::default(),
         }
     }
 }
@@ -559,10 +547,10 @@ impl From<Color> for PhongMaterial {
 
 /// A material that [`add_phong_material`](crate::PhongMaterialAppExt::add_phong_material)
 /// registers: one made of a [`PhongMaterial`] (`PhongMaterial` itself and every
-/// `ExtendedMaterial<PhongMaterial, _>`) names it, so that the plugin keeps the scene's
-/// shader variant (shadows, hemisphere light, cookies) on it. A material of its own that
-/// binds the scene data implements it with the defaults: `impl PhongSceneMaterial for
-/// MyMaterial {}`.
+/// `ExtendedMaterial<PhongMaterial, _>`) names it and its key, so that the render world sets
+/// the scene's shader variant (shadows, hemisphere light, cookies) in its key. A material of
+/// its own that binds the scene data implements it with the defaults: `impl
+/// PhongSceneMaterial for MyMaterial {}`.
 pub trait PhongSceneMaterial: Material {
     /// The [`PhongMaterial`] this material is made of, if any. Default `None`.
     fn phong_material(&self) -> Option<&PhongMaterial> {
@@ -572,6 +560,19 @@ pub trait PhongSceneMaterial: Material {
     /// The same, to change. Default `None`.
     fn phong_material_mut(&mut self) -> Option<&mut PhongMaterial> {
         None
+    }
+
+    /// This material's key (`key`, its
+    /// [`AsBindGroup::Data`](bevy::render::render_resource::AsBindGroup::Data)) with the
+    /// [`PhongMaterialKey`] in it replaced by `set` of it, where the material is made of a
+    /// [`PhongMaterial`]: the render world sets the scene's variant so. Default: `key` as it
+    /// is.
+    fn with_phong_material_key(
+        key: Self::Data,
+        set: &dyn Fn(PhongMaterialKey) -> PhongMaterialKey,
+    ) -> Self::Data {
+        let _ = set;
+        key
     }
 }
 
@@ -583,6 +584,13 @@ impl PhongSceneMaterial for PhongMaterial {
     fn phong_material_mut(&mut self) -> Option<&mut PhongMaterial> {
         Some(self)
     }
+
+    fn with_phong_material_key(
+        key: PhongMaterialKey,
+        set: &dyn Fn(PhongMaterialKey) -> PhongMaterialKey,
+    ) -> PhongMaterialKey {
+        set(key)
+    }
 }
 
 impl<E: MaterialExtension> PhongSceneMaterial for ExtendedMaterial<PhongMaterial, E> {
@@ -592,6 +600,18 @@ impl<E: MaterialExtension> PhongSceneMaterial for ExtendedMaterial<PhongMaterial
 
     fn phong_material_mut(&mut self) -> Option<&mut PhongMaterial> {
         Some(&mut self.base)
+    }
+
+    fn with_phong_material_key(
+        key: Self::Data,
+        set: &dyn Fn(PhongMaterialKey) -> PhongMaterialKey,
+    ) -> Self::Data {
+        // The combined key is packed: its parts are copied out, not borrowed.
+        let (base, extension) = (key.base, key.extension);
+        CombinedBindGroupData {
+            base: set(base),
+            extension,
+        }
     }
 }
 

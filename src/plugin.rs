@@ -16,8 +16,8 @@ use crate::{
     material::{PhongMaterial, PhongSceneMaterial, SpecularModel},
     render::{
         ExtensionClusterSlots, PhongCookies, PhongLightBuffer, PhongLightClusters,
-        SharedEpsilonLights, assign_lights_to_clusters, carry_scene_variants, gather_cookies,
-        gather_lights, refresh_material_bind_groups,
+        SharedEpsilonLights, assign_lights_to_clusters, gather_cookies, gather_lights,
+        prepare_again_on_new_variants, refresh_material_bind_groups,
     },
     scene_variants::SceneVariants,
     schedule::{PhongSystems, configure_phong_systems},
@@ -36,7 +36,7 @@ use bevy::{
     image::Image,
     log::warn,
     pbr::{MaterialPlugin, MeshMaterial3d},
-    render::RenderApp,
+    render::{RenderApp, extract_resource::ExtractResourcePlugin},
     shader::{Shader, load_shader_library},
 };
 use core::hash::Hash;
@@ -223,6 +223,8 @@ fn add_rendering(app: &mut App) {
         bevy::render::RenderStartup,
         crate::render::announce_scene_data_path,
     );
+    // The scene's variants, which the render world sets in each material's key.
+    app.add_plugins(ExtractResourcePlugin::<SceneVariants>::default());
     app.add_phong_material::<PhongMaterial>();
     crate::render::add_material_batching(app);
     #[cfg(feature = "scene")]
@@ -252,13 +254,17 @@ impl PhongMaterialAppExt for App {
         self.add_plugins(MaterialPlugin::<M>::default())
             .add_systems(
                 PostUpdate,
-                (refresh_material_bind_groups::<M>, carry_scene_variants::<M>)
+                (
+                    refresh_material_bind_groups::<M>,
+                    prepare_again_on_new_variants::<M>,
+                )
                     .in_set(PhongSystems::RefreshMaterials),
             );
         // Already required where `M` was added before: that requirement stands.
         let _ = self.try_register_required_components::<MeshMaterial3d<M>, PhongLit>();
         if let Some(render_app) = self.get_sub_app_mut(RenderApp) {
             crate::render::schedule_light_buffers_before::<M>(render_app);
+            crate::render::key_materials_in_scene::<M>(render_app);
         }
         self
     }

@@ -2,29 +2,28 @@
 //! this frame, whether soft ones, whether it has a hemisphere light, area lights and whether cookies
 //! ([`SceneVariants`]); and where the scene data is bound (storage buffers, or one data
 //! texture under WebGL2's limits). The gathers ([`crate::shadows`], [`crate::render`]) set the
-//! app's [`SceneVariants`] resource in the main world; each Phong material carries a copy
-//! (kept equal by [`crate::render`]), which travels to the render world with the material
-//! when Bevy extracts it, and which [`PhongMaterialKey`](crate::PhongMaterialKey) reads when
-//! the material is specialized. Nothing is shared between apps, and the render world reads
-//! the value of the frame it draws. They sit below both, so that the material needs nothing
-//! of the shadows or the lights.
+//! app's [`SceneVariants`] resource in the main world; it is extracted into the render world,
+//! which sets it in each Phong material's key as the material is prepared ([`SceneKey`],
+//! `render::scene_keys`), so that the asset a game writes holds only the material. Nothing is
+//! shared between apps, and the render world reads the value of the frame it draws. They sit
+//! below both, so that the material needs nothing of the shadows or the lights.
 
 use bevy::{
     ecs::resource::Resource,
     pbr::MATERIAL_BIND_GROUP_INDEX,
     render::render_resource::{BindingType, BufferBindingType, RenderPipelineDescriptor},
+    render::{RenderApp, extract_resource::ExtractResource},
     shader::ShaderDefVal,
 };
 
-/// The scene's choices that change the shader of every Phong material, in the main world
-/// (a resource of the app) and in each material (a copy the plugin keeps equal to it). Each
-/// leaves code out of the shaders of scenes that do not need it: on some devices (lavapipe)
-/// the mere presence of the shadow code makes every fragment several times slower. When one
-/// changes, every Phong material is modified in the same frame and prepared again with the
-/// new key; the first time a variant is seen it is compiled, as any new variant.
-#[doc(hidden)]
+/// The scene's choices that change the shader of every Phong material: a resource of the
+/// app's main world, extracted into its render world. Each leaves code out of the shaders of
+/// scenes that do not need it: on some devices (lavapipe) the mere presence of the shadow
+/// code makes every fragment several times slower. When one changes, every Phong material
+/// is prepared again in the same frame, with the new variant in its key (`render::scene_keys`);
+/// the first time a variant is seen it is compiled, as any new variant.
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct SceneVariants {
+pub(crate) struct SceneVariants {
     /// Whether any light casts shadows this frame (shader def `PHONG_SHADOWS`). Set by the
     /// shadow gather.
     pub(crate) shadows: bool,
@@ -51,6 +50,26 @@ pub struct SceneVariants {
     /// Whether some light has a [`PhongLightCookie`](crate::PhongLightCookie) with a record
     /// this frame (shader def `PHONG_LIGHT_COOKIES`). Set by the cookie gather.
     pub(crate) cookies: bool,
+}
+
+impl ExtractResource<RenderApp> for SceneVariants {
+    type Source = Self;
+
+    fn extract_resource(source: &Self) -> Self {
+        *source
+    }
+}
+
+/// The part of a Phong material's key that the render world sets, not the material: the
+/// scene's variants of the frame, and whether the bind group is the one a class of materials
+/// shares, which reads the numbers from every material's records (`render::batching`). The
+/// feature table's scene rows read it ([`crate::material`]'s `material_features!`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct SceneKey {
+    /// The app's scene variants of the frame drawn.
+    pub variants: SceneVariants,
+    /// Whether the bind group is a class's shared one (shader def `PHONG_MATERIAL_RECORDS`).
+    pub from_records: bool,
 }
 
 /// Binding index, in the material bind group, of the light buffer (a storage buffer) or, where

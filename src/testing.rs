@@ -11,7 +11,7 @@ pub use crate::reference::stylized::near_a_step;
 pub use crate::render::{
     DATA_TEXTURE_MAX_TEXELS, DATA_TEXTURE_WIDTH, GpuAreaLight, GpuClustersHeader, GpuCookie,
     GpuLight, GpuLightsHeader, MaterialBatching, PhongCookies, PhongLightBuffer,
-    PhongLightClusters, assign_lights_to_clusters, binds_every_map, gather_cookies, gather_lights,
+    PhongLightClusters, assign_lights_to_clusters, binds_every_map, gather_lights,
     material_batching, material_map_bindings,
 };
 pub use crate::shadows::{

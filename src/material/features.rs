@@ -8,7 +8,7 @@ use super::{
     DiffuseMode, EnvironmentCombine, PhongMaterial, PhongMaterialUniform, SpecularMode,
     SpecularModel,
 };
-use crate::limits;
+use crate::{limits, scene_variants::SceneKey};
 use bevy::{
     asset::Handle,
     math::{Affine2, Vec3},
@@ -35,24 +35,36 @@ pub(crate) enum MeshNeeds {
     SampledUv0Map,
 }
 
-/// One row of the table: the field that switches the feature (for warnings), its shader
-/// defs, what it needs of the mesh, and whether a material has it.
+/// What switches a feature on: the material's own fields, or the part of its key that the
+/// render world sets ([`SceneKey`]).
+#[derive(Clone, Copy)]
+pub(crate) enum Switch {
+    /// Whether a material has the feature, its numbers as the shader reads them (the
+    /// uniform).
+    Material(fn(&PhongMaterial, &PhongMaterialUniform) -> bool),
+    /// Whether the render world's part of the key has it.
+    Scene(fn(&SceneKey) -> bool),
+}
+
+/// One row of the table: the field that switches the feature (of the material, for
+/// warnings, or of [`SceneKey`]), its shader defs, what it needs of the mesh, and what
+/// switches it on.
 pub(crate) struct MaterialFeature {
     pub bit: MaterialFeatures,
     pub field: &'static str,
     pub defines: &'static [&'static str],
     pub needs: MeshNeeds,
-    /// Whether `material` has the feature, its numbers as the shader reads them (`uniform`).
-    pub on: fn(&PhongMaterial, &PhongMaterialUniform) -> bool,
+    pub switch: Switch,
 }
 
 /// Declares each feature once: a constant of [`MaterialFeatures`] (its bit, in order) and a
-/// row of [`MATERIAL_FEATURES`].
+/// row of [`MATERIAL_FEATURES`]. A row's switch is `|material, uniform| …` (a
+/// [`Switch::Material`]) or `scene |key| …` (a [`Switch::Scene`]).
 macro_rules! material_features {
     ($(
         $(#[doc = $doc:literal])*
         $name:ident: $field:literal, [$($define:literal),*], $needs:ident,
-            |$material:ident, $uniform:ident| $on:expr;
+            $($scene:ident)? |$($argument:ident),+| $on:expr;
     )*) => {
         impl MaterialFeatures {
             material_features!(@bits 0u64; $($(#[doc = $doc])* $name,)*);
@@ -65,12 +77,18 @@ macro_rules! material_features {
                 field: $field,
                 defines: &[$($define),*],
                 needs: MeshNeeds::$needs,
-                on: |$material, $uniform| {
-                    let _ = (&$material, &$uniform);
-                    $on
-                },
+                switch: material_features!(@switch [$($scene)?] |$($argument),+| $on),
             },
         )*];
+    };
+    (@switch [] |$material:ident, $uniform:ident| $on:expr) => {
+        Switch::Material(|$material, $uniform| {
+            let _ = (&$material, &$uniform);
+            $on
+        })
+    };
+    (@switch [scene] |$key:ident| $on:expr) => {
+        Switch::Scene(|$key| $on)
     };
     (@bits $bit:expr; $(#[doc = $doc:literal])* $name:ident, $($rest:tt)*) => {
         $(#[doc = $doc])*
@@ -106,13 +124,32 @@ impl MaterialFeatures {
         Self(self.0 & !other.0)
     }
 
-    /// The features `material` has.
+    /// The features `material` has of itself (the scene's, which the render world adds to
+    /// its key, left out).
     pub fn of(material: &PhongMaterial) -> Self {
         // The numbers in their ranges, as the shader reads them.
         let uniform = PhongMaterialUniform::from(material);
+        Self::switched(|switch| match switch {
+            Switch::Material(on) => on(material, &uniform),
+            Switch::Scene(_) => false,
+        })
+    }
+
+    /// The features the render world's part of a key (`scene`) switches on.
+    pub(crate) fn of_scene(scene: &SceneKey) -> Self {
+        Self::switched(|switch| matches!(switch, Switch::Scene(on) if on(scene)))
+    }
+
+    /// Every feature the render world's part of a key switches.
+    pub(crate) fn of_the_scene_part() -> Self {
+        Self::switched(|switch| matches!(switch, Switch::Scene(_)))
+    }
+
+    /// The features whose switch `on` says is on.
+    fn switched(on: impl Fn(Switch) -> bool) -> Self {
         MATERIAL_FEATURES
             .iter()
-            .filter(|feature| (feature.on)(material, &uniform))
+            .filter(|feature| on(feature.switch))
             .fold(Self::NONE, |features, feature| features.with(feature.bit))
     }
 }
@@ -291,31 +328,29 @@ material_features! {
     DISPLACEMENT_UV_B: "displacement_map", [], Nothing,
         |m, u| map_at(&m.displacement_map, &m.displacement_map_channel, true);
     /// Some light of the material's app casts shadows: only then is the shadow code
-    /// compiled in (`PHONG_SHADOWS`). This and the next three are the app's scene, which the
-    /// plugin copies into each of its materials.
-    SHADOWS: "scene_variants", ["PHONG_SHADOWS"], Nothing, |m, u| m.scene_variants.shadows;
+    /// compiled in (`PHONG_SHADOWS`). This row and the next six are the app's scene
+    /// (`SceneKey::variants`), which the render world sets in each material's key.
+    SHADOWS: "variants", ["PHONG_SHADOWS"], Nothing, scene |s| s.variants.shadows;
     /// Some shadow-casting light of the app has a size (`PhongShadows::softness`): the
     /// soft-shadow filter (PCSS) is compiled in (`PHONG_SOFT_SHADOWS`).
-    SOFT_SHADOWS: "scene_variants", ["PHONG_SOFT_SHADOWS"], Nothing,
-        |m, u| m.scene_variants.shadows && m.scene_variants.soft_shadows;
+    SOFT_SHADOWS: "variants", ["PHONG_SOFT_SHADOWS"], Nothing,
+        scene |s| s.variants.shadows && s.variants.soft_shadows;
     /// The app has a `PhongHemisphereLight` (`PHONG_HEMISPHERE`).
-    HEMISPHERE: "scene_variants", ["PHONG_HEMISPHERE"], Nothing,
-        |m, u| m.scene_variants.hemisphere;
+    HEMISPHERE: "variants", ["PHONG_HEMISPHERE"], Nothing, scene |s| s.variants.hemisphere;
     /// The app's light buffer holds an area light (`PHONG_AREA_LIGHTS`).
-    AREA_LIGHTS: "scene_variants", ["PHONG_AREA_LIGHTS"], Nothing,
-        |m, u| m.scene_variants.area_lights;
+    AREA_LIGHTS: "variants", ["PHONG_AREA_LIGHTS"], Nothing, scene |s| s.variants.area_lights;
     /// One of them is a disk (`PHONG_DISK_LIGHTS`): the polygons hold 18 corners, not 6.
-    DISK_LIGHTS: "scene_variants", ["PHONG_DISK_LIGHTS"], Nothing,
-        |m, u| m.scene_variants.area_lights && m.scene_variants.disk_lights;
+    DISK_LIGHTS: "variants", ["PHONG_DISK_LIGHTS"], Nothing,
+        scene |s| s.variants.area_lights && s.variants.disk_lights;
     /// One of them takes the fitted highlight (`PHONG_AREA_FITTED`).
-    AREA_FITTED: "scene_variants", ["PHONG_AREA_FITTED"], Nothing,
-        |m, u| m.scene_variants.area_lights && m.scene_variants.fitted_highlights;
+    AREA_FITTED: "variants", ["PHONG_AREA_FITTED"], Nothing,
+        scene |s| s.variants.area_lights && s.variants.fitted_highlights;
     /// Some light of the app has a `PhongLightCookie` (`PHONG_LIGHT_COOKIES`).
-    LIGHT_COOKIES: "scene_variants", ["PHONG_LIGHT_COOKIES"], Nothing,
-        |m, u| m.scene_variants.cookies;
+    LIGHT_COOKIES: "variants", ["PHONG_LIGHT_COOKIES"], Nothing, scene |s| s.variants.cookies;
     /// The numbers read from the array of every material's records at the mesh instance's
     /// tag, not from the material's uniform (`PHONG_MATERIAL_RECORDS`, in every stage): the
-    /// bind group a class of materials shares (`render::batching`).
+    /// bind group a class of materials shares (`render::batching`,
+    /// `SceneKey::from_records`).
     MATERIAL_RECORDS: "from_records", ["PHONG_MATERIAL_RECORDS"], Nothing,
-        |m, u| m.from_records;
+        scene |s| s.from_records;
 }

@@ -3,7 +3,7 @@
 
 use super::PhongMaterial;
 use super::features::{MATERIAL_FEATURES, MaterialFeatures, MeshNeeds};
-use crate::limits;
+use crate::{limits, scene_variants::SceneKey};
 use bevy::{
     log::warn,
     mesh::{Mesh, MeshVertexBufferLayoutRef},
@@ -42,6 +42,18 @@ impl From<&PhongMaterial> for PhongMaterialKey {
 }
 
 impl PhongMaterialKey {
+    /// This key with the render world's part (the scene's variants, and whether the bind
+    /// group is a class's) set to `scene`.
+    pub(crate) fn in_scene(self, scene: &SceneKey) -> Self {
+        Self {
+            features: self
+                .features
+                .without(MaterialFeatures::of_the_scene_part())
+                .with(MaterialFeatures::of_scene(scene)),
+            ..self
+        }
+    }
+
     /// Whether the material has every feature of `features`.
     pub fn has(&self, features: MaterialFeatures) -> bool {
         self.features.contains(features)
@@ -135,7 +147,8 @@ pub(crate) fn culled_in_view(cull_mode: Option<Face>, mirrored: bool) -> Option<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::features::MATERIAL_FEATURES;
+    use crate::material::features::{MATERIAL_FEATURES, Switch};
+    use crate::scene_variants::SceneVariants;
     use bevy::{
         asset::{Handle, RenderAssetUsages},
         image::Image,
@@ -167,15 +180,50 @@ mod tests {
                 feature.field
             );
             bits = bits.with(feature.bit);
-            // The scene's variants are the plugin's copy, and `from_records` the plugin's
-            // mark on a class's shared material: neither is reflected.
+            // A scene row names a field of the render world's part of the key.
             assert!(
-                ["scene_variants", "from_records"].contains(&feature.field)
+                matches!(feature.switch, Switch::Scene(_))
                     || material.field(feature.field).is_some(),
                 "PhongMaterial has no field {}",
                 feature.field
             );
         }
+    }
+
+    #[test]
+    fn the_render_world_sets_the_scene_part_of_a_key_and_nothing_else() {
+        let material = PhongMaterial {
+            double_sided: true,
+            ..Default::default()
+        };
+        let key = PhongMaterialKey::from(&material);
+        assert!(
+            !key.features.contains(MaterialFeatures::SHADOWS),
+            "a material has none of the scene's features of itself"
+        );
+        let scene = SceneKey {
+            variants: SceneVariants {
+                shadows: true,
+                cookies: true,
+                ..Default::default()
+            },
+            from_records: true,
+        };
+        let in_scene = key.in_scene(&scene);
+        for feature in [
+            MaterialFeatures::SHADOWS,
+            MaterialFeatures::LIGHT_COOKIES,
+            MaterialFeatures::MATERIAL_RECORDS,
+            MaterialFeatures::DOUBLE_SIDED,
+        ] {
+            assert!(in_scene.has(feature), "{feature:?}");
+        }
+        assert!(!in_scene.has(MaterialFeatures::HEMISPHERE));
+        let back = in_scene.in_scene(&SceneKey::default());
+        assert_eq!(
+            back, key,
+            "a later scene replaces the scene's part, and only it"
+        );
     }
 
     /// The `PHONG_` names in the conditions (`@if(…)`, `@elif(…)`) of the crate's shaders.

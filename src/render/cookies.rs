@@ -93,7 +93,7 @@ pub(crate) fn request_cookies<L: PhongLightKind>(
 /// the records of the cookied lights when any of them changed; it touches [`PhongCookies`]
 /// only then, so that [`gather_lights`](super::gather_lights) writes the light buffer only
 /// when something changed. Sets the scene's cookie variant (`PHONG_LIGHT_COOKIES`).
-pub fn gather_cookies(
+pub(crate) fn gather_cookies(
     mut requests: ResMut<CookieRequests>,
     mut image_events: MessageReader<AssetEvent<Image>>,
     mut images: ResMut<Assets<Image>>,

@@ -8,6 +8,7 @@ use crate::displacement::DisplacementUniform;
 use crate::material::{
     MapDevices, PhongMaterial, PhongMaterialKey, PhongMaterialUniform, map_images, material_maps,
 };
+use crate::scene_variants::SceneVariants;
 use crate::shadows::{PHONG_SHADOW_VIEW_BUFFER, ShadowAtlas};
 use bevy::{
     asset::Handle,
@@ -89,6 +90,7 @@ pub struct PhongSceneBindings<'w> {
     images: Res<'w, RenderAssets<GpuImage>>,
     shadow_maps: Option<Res<'w, ShadowAtlas>>,
     material_records: Option<Res<'w, MaterialRecordBuffer>>,
+    variants: Option<Res<'w, SceneVariants>>,
 }
 
 impl PhongSceneBindings<'_> {
@@ -336,7 +338,11 @@ impl AsBindGroup for PhongMaterial {
             output,
         )?;
         if !binds_every_map(render_device) {
-            if self.scene_variants.cookies {
+            if scene
+                .variants
+                .as_ref()
+                .is_some_and(|variants| variants.cookies)
+            {
                 bevy::log::warn_once!(
                     "PhongLightCookie is left out on this device (WebGL2's 16 textures a \
                      shader stage): lights are drawn without their cookies"

@@ -4,7 +4,7 @@ use crate::material::PhongSceneMaterial;
 use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::LightBufferResized;
 use bevy::{
-    asset::{AssetId, Assets},
+    asset::Assets,
     ecs::message::MessageReader,
     pbr::{Material, MeshMaterial3d},
     render::{
@@ -28,39 +28,22 @@ pub(crate) fn refresh_material_bind_groups<M: Material>(
     for _ in materials.iter_mut() {}
 }
 
-/// Keeps the scene's shader variant of every material of type `M` made of a
-/// [`PhongMaterial`](crate::PhongMaterial) equal to the app's [`SceneVariants`]: a material
-/// that differs (one just added or replaced, or every one where the scene's variant changed
-/// this frame) is modified; frames where neither the variant nor `M`'s assets changed cost
-/// nothing. The render world prepares each modified one again, with the new key, in the
-/// same frame. The variant travels with the material's extraction: each app has its own,
-/// and the render world reads the one of the frame it draws.
+/// Marks every material of type `M` as modified when the app's [`SceneVariants`] changed
+/// this frame, so that the render world prepares each again in the same frame, with the new
+/// variant in its key (`render::scene_keys`); other frames cost nothing. The asset itself
+/// is not changed: the variant lives in the render world.
 ///
 /// Runs in [`PhongSystems::RefreshMaterials`](crate::PhongSystems::RefreshMaterials).
-pub(crate) fn carry_scene_variants<M: PhongSceneMaterial>(
+pub(crate) fn prepare_again_on_new_variants<M: PhongSceneMaterial>(
     variants: Res<SceneVariants>,
     mut materials: ResMut<Assets<M>>,
 ) {
-    // Only a new variant, or a material added or changed since the last run, can differ.
-    if !variants.is_changed() && !materials.is_changed() {
+    // The first frame's variants are those every material is first prepared with.
+    if !variants.is_changed() || variants.is_added() {
         return;
     }
-    let stale: Vec<AssetId<M>> = materials
-        .iter()
-        .filter(|(_, material)| {
-            material
-                .phong_material()
-                .is_some_and(|phong| phong.scene_variants != *variants)
-        })
-        .map(|(id, _)| id)
-        .collect();
-    for id in stale {
-        if let Some(mut material) = materials.get_mut(id)
-            && let Some(phong) = material.phong_material_mut()
-        {
-            phong.scene_variants = *variants;
-        }
-    }
+    // `iter_mut` reports every asset it yields as modified.
+    for _ in materials.iter_mut() {}
 }
 
 /// Does nothing; it exists for its place in the render schedule: after the light buffers

@@ -56,6 +56,7 @@ mod scene_texture;
 // (marked in the main world, ordered in the render world).
 mod gpu_types;
 mod material_upkeep;
+mod scene_keys;
 // The render world's part: binding the uploaded buffers to each material.
 mod material_bindings;
 // Both: materials that differ only in their numbers drawn as one batch.
@@ -76,16 +77,18 @@ pub(crate) use cluster_views::ExtensionClusterSlots;
 pub use cluster_views::{PhongLightClusters, assign_lights_to_clusters};
 pub(crate) use clusters::{is_finite_sphere, sphere_bits};
 pub(crate) use cookie_atlas::PHONG_COOKIE_ATLAS;
+pub use cookies::PhongCookies;
+pub(crate) use cookies::gather_cookies;
 pub(crate) use cookies::{CookieRequests, request_cookies};
-pub use cookies::{PhongCookies, gather_cookies};
 pub use data_texture::DATA_TEXTURE_MAX_TEXELS;
 pub(crate) use data_texture::{DataTexture, DataTextureWrite, words_of};
 pub use gather::{PhongLightBuffer, SharedEpsilonLights, gather_lights};
 pub use gpu_types::{GpuClustersHeader, GpuLightsHeader};
 pub use material_bindings::PhongSceneBindings;
 pub(crate) use material_upkeep::{
-    carry_scene_variants, refresh_material_bind_groups, schedule_light_buffers_before,
+    prepare_again_on_new_variants, refresh_material_bind_groups, schedule_light_buffers_before,
 };
+pub(crate) use scene_keys::key_materials_in_scene;
 pub(crate) use scene_texture::{
     PHONG_SCENE_TEXTURE, STORAGE_BUFFERS_NEEDED, announce_scene_data_path, needs_scene_texture,
     pack_scene_texture,

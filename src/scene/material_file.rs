@@ -338,9 +338,6 @@ macro_rules! material_description {
                     environment_combine: self.environment_combine,
                     reflectivity: self.reflectivity,
                     refraction_ratio: self.refraction_ratio,
-                    // The app's, which the plugin sets.
-                    scene_variants: Default::default(),
-                    from_records: false,
                     $($($channel: self.$channel.to_channel(),)?)*
                     $($field: load_map(
                         load_context,

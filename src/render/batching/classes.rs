@@ -4,6 +4,8 @@
 use super::records::{MaterialRecord, MaterialRecordBuffer, RecordBufferReplaced};
 use super::slots::MaterialSlots;
 use crate::material::{PhongMaterial, PhongMaterialKey, map_images};
+use crate::render::scene_keys::set_scene_key;
+use crate::scene_variants::{SceneKey, SceneVariants};
 use bevy::asset::uuid::Uuid;
 use bevy::{
     asset::{AssetEvent, AssetId, Assets, Handle},
@@ -59,8 +61,8 @@ impl From<&PhongMaterial> for ClassKey {
     }
 }
 
-/// A class: its shared material (one of its members' with `from_records` set, prepared
-/// under an id of its own) and how many materials it has.
+/// A class: its shared material (one of its members', prepared under an id of its own with
+/// [`SceneKey::from_records`] in its key) and how many materials it has.
 struct Class {
     id: AssetId<PhongMaterial>,
     material: PhongMaterial,
@@ -115,10 +117,7 @@ impl MaterialClasses {
                     id: AssetId::Uuid {
                         uuid: Uuid::from_u64_pair(SHARED_MATERIAL_IDS, *made),
                     },
-                    material: PhongMaterial {
-                        from_records: true,
-                        ..material.clone()
-                    },
+                    material: material.clone(),
                     members: 0,
                     to_prepare: true,
                 }
@@ -262,7 +261,12 @@ pub(crate) fn prepare_material_classes(
     mut replaced: ResMut<RecordBufferReplaced>,
     mut prepared: ResMut<ErasedRenderAssets<PreparedMaterial>>,
     mut param: StaticSystemParam<PrepareParam>,
+    variants: Res<SceneVariants>,
 ) {
+    let scene = SceneKey {
+        variants: *variants,
+        from_records: true,
+    };
     let classes = &mut *classes;
     if replaced.take() {
         classes.prepare_all_again();
@@ -281,7 +285,8 @@ pub(crate) fn prepare_material_classes(
             class.id,
             &mut param,
         ) {
-            Ok(material) => {
+            Ok(mut material) => {
+                set_scene_key::<PhongMaterial>(&mut material, &scene);
                 prepared.insert(class.id, material);
                 class.to_prepare = false;
                 classes.prepared += 1;
