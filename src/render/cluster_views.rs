@@ -1,6 +1,7 @@
 //! The cluster system: every frame, each active 3D camera's view, and the clusters of the
 //! lights of finite reach in those views, rebuilt when a view or such a light changed.
 
+use super::light_sections::LightSection;
 use super::{
     PHONG_LIGHT_CLUSTER_BUFFER,
     clusters::{
@@ -248,26 +249,27 @@ impl PhongLightClusters {
         extension_lights: &ExtensionClusterSlots,
     ) -> bool {
         let header = lights.header();
-        let first = (header.directional_count + header.local_count) as usize;
-        let end = first + header.clustered_local_count as usize;
+        let local = header.range(LightSection::ClusteredLocal);
+        let area = header.range(LightSection::ClusteredArea);
         self.local_spheres.clear();
-        self.local_spheres
-            .extend(lights.records()[first..end].iter().map(light_sphere_bits));
-        let area_first = end + header.area_count as usize;
-        let area_end = area_first + header.clustered_area_count as usize;
+        self.local_spheres.extend(
+            lights.records()[local.clone()]
+                .iter()
+                .map(light_sphere_bits),
+        );
         self.area_spheres.clear();
         self.area_spheres.extend(
-            lights.records()[area_first..area_end]
+            lights.records()[area.clone()]
                 .iter()
                 .map(area_light_sphere_bits),
         );
         let built_in = [
             ClusterSlot {
-                first: first as u32,
+                first: local.start as u32,
                 spheres: &self.local_spheres,
             },
             ClusterSlot {
-                first: area_first as u32,
+                first: area.start as u32,
                 spheres: &self.area_spheres,
             },
         ];

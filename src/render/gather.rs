@@ -1,6 +1,7 @@
 //! The gather system: every frame in which a light changed, it writes all visible lights
 //! into the light buffer.
 
+use super::light_sections::LightSection;
 use super::{
     PHONG_LIGHT_BUFFER, clusters::is_finite_sphere, cookies::PhongCookies,
     gpu_types::GpuLightsHeader, light_records::indirect_light,
@@ -423,36 +424,28 @@ pub fn gather_lights(
     let counts = state.push_lights(&lights, &scene);
     let [ambient, hemisphere_up, hemisphere_half_difference] =
         indirect_light(&scene.ambient, scene.hemisphere.as_deref());
-    let [
-        directional_count,
-        local_count,
-        clustered_local_count,
-        area_count,
-        clustered_area_count,
-    ] = counts;
     state.header = GpuLightsHeader {
         ambient,
-        directional_count,
-        local_count,
-        clustered_local_count,
-        area_count,
-        clustered_area_count,
         hemisphere_up,
         bevy_ambient_scale: scene.bevy_ambient.map_or(0.0, |bevy| bevy.scale),
         hemisphere_half_difference,
-        padding_difference: 0,
+        ..bytemuck::Zeroable::zeroed()
     };
+    for (section, count) in LightSection::ALL.into_iter().zip(counts) {
+        *state.header.count_mut(section) = count;
+    }
     state.append_cookies(&scene.cookies);
     state.hemisphere = scene.hemisphere.is_some();
     if writes.variants.hemisphere != state.hemisphere {
         writes.variants.hemisphere = state.hemisphere;
     }
-    let area_lights = area_count + clustered_area_count > 0;
+    let area_records = state
+        .header
+        .span(LightSection::Area, LightSection::ClusteredArea);
+    let area_lights = !area_records.is_empty();
     if writes.variants.area_lights != area_lights {
         writes.variants.area_lights = area_lights;
     }
-    let first_area = (directional_count + local_count + clustered_local_count) as usize;
-    let area_records = first_area..first_area + (area_count + clustered_area_count) as usize;
     let area_records = &state.records[area_records];
     let disk_lights = any_flagged(area_records, GpuAreaLight::DISK);
     if writes.variants.disk_lights != disk_lights {
@@ -542,8 +535,9 @@ impl PhongLightBuffer {
         let cookie_first = self.records.len() as u32;
         let header = &self.header;
         // The area lights take no cookie: their records' high half holds their flags.
-        let with_cookies =
-            (header.directional_count + header.local_count + header.clustered_local_count) as usize;
+        let with_cookies = header
+            .span(LightSection::Directional, LightSection::ClusteredLocal)
+            .end;
         if !cookies.records().is_empty() {
             for record in &mut self.records[..with_cookies] {
                 let index = cookie_index(cookie_first, record.shadow >> GpuLight::COOKIE_SHIFT);

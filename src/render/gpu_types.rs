@@ -85,17 +85,6 @@ pub struct GpuLightsHeader {
     pub padding_difference: u32,
 }
 
-impl GpuLightsHeader {
-    /// Total number of lights in the array.
-    pub fn light_count(&self) -> usize {
-        (self.directional_count
-            + self.local_count
-            + self.clustered_local_count
-            + self.area_count
-            + self.clustered_area_count) as usize
-    }
-}
-
 /// The fixed part at the start of the light cluster buffer (`PhongLightClusters` in WGSL,
 /// before its `data` array): 16 bytes. The array holds [`VIEW_WORDS`](Self::VIEW_WORDS)
 /// words per view, then `cluster_words` per cluster of each view, then the entries;

@@ -51,6 +51,7 @@ mod cookies;
 mod data_texture;
 mod gather;
 mod light_records;
+mod light_sections;
 mod scene_texture;
 // Both: the byte layouts the two sides share; keeping materials on the current buffers
 // (marked in the main world, ordered in the render world).

@@ -23,6 +23,7 @@
 //!
 //! The lights that remain are lit exactly as they would be with room for all.
 
+use super::light_sections::LightSection;
 use super::{
     GpuClustersHeader, GpuLight, GpuLightsHeader, PHONG_LIGHT_BUFFER, PHONG_LIGHT_CLUSTER_BUFFER,
     data_texture::{DATA_TEXTURE_MAX_TEXELS, DataTexture, DataTextureWrite, words_of},
@@ -141,9 +142,9 @@ fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Pack
     // read from where the section starts in the whole buffer.
     let records = |header: &GpuLightsHeader| -> Vec<&[u8]> {
         let mut start = 0;
-        sections(&full)
+        full.counts()
             .into_iter()
-            .zip(sections(header))
+            .zip(header.counts())
             .map(|(whole, kept)| {
                 let first = (start as usize).min(stored);
                 let end = (start as usize + kept as usize).min(stored);
@@ -161,18 +162,20 @@ fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Pack
     let no_clusters = bytemuck::bytes_of(&GpuClustersHeader::EMPTY);
     let mut clusters = clusters;
     if total(&header, clusters) > max_texels {
-        header.clustered_local_count = 0;
-        header.clustered_area_count = 0;
+        for section in LightSection::ALL.into_iter().filter(|s| s.is_clustered()) {
+            *header.count_mut(section) = 0;
+        }
         clusters = no_clusters;
     }
     while total(&header, clusters) > max_texels && header.light_count() > 0 {
-        let counts = [
-            &mut header.local_count,
-            &mut header.area_count,
-            &mut header.directional_count,
+        // The local lights go first, then the area lights, the directional ones last.
+        let leave_out = [
+            LightSection::Local,
+            LightSection::Area,
+            LightSection::Directional,
         ];
-        if let Some(count) = counts.into_iter().find(|count| **count > 0) {
-            *count -= 1;
+        if let Some(section) = leave_out.into_iter().find(|&s| header.count(s) > 0) {
+            *header.count_mut(section) -= 1;
         }
     }
     let mut words = vec![0u32; 4];
@@ -190,17 +193,6 @@ fn pack(lights: &[u8], clusters: &[u8], views: &[u8], max_texels: usize) -> Pack
         words,
         left_out: full.light_count() - header.light_count(),
     }
-}
-
-/// The counts of the light buffer's sections, in their order.
-fn sections(header: &GpuLightsHeader) -> [u32; 5] {
-    [
-        header.directional_count,
-        header.local_count,
-        header.clustered_local_count,
-        header.area_count,
-        header.clustered_area_count,
-    ]
 }
 
 #[cfg(test)]
