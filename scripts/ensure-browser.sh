@@ -26,9 +26,11 @@ apt_install() {
 }
 
 if [[ ! -x /usr/bin/chromium ]]; then
+    echo "Installing Chromium, for the render test that compares with three.js's picture (apt-get install chromium)." >&2
     apt_install chromium
 fi
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+    echo "Installing Node.js and npm, which run three.js in Chromium (apt-get install nodejs npm)." >&2
     apt_install nodejs npm
 fi
 node_major=$(node -p 'process.versions.node.split(".")[0]')
@@ -45,6 +47,7 @@ has() {
 # Both in one command: an `npm install --no-save` removes the packages that an earlier one
 # installed with --no-save, so installing only the missing one would lose the other.
 if ! has playwright-core "$playwright_version" || ! has three "$three_version"; then
+    echo "Installing playwright-core@$playwright_version and three@$three_version into $out/node_modules (npm install)." >&2
     mkdir -p "$out"
     npm install --prefix "$out" --no-save --no-audit --no-fund --loglevel=error \
         "playwright-core@$playwright_version" "three@$three_version"

@@ -6,4 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Reads rust-toolchain.toml; quick when everything is there already.
+channel=$(sed -n 's/^channel *= *"\(.*\)"/\1/p' rust-toolchain.toml)
+if ! rustup toolchain list | grep -q "^$channel-"; then
+    echo "Installing Rust $channel, which rust-toolchain.toml pins, with clippy, rustfmt and the wasm32 target (rustup, into ~/.rustup)." >&2
+fi
 rustup toolchain install >/dev/null

@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/ensure-toolchain.sh
-scripts/ensure-vulkan.sh
+scripts/ensure-vulkan.sh --lavapipe
 source scripts/runtime-dir.sh
 export WGPU_ADAPTER_NAME="${WGPU_ADAPTER_NAME:-llvmpipe}"
 STEP_PREFIX="== quick.sh"

@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/ensure-toolchain.sh
-scripts/ensure-vulkan.sh
+scripts/ensure-vulkan.sh --lavapipe
 # Chromium, Node.js and three.js, for the render test that compares with three.js's picture.
 scripts/ensure-browser.sh
 source scripts/runtime-dir.sh
