@@ -167,3 +167,77 @@ fn nothing_public_is_hidden_from_the_docs() {
         .collect();
     assert!(hidden.is_empty(), "hidden from the docs: {hidden:?}");
 }
+
+/// The items a kind's macro of `file` (`macro_rules! name { … }`) writes: the names of its
+/// `fn`s, `const`s and `type`s.
+fn items_of_macro(file: &str, name: &str) -> Vec<String> {
+    let source = fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(file))
+        .unwrap_or_else(|error| panic!("{file}: {error}"));
+    let start = source
+        .find(&format!("macro_rules! {name} {{"))
+        .unwrap_or_else(|| panic!("{file} has no macro {name}"));
+    let body = &source[start..];
+    let body = &body[..body.find("\n}").expect("the macro's closing brace")];
+    body.split_whitespace()
+        .collect::<Vec<_>>()
+        .windows(2)
+        .filter(|pair| ["fn", "const", "type"].contains(&pair[0]))
+        .map(|pair| {
+            let name = pair[1]
+                .split(['(', ':', '<', ' '])
+                .next()
+                .unwrap_or_default();
+            name.to_owned()
+        })
+        .collect()
+}
+
+#[test]
+fn a_kinds_generated_trait_items_are_named_where_the_kind_is() {
+    let macros = [
+        ("src/light_kind/built_in.rs", "built_in_record"),
+        ("src/light_kind/built_in.rs", "fading_reach_kind"),
+        ("src/light_kind/gpu_area_light.rs", "area_light_kind"),
+    ];
+    let kinds = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/light_kind");
+    let mut calls = 0;
+    for entry in fs::read_dir(&kinds)
+        .expect("src/light_kind is readable")
+        .flatten()
+    {
+        let Ok(source) = fs::read_to_string(entry.path().join("kind.rs")) else {
+            continue;
+        };
+        let lines: Vec<&str> = source.lines().collect();
+        for (file, name) in macros {
+            let Some(call) = lines
+                .iter()
+                .position(|line| line.trim() == format!("{name}!();"))
+            else {
+                continue;
+            };
+            calls += 1;
+            // The comment lines right above the call.
+            let comment: String = lines[..call]
+                .iter()
+                .rev()
+                .take_while(|line| line.trim_start().starts_with("//"))
+                .copied()
+                .collect::<Vec<_>>()
+                .join(" ");
+            let words: BTreeSet<&str> = comment
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .collect();
+            let unnamed: Vec<String> = items_of_macro(file, name)
+                .into_iter()
+                .filter(|item| !words.contains(item.as_str()))
+                .collect();
+            assert!(
+                unnamed.is_empty(),
+                "{}/kind.rs: the comment above {name}!() does not name {unnamed:?}",
+                entry.file_name().display()
+            );
+        }
+    }
+    assert!(calls >= 7, "found {calls} calls of the kinds' macros");
+}

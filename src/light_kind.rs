@@ -3,6 +3,7 @@
 //! ([`built_in`]) as an extension's kind does (`bevy_phong::extension`).
 
 mod built_in;
+mod built_in_kinds;
 mod directional;
 mod disk;
 mod gpu_area_light;
@@ -14,9 +15,12 @@ mod record_cache;
 mod rect;
 mod spot;
 
-pub use built_in::BuiltInLights;
 pub use built_in::linear_rgb;
-pub(crate) use built_in::{BuiltInCaches, BuiltInVisitor, is_built_in, local_sphere};
+pub(crate) use built_in::local_sphere;
+pub use built_in_kinds::BuiltInLights;
+pub(crate) use built_in_kinds::{
+    BuiltInCaches, BuiltInRegistrar, BuiltInVisitor, is_built_in, register_built_in_kinds,
+};
 pub use directional::PhongDirectionalLight;
 pub use disk::PhongDiskLight;
 pub use gpu_area_light::GpuAreaLight;

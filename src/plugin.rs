@@ -3,9 +3,7 @@
 
 mod order;
 
-use crate::light_kind::{
-    PhongDirectionalLight, PhongDiskLight, PhongPointLight, PhongRectLight, PhongSpotLight,
-};
+use crate::light_kind::{BuiltInRegistrar, PhongLightKind, register_built_in_kinds};
 use crate::{
     culling::{PhongLightCulling, PhongViewClusters},
     extension::add_light_kind,
@@ -36,6 +34,7 @@ use bevy::{
     image::Image,
     log::warn,
     pbr::{MaterialPlugin, MeshMaterial3d},
+    reflect::GetTypeRegistration,
     render::{RenderApp, extract_resource::ExtractResourcePlugin},
     shader::{Shader, load_shader_library},
 };
@@ -62,21 +61,7 @@ impl Plugin for PhongPlugin {
         add_validation_and_gathers(app);
         crate::shadows::add_shadow_gather(app);
         // The built-in kinds of light, through the path every kind takes.
-        add_light_kind::<PhongDirectionalLight>(app);
-        add_light_kind::<PhongPointLight>(app);
-        add_light_kind::<PhongSpotLight>(app);
-        add_light_kind::<PhongRectLight>(app);
-        add_light_kind::<PhongDiskLight>(app);
-        // The area lights' reference-model lights, collected as an extension kind's are.
-        #[cfg(feature = "reference")]
-        {
-            crate::extension::reference_lights::add_reference_kind::<PhongRectLight>(
-                app.world_mut(),
-            );
-            crate::extension::reference_lights::add_reference_kind::<PhongDiskLight>(
-                app.world_mut(),
-            );
-        }
+        register_built_in_kinds(&mut KindRegistrar(app));
         load_shaders(app);
         add_rendering(app);
     }
@@ -104,6 +89,23 @@ fn add_resources(app: &mut App) {
         .add_message::<InvalidInput>();
 }
 
+/// Registers each built-in kind of light as every kind is registered
+/// ([`add_light_kind`]), with its reflection; an area kind's reference-model light is
+/// collected as an extension kind's.
+struct KindRegistrar<'a>(&'a mut App);
+
+impl BuiltInRegistrar for KindRegistrar<'_> {
+    fn kind<L: PhongLightKind + GetTypeRegistration>(&mut self) {
+        add_light_kind::<L>(self.0);
+        self.0.register_type::<L>();
+    }
+
+    fn area_kind<L: PhongLightKind>(&mut self) {
+        #[cfg(feature = "reference")]
+        crate::extension::reference_lights::add_reference_kind::<L>(self.0.world_mut());
+    }
+}
+
 /// The reflection of the light components, the culling and the material.
 fn register_types(app: &mut App) {
     app.register_type::<PhongAmbientLight>()
@@ -111,11 +113,6 @@ fn register_types(app: &mut App) {
         .register_type::<PhongLightCookie>()
         .register_type::<PhongLightCulling>()
         .register_type::<PhongViewClusters>()
-        .register_type::<PhongDirectionalLight>()
-        .register_type::<PhongPointLight>()
-        .register_type::<PhongSpotLight>()
-        .register_type::<PhongRectLight>()
-        .register_type::<PhongDiskLight>()
         .register_type::<AreaHighlight>()
         .register_type::<Decay>()
         .register_type::<PhongShadows>()

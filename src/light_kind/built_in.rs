@@ -1,125 +1,21 @@
 //! What the built-in kinds of light share: each one's record is its placement-free
 //! constants, then its placement by the transform ([`built_in_record`]); the kinds that fade
 //! with distance share their reach ([`fading_reach_kind`]). Each kind's own part is in its
-//! folder (`directional`, `point`, `spot`, `rect`, `disk`). The built-in kinds share the scene's light
+//! folder, and their list in `built_in_kinds`. The built-in kinds share the scene's light
 //! buffer (gathered by `render::gather_lights` through these methods, their constants
 //! cached), where an extension's kind gets a buffer of its own
 //! ([`PhongLightKindPlugin`](crate::extension::PhongLightKindPlugin)).
 
-use super::{
-    GpuAreaLight, GpuLight, PhongDirectionalLight, PhongDiskLight, PhongLightKind, PhongPointLight,
-    PhongRectLight, PhongSpotLight, RecordCache,
-};
-use crate::lights::{
-    LightChanges, LightQuery, TrackedLightQuery, influence_radius, light_direction,
-};
+use super::GpuLight;
+use crate::lights::{influence_radius, light_direction};
 use bevy::{
-    color::Color, ecs::system::SystemParam, math::Vec3, shape::BoundingSphere,
-    transform::components::GlobalTransform,
+    color::Color, math::Vec3, shape::BoundingSphere, transform::components::GlobalTransform,
 };
-use core::any::TypeId;
-
-/// The built-in kinds' lights as the scene's light buffer holds them: the lights that reach
-/// everywhere (directional), then each kind of local light (point, spot), then each kind of
-/// area light (rect, disk), whose records the gather keeps in a [`RecordCache`] while its
-/// component is unchanged. The one list of the
-/// built-in kinds that the gather reads: a new built-in kind adds its query, its changes and
-/// (a local kind) its cache here, and its registration in `PhongPlugin`.
-#[derive(SystemParam)]
-pub struct BuiltInLights<'w, 's> {
-    directional: LightQuery<'w, 's, PhongDirectionalLight>,
-    point: TrackedLightQuery<'w, 's, PhongPointLight>,
-    spot: TrackedLightQuery<'w, 's, PhongSpotLight>,
-    rect: TrackedLightQuery<'w, 's, PhongRectLight>,
-    disk: TrackedLightQuery<'w, 's, PhongDiskLight>,
-    directional_changes: LightChanges<'w, 's, PhongDirectionalLight>,
-    point_changes: LightChanges<'w, 's, PhongPointLight>,
-    spot_changes: LightChanges<'w, 's, PhongSpotLight>,
-    rect_changes: LightChanges<'w, 's, PhongRectLight>,
-    disk_changes: LightChanges<'w, 's, PhongDiskLight>,
-}
-
-/// The record caches of the built-in local and area kinds (see [`BuiltInLights`]).
-#[derive(Debug, Default)]
-pub(crate) struct BuiltInCaches {
-    point: RecordCache<PhongPointLight>,
-    spot: RecordCache<PhongSpotLight>,
-    rect: RecordCache<PhongRectLight>,
-    disk: RecordCache<PhongDiskLight>,
-}
-
-/// What a gather does with the lights of each built-in kind ([`BuiltInLights`]).
-pub(crate) trait BuiltInVisitor {
-    /// The lights of a kind that reaches everywhere.
-    fn everywhere<L: PhongLightKind<Gpu = GpuLight>>(&mut self, lights: &LightQuery<L>);
-
-    /// The lights of a local kind, with its cache.
-    fn local<L: PhongLightKind<Gpu = GpuLight> + Clone + PartialEq>(
-        &mut self,
-        lights: &TrackedLightQuery<L>,
-        cache: &mut RecordCache<L>,
-    );
-
-    /// The lights of an area kind, with its cache.
-    fn area<L: PhongLightKind<Gpu = GpuAreaLight> + Clone + PartialEq>(
-        &mut self,
-        lights: &TrackedLightQuery<L>,
-        cache: &mut RecordCache<L>,
-    );
-}
-
-impl BuiltInLights<'_, '_> {
-    /// Whether a light of any built-in kind was added, changed, moved, shown, hidden or
-    /// removed since the last run. Every kind's detector is read: each drains its removals.
-    pub(crate) fn changed(&mut self) -> bool {
-        let changes = [
-            self.directional_changes.any(),
-            self.point_changes.any(),
-            self.spot_changes.any(),
-            self.rect_changes.any(),
-            self.disk_changes.any(),
-        ];
-        changes.contains(&true)
-    }
-
-    /// Hands `visitor` the lights of each kind that reaches everywhere.
-    pub(crate) fn visit_everywhere(&self, visitor: &mut impl BuiltInVisitor) {
-        visitor.everywhere(&self.directional);
-    }
-
-    /// Hands `visitor` the lights of each local kind, in the buffer's order, with its cache.
-    pub(crate) fn visit_local(
-        &self,
-        caches: &mut BuiltInCaches,
-        visitor: &mut impl BuiltInVisitor,
-    ) {
-        visitor.local(&self.point, &mut caches.point);
-        visitor.local(&self.spot, &mut caches.spot);
-    }
-
-    /// Hands `visitor` the lights of each area kind, in the buffer's order, with its cache.
-    pub(crate) fn visit_area(&self, caches: &mut BuiltInCaches, visitor: &mut impl BuiltInVisitor) {
-        visitor.area(&self.rect, &mut caches.rect);
-        visitor.area(&self.disk, &mut caches.disk);
-    }
-}
 
 /// The bounding sphere of a local light's record that reaches `reach` (short of
 /// `f32::MAX`, which is unlimited): around its position. Every built-in local kind's.
 pub(crate) fn local_sphere(record: &GpuLight, reach: f32) -> Option<BoundingSphere> {
     (reach < f32::MAX).then(|| BoundingSphere::new(Vec3::from(record.position), reach))
-}
-
-/// Whether `L` is one of the built-in kinds, which `PhongPlugin` gathers itself.
-pub(crate) fn is_built_in<L: PhongLightKind>() -> bool {
-    [
-        TypeId::of::<PhongDirectionalLight>(),
-        TypeId::of::<PhongPointLight>(),
-        TypeId::of::<PhongSpotLight>(),
-        TypeId::of::<PhongRectLight>(),
-        TypeId::of::<PhongDiskLight>(),
-    ]
-    .contains(&TypeId::of::<L>())
 }
 
 /// A color's linear RGB components (alpha dropped).

@@ -2,6 +2,7 @@
 //! `bevy_phong::shaders::types`): as long as a [`GpuLight`](super::GpuLight), after the
 //! local lights (see [`GpuLightsHeader`](crate::render::GpuLightsHeader)).
 
+use super::GpuLight;
 use super::built_in::{brightest_channel, intensities, stored_range, unlimited_past_max};
 use crate::lights::{AreaHighlight, Decay, PhongShadows};
 use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
@@ -44,6 +45,17 @@ pub struct GpuAreaLight {
 }
 
 impl GpuAreaLight {
+    /// The area lights of a run of the light buffer's records (its area sections, which
+    /// hold them in [`GpuLight`]s' places): the typed view of them.
+    pub(crate) fn in_records(records: &[GpuLight]) -> &[Self] {
+        bytemuck::cast_slice(records)
+    }
+
+    /// The area light of one record of an area section ([`Self::in_records`]).
+    pub(crate) fn in_record(record: &GpuLight) -> &Self {
+        bytemuck::cast_ref(record)
+    }
+
     /// The light emits from both faces.
     pub const TWO_SIDED: u32 = 1 << 16;
     /// Its highlight is taken at a representative point
@@ -266,4 +278,4 @@ macro_rules! area_light_kind {
 }
 pub(crate) use area_light_kind;
 
-const _: () = assert!(size_of::<GpuAreaLight>() == size_of::<super::GpuLight>());
+const _: () = assert!(size_of::<GpuAreaLight>() == size_of::<GpuLight>());

@@ -11,6 +11,7 @@ use super::{
     gather::PhongLightBuffer,
 };
 use crate::culling::PhongViewClusters;
+use crate::light_kind::GpuAreaLight;
 use crate::storage_buffer::{LightBuffer, LightBufferResized};
 use crate::view_key::view_key;
 use bevy::{
@@ -259,7 +260,7 @@ impl PhongLightClusters {
         );
         self.area_spheres.clear();
         self.area_spheres.extend(
-            lights.records()[area.clone()]
+            GpuAreaLight::in_records(&lights.records()[area.clone()])
                 .iter()
                 .map(area_light_sphere_bits),
         );

@@ -22,7 +22,7 @@
 //! the two built-in slots a record is `[s_0, s_1, s_2, 0]`: one 16-byte texel.
 
 use super::gpu_types::GpuClustersHeader;
-use crate::light_kind::GpuLight;
+use crate::light_kind::{GpuAreaLight, GpuLight};
 use bevy::math::{DMat4, DVec3, DVec4, Mat4, UVec2, Vec3};
 use sphere_tree::{LightAt, SphereTree};
 use std::ops::{Range, RangeInclusive};
@@ -377,11 +377,9 @@ pub fn light_sphere_bits(light: &GpuLight) -> [u32; 4] {
     sphere_bits(Vec3::from(light.position), light.range)
 }
 
-/// A built-in area light's sphere of reach (its record in a [`GpuLight`]'s place, its reach
-/// in `range`), as bits: `range` out from its shape
-/// ([`GpuAreaLight::bounding_sphere`](crate::light_kind::GpuAreaLight)).
-pub fn area_light_sphere_bits(light: &GpuLight) -> [u32; 4] {
-    let area: crate::light_kind::GpuAreaLight = bytemuck::cast(*light);
+/// A built-in area light's sphere of reach (its reach in `range`), as bits: `range` out from
+/// its shape ([`GpuAreaLight::bounding_sphere`]).
+pub fn area_light_sphere_bits(area: &GpuAreaLight) -> [u32; 4] {
     area.bounding_sphere(area.range).map_or_else(
         || sphere_bits(Vec3::from(area.center), f32::MAX),
         |sphere| sphere_bits(sphere.center.into(), sphere.radius()),

@@ -98,11 +98,9 @@ impl SharedEpsilonLights {
     }
 }
 
-/// Whether one of the area lights' `records` has `flag` (a [`GpuAreaLight`] flag).
-fn any_flagged(records: &[GpuLight], flag: u32) -> bool {
-    records
-        .iter()
-        .any(|record| bytemuck::cast::<GpuLight, GpuAreaLight>(*record).flags & flag != 0)
+/// Whether one of `area_lights` has `flag` (a [`GpuAreaLight`] flag).
+fn any_flagged(area_lights: &[GpuAreaLight], flag: u32) -> bool {
+    area_lights.iter().any(|light| light.flags & flag != 0)
 }
 
 impl PhongLightBuffer {
@@ -317,8 +315,8 @@ fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
 /// Whether an area light's record, as [`push_cached`] wrote it in a [`GpuLight`]'s place
 /// (its reach in `range`), goes into the clusters (as [`has_sphere`] found: the built-in area
 /// kinds share their sphere, [`GpuAreaLight::bounding_sphere`]).
-fn clustered_area(culling: &PhongLightCulling, light: &GpuLight) -> bool {
-    let area: GpuAreaLight = bytemuck::cast(*light);
+fn clustered_area(culling: &PhongLightCulling, record: &GpuLight) -> bool {
+    let area = GpuAreaLight::in_record(record);
     in_clusters(culling.clusters, area.range, || {
         area.bounding_sphere(area.range)
     })
@@ -446,7 +444,7 @@ pub fn gather_lights(
     if writes.variants.area_lights != area_lights {
         writes.variants.area_lights = area_lights;
     }
-    let area_records = &state.records[area_records];
+    let area_records = GpuAreaLight::in_records(&state.records[area_records]);
     let disk_lights = any_flagged(area_records, GpuAreaLight::DISK);
     if writes.variants.disk_lights != disk_lights {
         writes.variants.disk_lights = disk_lights;

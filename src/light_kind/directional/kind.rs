@@ -41,6 +41,10 @@ impl PhongDirectionalLight {
 /// The directional light as a kind: its record, its validation and its shadow (cascades per
 /// camera along its rays). It reaches everywhere and is never clustered.
 impl PhongLightKind for PhongDirectionalLight {
+    // Written by `built_in_record!` (built_in.rs), as for every built-in kind of `GpuLight`:
+    // `type Gpu = GpuLight`, `to_gpu` (`constants`, placed by `place` as `Self::PLACED`
+    // says), `casts_shadows`, `set_shadow`, `cookie_projection` (`cookie_mapping`),
+    // `set_cookie` and `reference_light` (`Self::REFERENCE`).
     built_in_record!();
 
     fn validate(&mut self, checker: &mut Checker) {

@@ -46,7 +46,15 @@ impl PhongPointLight {
 
 /// The point light as a kind: its record, reach, validation and shadow (a cube map).
 impl PhongLightKind for PhongPointLight {
+    // Written by `built_in_record!` (built_in.rs), as for every built-in kind of `GpuLight`:
+    // `type Gpu = GpuLight`, `to_gpu` (`constants`, placed by `place` as `Self::PLACED`
+    // says), `casts_shadows`, `set_shadow`, `cookie_projection` (`cookie_mapping`),
+    // `set_cookie` and `reference_light` (`Self::REFERENCE`).
     built_in_record!();
+    // Written by `fading_reach_kind!` (built_in.rs), as for the spot and point lights:
+    // `SHARES_EPSILON = true`, `reach` (`built_in::fading_reach`: its range, shortened to its
+    // influence radius for ε), `set_reach` (into `range`) and `bounding_sphere` (around its
+    // position).
     fading_reach_kind!();
 
     fn validate(&mut self, checker: &mut Checker) {

@@ -39,6 +39,12 @@ impl PhongRectLight {
 /// The rectangle light as a kind: its record (placed by its transform's translation and
 /// rotation; scale ignored), reach (sharing ε with the point and spot lights) and bounds.
 impl PhongLightKind for PhongRectLight {
+    // Written by `area_light_kind!` (gpu_area_light.rs), as for every area kind: `type Gpu =
+    // GpuAreaLight`, `SHARES_EPSILON = true`, `to_gpu` (`unplaced_record` above, placed by
+    // `place`: the transform's translation and rotation), `reach` and `set_reach`
+    // (`GpuAreaLight::reach`, into `range`), `bounding_sphere` (around its shape),
+    // `casts_shadows`, `shadow` and `set_shadow` (`GpuAreaLight::shadow_request`) and
+    // `reference_light` (`Self::REFERENCE`).
     area_light_kind!();
 
     fn validate(&mut self, checker: &mut Checker) {
