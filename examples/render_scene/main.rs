@@ -7,13 +7,15 @@
 //!   normal (not normalized) it was lit with; alpha is the object's material number (0 for
 //!   background, where RGB is 0 too).
 //!
-//! It also prints the largest difference from `bevy_phong::reference` on those inputs, every
-//! material feature and light applied (`Harness::compare_with_reference`; for a scene without
-//! shadows: the reference is not given the visibility of a scene file's lights), and how many
-//! pixels it could not judge (texel edges, maps sampled with filtering, environment maps).
-//!
-//! With `--check` it fails where that difference exceeds the render tests' tolerance
-//! (`bevy_phong_headless::TOLERANCE`, 4e-4), or where no pixel could be judged.
+//! It writes them as soon as the frame is read back. With `--compare` it then prints the
+//! largest difference from `bevy_phong::reference` on those inputs, every material feature
+//! and light applied (`Harness::compare_with_reference`, on every core, with a progress line;
+//! for a scene without shadows: the reference is not given the visibility of a scene file's
+//! lights), and how many pixels it could not judge (texel edges, maps sampled with filtering,
+//! environment maps). With `--check` it also fails where that difference exceeds the render
+//! tests' tolerance (`bevy_phong_headless::TOLERANCE`, 4e-4), or where no pixel could be
+//! judged. The reference model's quadrature over an area light is costly: with area lights,
+//! `--profile game` (the crate optimized) makes the comparison several times quicker.
 //!
 //! `cargo run --example render_scene -- assets/scenes/shapes.phong_scene.ron --out DIR`;
 //! `--help` lists the options.
@@ -21,7 +23,7 @@
 mod output;
 
 use bevy_phong::prelude::*;
-use bevy_phong_headless::{Harness, TOLERANCE};
+use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs, TOLERANCE};
 use std::{path::PathBuf, process::ExitCode};
 
 const HELP: &str = "\
@@ -37,9 +39,12 @@ OPTIONS:
     --out DIR          where to write color.png, color.exr, position.exr, normal.exr
                        [default: target/render_scene]
     --size WxH         image size in pixels [default: 512x512]
-    --check            fail where a pixel differs from the reference model by more than
-                       the render tests' tolerance (4e-4 of max(1, |expected|)), or where
-                       no pixel is judged; not for a scene that casts shadows
+    --compare          after writing the files, compare each pixel with the reference
+                       model and print the largest difference (on every core, with a
+                       progress line); not for a scene that casts shadows
+    --check            --compare, and fail where a pixel differs by more than the render
+                       tests' tolerance (4e-4 of max(1, |expected|)), or where no pixel
+                       is judged
     --assets DIR       the asset folder: files the scene names (material files, textures)
                        must be inside it [default: the nearest folder named `assets`
                        that holds the scene file, else the scene file's folder]
@@ -55,6 +60,7 @@ struct Options {
     width: u32,
     height: u32,
     assets: Option<PathBuf>,
+    compare: bool,
     check: bool,
 }
 
@@ -64,13 +70,15 @@ fn parse_options() -> Result<Option<Options>, String> {
     let mut out = PathBuf::from("target/render_scene");
     let (mut width, mut height) = (512, 512);
     let mut assets = None;
+    let mut compare = false;
     let mut check = false;
     while let Some(arg) = args.next() {
         let mut value = |name: &str| args.next().ok_or(format!("{name} needs a value"));
         match arg.as_str() {
             "-h" | "--help" => return Ok(None),
             "--out" => out = value("--out")?.into(),
-            "--check" => check = true,
+            "--compare" => compare = true,
+            "--check" => (compare, check) = (true, true),
             "--assets" => assets = Some(value("--assets")?.into()),
             "--size" => {
                 let size = value("--size")?;
@@ -95,6 +103,7 @@ fn parse_options() -> Result<Option<Options>, String> {
         width,
         height,
         assets,
+        compare,
         check,
     }))
 }
@@ -158,41 +167,60 @@ fn render(options: &Options) -> Result<(), String> {
     harness.settle();
     let rendered = harness.render_next_frame();
     let inputs = harness.capture_inputs();
-    if casts_shadows(&mut harness) {
-        // The reference model is given each light's visibility by the render tests, which
-        // know the scene's shapes; a scene file's are not modelled here.
-        println!("the scene casts shadows: no comparison with the reference model");
-        if options.check {
-            return Err("--check: the scene casts shadows, which the check cannot model".into());
-        }
-    } else {
-        let comparison = harness.compare_with_reference(&rendered);
-        println!(
-            "{} lit pixels, {} of them not judged; largest difference from the reference model \
-             {:.2e} (relative to max(1, |expected|))",
-            comparison.lit_pixels, comparison.skipped_pixels, comparison.max_error
-        );
-        if options.check && (comparison.lit_pixels == 0 || comparison.max_error > TOLERANCE) {
-            return Err(format!(
-                "--check: {} pixels judged, largest difference {:.2e} (tolerance {TOLERANCE:.0e})",
-                comparison.lit_pixels, comparison.max_error
-            ));
-        }
+    write_files(&options.out, &rendered, &inputs)?;
+    if options.compare {
+        compare(&mut harness, &rendered, options.check)?;
     }
-    std::fs::create_dir_all(&options.out)
-        .map_err(|error| format!("{}: {error}", options.out.display()))?;
+    Ok(())
+}
+
+/// Writes the frame and its inputs into `out`.
+fn write_files(
+    out: &std::path::Path,
+    rendered: &FloatImage,
+    inputs: &SurfaceInputs,
+) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|error| format!("{}: {error}", out.display()))?;
     for (name, image) in [
-        ("color.exr", &rendered),
+        ("color.exr", rendered),
         ("position.exr", &inputs.positions),
         ("normal.exr", &inputs.normals),
     ] {
-        output::write_exr(&options.out.join(name), image)?;
+        output::write_exr(&out.join(name), image)?;
     }
-    output::write_png(&options.out.join("color.png"), &rendered)?;
+    output::write_png(&out.join("color.png"), rendered)?;
     println!(
         "wrote color.png, color.exr, position.exr, normal.exr in {}",
-        options.out.display()
+        out.display()
     );
+    Ok(())
+}
+
+/// Compares `rendered` with the reference model and prints the largest difference; with
+/// `check`, fails past the render tests' tolerance.
+fn compare(harness: &mut Harness, rendered: &FloatImage, check: bool) -> Result<(), String> {
+    if casts_shadows(harness) {
+        // The reference model is given each light's visibility by the render tests, which
+        // know the scene's shapes; a scene file's are not modelled here.
+        println!("the scene casts shadows: no comparison with the reference model");
+        if check {
+            return Err("--check: the scene casts shadows, which the check cannot model".into());
+        }
+        return Ok(());
+    }
+    harness.show_progress();
+    let comparison = harness.compare_with_reference(rendered);
+    println!(
+        "{} lit pixels, {} of them not judged; largest difference from the reference model \
+         {:.2e} (relative to max(1, |expected|))",
+        comparison.lit_pixels, comparison.skipped_pixels, comparison.max_error
+    );
+    if check && (comparison.lit_pixels == 0 || comparison.max_error > TOLERANCE) {
+        return Err(format!(
+            "--check: {} pixels judged, largest difference {:.2e} (tolerance {TOLERANCE:.0e})",
+            comparison.lit_pixels, comparison.max_error
+        ));
+    }
     Ok(())
 }
 
@@ -211,5 +239,13 @@ fn casts_shadows(harness: &mut Harness) -> bool {
         .query::<&PhongSpotLight>()
         .iter(world)
         .any(|light| light.shadows.enabled);
-    directional || point || spot
+    let rect = world
+        .query::<&PhongRectLight>()
+        .iter(world)
+        .any(|light| light.shadows.enabled);
+    let disk = world
+        .query::<&PhongDiskLight>()
+        .iter(world)
+        .any(|light| light.shadows.enabled);
+    directional || point || spot || rect || disk
 }

@@ -27,9 +27,9 @@ use std::{
 };
 
 use crate::{
-    Comparison, Expected, FloatImage,
+    Comparison, Expected, FloatImage, Progress,
     app::{finish_frame_driven_app, headless_app_with_assets},
-    assert_no_failed_pipelines,
+    assert_no_failed_pipelines, parallel_map,
     pixel_model::{self, SrgbDecoding, near_a_cube_edge},
     read_back_frame, run_until_settled,
     see_through::{self, Behind, SeeThrough},
@@ -169,6 +169,9 @@ pub struct Harness {
     target: Handle<Image>,
     width: u32,
     height: u32,
+    /// Whether comparisons with the reference model show a progress line
+    /// ([`Self::show_progress`]).
+    show_progress: bool,
 }
 
 impl Harness {
@@ -275,7 +278,14 @@ impl Harness {
             target,
             width,
             height,
+            show_progress: false,
         }
+    }
+
+    /// Makes each comparison with the reference model show a progress line on standard
+    /// error ([`Progress`]): for tools, whose comparisons can take minutes.
+    pub fn show_progress(&mut self) {
+        self.show_progress = true;
     }
 
     /// The harness camera, to give it a game's components (`Hdr`, `Bloom`, `Msaa`,
@@ -672,17 +682,29 @@ impl Harness {
                 _ => Expected::Unjudged,
             }
         };
-        compare_covered(rendered, inputs, camera, |index, _, _| match behind {
-            Some(behind) => see_through::expected_through(
-                index,
-                inputs,
-                behind,
-                materials,
-                &images,
-                &expected_on,
-            ),
-            None => expected_on(inputs, index),
-        })
+        let mut progress = self.show_progress.then(|| {
+            Progress::new(
+                "pixels compared with the reference model",
+                rendered.pixels.len(),
+            )
+        });
+        compare_covered_in_parallel(
+            rendered,
+            inputs,
+            camera,
+            |index, _, _| match behind {
+                Some(behind) => see_through::expected_through(
+                    index,
+                    inputs,
+                    behind,
+                    materials,
+                    &images,
+                    &expected_on,
+                ),
+                None => expected_on(inputs, index),
+            },
+            progress.as_mut(),
+        )
     }
 
     /// The triangles of every mesh drawn with a [`PhongMaterial`] lit per vertex, each corner
@@ -864,13 +886,54 @@ fn compare_covered<M: Material>(
     camera: DVec3,
     expected: impl Fn(usize, &Handle<M>, &SurfacePoint) -> Expected,
 ) -> Comparison {
+    let expectations = (0..rendered.pixels.len())
+        .map(|index| expected_at(inputs, camera, &expected, index))
+        .collect();
+    record_expectations(rendered, inputs, expectations)
+}
+
+/// [`compare_covered`], the pixels' expected colors computed on every core
+/// ([`parallel_map`]), with a progress line where `progress` is given.
+fn compare_covered_in_parallel<M: Material>(
+    rendered: &FloatImage,
+    inputs: &SurfaceInputs<M>,
+    camera: DVec3,
+    expected: impl Fn(usize, &Handle<M>, &SurfacePoint) -> Expected + Sync,
+    progress: Option<&mut Progress>,
+) -> Comparison {
+    let expectations = parallel_map(
+        rendered.pixels.len(),
+        |index| expected_at(inputs, camera, &expected, index),
+        progress,
+    );
+    record_expectations(rendered, inputs, expectations)
+}
+
+/// What pixel `index` should show: `expected` of the surface a mesh of `M` shows there, or
+/// `None` (the clear color) where none does.
+fn expected_at<M: Material>(
+    inputs: &SurfaceInputs<M>,
+    camera: DVec3,
+    expected: &impl Fn(usize, &Handle<M>, &SurfacePoint) -> Expected,
+    index: usize,
+) -> Option<Expected> {
+    inputs
+        .surface_at(index, camera)
+        .map(|(material, surface)| expected(index, material, &surface))
+}
+
+/// Records each pixel of `rendered` against what it should show (`None`: the clear color).
+fn record_expectations<M: Material>(
+    rendered: &FloatImage,
+    inputs: &SurfaceInputs<M>,
+    expectations: Vec<Option<Expected>>,
+) -> Comparison {
     let mut comparison = Comparison::new(rendered.width, rendered.height);
-    for (index, color) in rendered.pixels.iter().enumerate() {
-        let Some((material, surface)) = inputs.surface_at(index, camera) else {
+    for (index, (color, expected)) in rendered.pixels.iter().zip(expectations).enumerate() {
+        let Some(expected) = expected else {
             comparison.record_background(index, *color);
             continue;
         };
-        let expected = expected(index, material, &surface);
         let object = inputs.positions.pixels[index][3] as u32;
         comparison.count_object_pixel(object, expected != Expected::Unjudged);
         comparison.record_expected(index, *color, expected);

@@ -34,6 +34,7 @@ mod comparison;
 mod float_image;
 #[cfg(not(target_arch = "wasm32"))]
 mod harness;
+mod parallel;
 mod pipelines;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod pixel_model;
@@ -55,6 +56,7 @@ pub use float_image::{FloatImage, save_srgb_png};
 pub use harness::{
     CAMERA_POSITION, Harness, HarnessCamera, ReferenceScene, SurfaceInputs, update_in_lockstep,
 };
+pub use parallel::{Progress, parallel_map};
 pub use pipelines::{
     assert_no_failed_pipelines, failed_pipelines, pipelines_compiling, run_until_settled,
 };
