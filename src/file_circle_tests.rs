@@ -10,12 +10,11 @@
 //! use what it holds.
 
 use super::layering_tests::{
-    Root, Scanned, Token, children_folder, closing_brace, lib_source, module_file, read_lib, reads,
-    scan, src,
+    Root, Scanned, Token, closing_brace, lib_source, next_entry, read_lib, reads, scan, scan_file,
+    src,
 };
 use std::{
     collections::{BTreeMap, BTreeSet},
-    fs,
     path::PathBuf,
 };
 
@@ -27,16 +26,11 @@ fn crate_files() -> BTreeMap<ModulePath, (PathBuf, Scanned)> {
     let mut files = BTreeMap::new();
     let mut pending = vec![(ModulePath::new(), src().join("lib.rs"))];
     while let Some((path, file)) = pending.pop() {
-        let source = fs::read_to_string(&file)
-            .unwrap_or_else(|error| panic!("cannot read {}: {error}", file.display()));
-        let scanned = scan(&source);
-        let folder = children_folder(&file);
-        for (child, test) in &scanned.children {
-            if !test {
-                let mut child_path = path.clone();
-                child_path.push(child.clone());
-                pending.push((child_path, module_file(&folder, child)));
-            }
+        let (scanned, children) = scan_file(&file);
+        for (child, child_file) in children {
+            let mut child_path = path.clone();
+            child_path.push(child);
+            pending.push((child_path, child_file));
         }
         files.insert(path, (file, scanned));
     }
@@ -55,17 +49,7 @@ fn paths_from(tokens: &[Token], k: usize, prefix: &[String], out: &mut Vec<Modul
         let mut entry = k + 1;
         while entry < close {
             paths_from(tokens, entry, prefix, out);
-            let mut depth = 0;
-            while entry < close {
-                match tokens[entry].text.as_str() {
-                    "{" => depth += 1,
-                    "}" => depth -= 1,
-                    "," if depth == 0 => break,
-                    _ => {}
-                }
-                entry += 1;
-            }
-            entry += 1;
+            entry = next_entry(tokens, entry, close);
         }
         return;
     }

@@ -203,6 +203,22 @@ pub(super) fn reads(tokens: &[Token], i: usize, texts: &[&str]) -> bool {
             .all(|(k, text)| tokens[i + k].text == *text)
 }
 
+/// Where the entry of a `{…}` group (closed at `close`) after the one at `entry` starts: past
+/// its comma, or at `close`.
+pub(super) fn next_entry(tokens: &[Token], mut entry: usize, close: usize) -> usize {
+    let mut depth = 0;
+    while entry < close {
+        match tokens[entry].text.as_str() {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            "," if depth == 0 => break,
+            _ => {}
+        }
+        entry += 1;
+    }
+    entry + 1
+}
+
 /// The index of the `}` that closes the `{` at `open`.
 pub(super) fn closing_brace(tokens: &[Token], open: usize) -> usize {
     let mut depth = 0;
@@ -307,18 +323,7 @@ impl Root {
                     if tokens[entry].text != "self" {
                         self.resolve(tokens, entry, out);
                     }
-                    // On to the next entry of this group.
-                    let mut depth = 0;
-                    while entry < close {
-                        match tokens[entry].text.as_str() {
-                            "{" => depth += 1,
-                            "}" => depth -= 1,
-                            "," if depth == 0 => break,
-                            _ => {}
-                        }
-                        entry += 1;
-                    }
-                    entry += 1;
+                    entry = next_entry(tokens, entry, close);
                 }
             }
             "prelude" if reads(tokens, k + 1, &[":", ":"]) => self.resolve(tokens, k + 3, out),
@@ -415,18 +420,26 @@ fn module_files(src: &Path, module: &str) -> Vec<(PathBuf, Scanned)> {
     let mut files = Vec::new();
     let mut pending = vec![module_file(src, module)];
     while let Some(file) = pending.pop() {
-        let source = fs::read_to_string(&file)
-            .unwrap_or_else(|error| panic!("cannot read {}: {error}", file.display()));
-        let scanned = scan(&source);
-        let folder = children_folder(&file);
-        for (child, test) in &scanned.children {
-            if !test {
-                pending.push(module_file(&folder, child));
-            }
-        }
+        let (scanned, children) = scan_file(&file);
+        pending.extend(children.into_iter().map(|(_, child)| child));
         files.push((file, scanned));
     }
     files
+}
+
+/// `file`'s scan, and each of its child modules that is not test code: its name and file.
+pub(super) fn scan_file(file: &Path) -> (Scanned, Vec<(String, PathBuf)>) {
+    let source = fs::read_to_string(file)
+        .unwrap_or_else(|error| panic!("cannot read {}: {error}", file.display()));
+    let scanned = scan(&source);
+    let folder = children_folder(file);
+    let children = scanned
+        .children
+        .iter()
+        .filter(|(_, test)| !test)
+        .map(|(child, _)| (child.clone(), module_file(&folder, child)))
+        .collect();
+    (scanned, children)
 }
 
 /// The message for a use of `target` by `module` in `file` at `line`, if it breaks the

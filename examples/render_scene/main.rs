@@ -22,7 +22,8 @@
 
 mod output;
 
-use bevy_phong::prelude::*;
+use bevy::prelude::World;
+use bevy_phong::{extension::PhongLightKind, prelude::*};
 use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs, TOLERANCE};
 use std::{path::PathBuf, process::ExitCode};
 
@@ -227,25 +228,14 @@ fn compare(harness: &mut Harness, rendered: &FloatImage, check: bool) -> Result<
 /// Whether any light of the loaded scene casts shadows.
 fn casts_shadows(harness: &mut Harness) -> bool {
     let world = harness.world_mut();
-    let directional = world
-        .query::<&PhongDirectionalLight>()
-        .iter(world)
-        .any(|light| light.shadows.enabled);
-    let point = world
-        .query::<&PhongPointLight>()
-        .iter(world)
-        .any(|light| light.shadows.enabled);
-    let spot = world
-        .query::<&PhongSpotLight>()
-        .iter(world)
-        .any(|light| light.shadows.enabled);
-    let rect = world
-        .query::<&PhongRectLight>()
-        .iter(world)
-        .any(|light| light.shadows.enabled);
-    let disk = world
-        .query::<&PhongDiskLight>()
-        .iter(world)
-        .any(|light| light.shadows.enabled);
-    directional || point || spot || rect || disk
+    kind_casts_shadows::<PhongDirectionalLight>(world)
+        || kind_casts_shadows::<PhongPointLight>(world)
+        || kind_casts_shadows::<PhongSpotLight>(world)
+        || kind_casts_shadows::<PhongRectLight>(world)
+        || kind_casts_shadows::<PhongDiskLight>(world)
+}
+
+/// Whether any light of kind `L` in `world` casts shadows.
+fn kind_casts_shadows<L: PhongLightKind>(world: &mut World) -> bool {
+    world.query::<&L>().iter(world).any(L::casts_shadows)
 }
