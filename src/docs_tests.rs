@@ -135,7 +135,9 @@ fn every_built_in_light_kind_is_named_by_the_trait_docs_and_the_lights_page() {
 /// The `.rs` files under `folder`, recursively.
 fn rust_files(folder: &Path) -> Vec<std::path::PathBuf> {
     let mut files = Vec::new();
-    for entry in fs::read_dir(folder).expect("src is readable").flatten() {
+    let entries =
+        fs::read_dir(folder).unwrap_or_else(|error| panic!("{}: {error}", folder.display()));
+    for entry in entries.flatten() {
         let path = entry.path();
         if path.is_dir() {
             files.extend(rust_files(&path));

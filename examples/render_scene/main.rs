@@ -14,8 +14,8 @@
 //! lights), and how many pixels it could not judge (texel edges, maps sampled with filtering,
 //! environment maps). With `--check` it also fails where that difference exceeds the render
 //! tests' tolerance (`bevy_phong_headless::TOLERANCE`, 4e-4), or where no pixel could be
-//! judged. The reference model's quadrature over an area light is costly: with area lights,
-//! `--profile game` (the crate optimized) makes the comparison several times quicker.
+//! judged. The reference model's quadrature over an area light is costly: a scene of area
+//! lights takes minutes to compare (docs/scene-files.md).
 //!
 //! `cargo run --example render_scene -- assets/scenes/shapes.phong_scene.ron --out DIR`;
 //! `--help` lists the options.

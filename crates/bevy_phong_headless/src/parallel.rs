@@ -25,11 +25,11 @@ pub fn parallel_map<T: Send>(
     each: impl Fn(usize) -> T + Sync,
     mut progress: Option<&mut Progress>,
 ) -> Vec<T> {
+    let batch_count = count.div_ceil(BATCH);
     let threads = std::thread::available_parallelism()
         .map_or(1, NonZero::get)
-        .min(count.div_ceil(BATCH))
+        .min(batch_count)
         .max(1);
-    let batch_count = count.div_ceil(BATCH);
     let stride = coprime_stride(batch_count);
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
@@ -99,8 +99,9 @@ pub struct Progress {
     total: usize,
     started: Instant,
     terminal: bool,
-    /// The last tenth of the work reported (logs), or the last time the line was drawn.
+    /// The last tenth of the work reported (logs).
     last_tenth: usize,
+    /// When the line was last drawn (a terminal).
     last_drawn: Option<Instant>,
 }
 
