@@ -219,6 +219,8 @@ pub fn visible_area_light_contribution(
         )
     };
     let lines = [line(normal), line(mirror)];
+    // The surface point's foot on the light's plane: where `1 / r²` peaks.
+    let near = (-offset.dot(light.right), -offset.dot(light.up));
     let pieces = match light.shape {
         AreaShape::Rect { width, height } => {
             let (x, y) = (0.5 * width, 0.5 * height);
@@ -235,12 +237,13 @@ pub fn visible_area_light_contribution(
                     integrate_polygon(
                         &mut |x, y| element(x, y),
                         piece,
+                        near,
                         tolerance / pieces.len() as f64,
                     )
                 })
                 .fold(DVec3::ZERO, |sum, part| sum + part),
             AreaShape::Disk { radius } => {
-                integrate_disk(&mut |x, y| element(x, y), radius, &lines, tolerance)
+                integrate_disk(&mut |x, y| element(x, y), radius, near, &lines, tolerance)
             }
         }
     };
