@@ -119,6 +119,11 @@ const STAGES: [Stage; 10] = [
     },
 ];
 
+/// How many measurements [`table`] makes.
+pub fn measurements(rounds: usize) -> usize {
+    STAGES.len() * rounds
+}
+
 /// The ablation table of the showcase at `size`²: the rows take turns over `rounds` rounds
 /// and each gives the median of its rounds (ms), with its ratio to the floor, its cost over
 /// the row it builds on, and how many pixels its picture changes from that row's (a cut
@@ -143,7 +148,7 @@ pub fn table(
             pictures[row] = picture;
         }
         let _ = writeln!(csv, "{size},\"{}\",{round},{median:.3}", stage.name);
-        eprintln!(
+        crate::measured!(
             "{} {size}² {}, round {round}: {median:.1} ms",
             scene.name(),
             stage.name

@@ -174,9 +174,16 @@ fn spawn_lights(world: &mut World, shading: Shading) {
     }
 }
 
-/// The table: each grid with Phong, `StandardMaterial` and the constant floor, one after
-/// the other in this run, at `size`² (64 by default), each the median of `frames`.
-pub fn table(size: u32, counts: &[usize], frames: Frames, directory: &Path) {
+/// The shadings of each grid's row.
+const SHADINGS: [(&str, Shading); 3] = [
+    ("Phong", Shading::Phong(Some(SpecularModel::Phong))),
+    ("Standard", Shading::Standard),
+    ("constant", Shading::Constant),
+];
+
+/// The grids of `counts`: each with a material per cube and with one shared material; the
+/// largest (from 1,000 cubes) also with meshes of ten kinds.
+fn grids(counts: &[usize]) -> Vec<Cubes> {
     let mut grids = Vec::new();
     for &count in counts {
         grids.push(Cubes {
@@ -198,24 +205,42 @@ pub fn table(size: u32, counts: &[usize], frames: Frames, directory: &Path) {
             kinds: 10,
         });
     }
-    let shadings = [
-        ("Phong", Shading::Phong(Some(SpecularModel::Phong))),
-        ("Standard", Shading::Standard),
-        ("constant", Shading::Constant),
-    ];
+    grids
+}
+
+/// Whether `grid` is measured with `shading`. Materials that each take a batch of their own
+/// cost a frame more than linearly in their number (1,600 of them took 0.8–1 s a frame on
+/// lavapipe): past 2,000, only the Phong column is measured for them.
+fn measured(grid: Cubes, shading: Shading) -> bool {
+    let batched = grid.shared || matches!(shading, Shading::Phong(_));
+    grid.count <= 2_000 || batched
+}
+
+/// How many measurements [`table`] makes.
+pub fn measurements(counts: &[usize]) -> usize {
+    grids(counts)
+        .into_iter()
+        .map(|grid| {
+            SHADINGS
+                .iter()
+                .filter(|&&(_, shading)| measured(grid, shading))
+                .count()
+        })
+        .sum()
+}
+
+/// The table: each grid with Phong, `StandardMaterial` and the constant floor, one after
+/// the other in this run, at `size`² (64 by default), each the median of `frames`.
+pub fn table(size: u32, counts: &[usize], frames: Frames, directory: &Path) {
     let mut csv = String::from("scene,size,shading,main_ms,render_ms,device_ms,frame_ms\n");
     let mut table = String::from(
         "| scene | Phong ms (main / render / device) | Standard ms (main / render / device) | constant ms (main / render / device) | Phong / Standard |\n|---|---|---|---|---|\n",
     );
-    for grid in grids {
+    for grid in grids(counts) {
         let mut cells = Vec::new();
         let mut totals = Vec::new();
-        for (name, shading) in shadings {
-            // Materials that each take a batch of their own cost a frame more than linearly
-            // in their number (1,600 of them took 0.8–1 s a frame on lavapipe): past 2,000,
-            // only the Phong column is measured for them.
-            let batched = grid.shared || matches!(shading, Shading::Phong(_));
-            if grid.count > 2_000 && !batched {
+        for (name, shading) in SHADINGS {
+            if !measured(grid, shading) {
                 cells.push("not measured".to_owned());
                 totals.push(f64::NAN);
                 continue;
@@ -228,7 +253,7 @@ pub fn table(size: u32, counts: &[usize], frames: Frames, directory: &Path) {
                 frames,
             );
             let total = split.frame_ms();
-            eprintln!("{} {size}² {name}: {total:.1} ms", grid.name());
+            crate::measured!("{} {size}² {name}: {total:.1} ms", grid.name());
             let _ = writeln!(
                 csv,
                 "{},{size},{name},{:.3},{:.3},{:.3},{total:.3}",

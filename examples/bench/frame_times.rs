@@ -7,6 +7,14 @@ use crate::{Options, accuracy, plot, write};
 use bevy_phong::SpecularModel;
 use std::{fmt::Write as _, path::Path};
 
+/// The shadings of each row: Phong, Standard and the constant-color floor.
+const SHADINGS: usize = 3;
+
+/// How many measurements [`table`] makes.
+pub fn measurements(options: &Options) -> usize {
+    options.sizes.len() * options.scenes.len() * SHADINGS
+}
+
 /// Phong beside Standard and the constant-color floor, each scene at each size.
 pub fn table(options: &Options, directory: &Path) {
     let default_culling = options.culling;
@@ -16,7 +24,7 @@ pub fn table(options: &Options, directory: &Path) {
     let mut csv = String::from("scene,size,shading,median_ms,main_ms,render_ms,device_ms\n");
     let mut series: Vec<plot::Series> = Vec::new();
     for &size in &options.sizes {
-        let shadings = [
+        let shadings: [_; SHADINGS] = [
             ("Phong", Shading::Phong(Some(SpecularModel::Phong))),
             ("Standard", Shading::Standard),
             ("constant", Shading::Constant),
@@ -39,7 +47,7 @@ pub fn table(options: &Options, directory: &Path) {
                     split.render_ms,
                     split.device_ms
                 );
-                eprintln!("{} {size}² {name}: {median:.1} ms", scene.name());
+                crate::measured!("{} {size}² {name}: {median:.1} ms", scene.name());
                 split
             });
             let times = splits.map(|split| split.frame_ms());

@@ -117,6 +117,11 @@ const COLUMNS: [Column; 4] = [
     },
 ];
 
+/// How many measurements [`table`] makes.
+pub fn measurements(sweep: &Sweep) -> usize {
+    sweep.points().len() * COLUMNS.len()
+}
+
 /// Measures every point of `sweep` in every column (the columns take turns at each point),
 /// prints the table of frame times and the fit of each column, and writes `growth.csv`,
 /// `growth_lights.png` and `growth_size.png` into `directory`.
@@ -138,7 +143,7 @@ pub fn table(sweep: &Sweep, frames: Frames, culling: PhongLightCulling, director
                     frames,
                 ));
                 let _ = writeln!(csv, "{lights},{size},{},{median:.3}", column.name);
-                eprintln!("{} {size}² {}: {median:.1} ms", scene.name(), column.name);
+                crate::measured!("{} {size}² {}: {median:.1} ms", scene.name(), column.name);
                 median
             })
         })

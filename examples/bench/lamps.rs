@@ -203,6 +203,16 @@ pub const KINDS: [(bool, LampShadows); 5] = [
 /// The row `--quick` measures: cookies and shadows both.
 pub const QUICK_KINDS: [(bool, LampShadows); 1] = [(true, LampShadows::HalfNear)];
 
+/// The columns of each kind's row: Phong without far lamps, Phong with them, Standard with
+/// them.
+const COLUMNS: usize = 3;
+
+/// How many measurements [`table`] makes: Phong without far lamps, with them, and Standard
+/// with them, for each kind in each round.
+pub fn measurements(kinds: &[(bool, LampShadows)], rounds: usize) -> usize {
+    kinds.len() * COLUMNS * rounds
+}
+
 /// The lamps' table: each scene of `kinds` with [`FAR_LAMPS`] far lamps beside the same
 /// without them, Phong, and `StandardMaterial` beside it; the rows take turns over `rounds`
 /// rounds.
@@ -216,14 +226,14 @@ pub fn table(
 ) {
     let phong = Shading::Phong(Some(SpecularModel::Phong));
     // Per kind: Phong without far lamps, Phong with them, Standard with them.
-    let columns = [
+    let columns: [_; COLUMNS] = [
         (phong, 0),
         (phong, FAR_LAMPS),
         (Shading::Standard, FAR_LAMPS),
     ];
     let mut csv = String::from("scene,size,shading,round,median_ms\n");
-    let times = alternating_medians_of(kinds.len() * 3, rounds, |row, round| {
-        let ((cookies, shadows), (shading, far)) = (kinds[row / 3], columns[row % 3]);
+    let times = alternating_medians_of(kinds.len() * COLUMNS, rounds, |row, round| {
+        let ((cookies, shadows), (shading, far)) = (kinds[row / COLUMNS], columns[row % COLUMNS]);
         let lamps = Lamps {
             far,
             cookies,
@@ -246,7 +256,7 @@ pub fn table(
             "{},{size},{shading_name},{round},{median:.3}",
             lamps.name()
         );
-        eprintln!(
+        crate::measured!(
             "{} {size}² {shading_name}, round {round}: {median:.1} ms",
             lamps.name()
         );
@@ -255,7 +265,7 @@ pub fn table(
     let mut table = format!(
         "| lamps | Phong, no far lamps ms | Phong, + {FAR_LAMPS} far ms | far / no far | Standard, + {FAR_LAMPS} far ms (no cookies) |\n|---|---|---|---|---|\n"
     );
-    for ((cookies, shadows), row) in kinds.iter().zip(times.chunks(3)) {
+    for ((cookies, shadows), row) in kinds.iter().zip(times.chunks(COLUMNS)) {
         let name = Lamps {
             far: 0,
             cookies: *cookies,

@@ -54,6 +54,10 @@
 //! compiled and a few warm-up frames. Errors are the largest per-channel difference from
 //! `bevy_phong::reference` over a 128² render (relative to `max(1, |expected|)`), measured
 //! with the render tests' harness. It writes `target/bench/*.csv` and `target/bench/*.png`.
+//!
+//! Each measurement prints a line on standard error ending with how far the run is:
+//! `[12 of 79 measurements done, 67 left, about 3 min left]` (`progress.rs`). `--help`
+//! lists the options.
 
 mod ablation;
 mod accuracy;
@@ -64,15 +68,18 @@ mod growth;
 mod lamps;
 mod panels;
 mod plot;
+mod progress;
 mod scene;
+mod showcase_costs;
 mod timing;
 mod variants;
 
 use bevy::prelude::*;
 use bevy_phong::{PhongLightCulling, SpecularModel};
+use clap::{Parser, ValueEnum};
 use scene::{Scene, Shading};
 use std::{fmt::Write as _, path::Path, time::Duration};
-use timing::{Frames, median_frame_time, median_frame_time_and_picture};
+use timing::{Frames, median_frame_time};
 
 struct Options {
     /// `--quick`: a smoke run of every table, each over a few of its rows, which CI runs.
@@ -102,75 +109,139 @@ struct Options {
     frames: Frames,
 }
 
+/// The command line; see the module's documentation for what each table measures.
+#[derive(Parser)]
+#[command(
+    name = "bench",
+    about = "Frame time of PhongMaterial beside StandardMaterial and a constant-color floor, \
+             headless on the render device, and each variant's time against its error",
+    override_usage = "cargo run --example bench -- [OPTIONS]",
+    after_help = "The table flags combine: with any of them, the run measures those tables and \
+                  no other; without any, every table (about 45 minutes). Writes \
+                  target/bench/*.csv and target/bench/*.png."
+)]
+struct Args {
+    /// A small smoke run of every table, each over a few of its rows (what CI runs).
+    #[arg(long)]
+    quick: bool,
+    /// Skip the variants' time against error (after the frame times).
+    #[arg(long)]
+    no_variants: bool,
+    /// Table: the frame times of the picked scenes and sizes.
+    #[arg(long)]
+    frame_times: bool,
+    /// Table: the cost of shadows.
+    #[arg(long)]
+    shadows: bool,
+    /// Table: the storage path beside the WebGL2 one (the data texture).
+    #[arg(long)]
+    webgl2: bool,
+    /// Table: the shader ablation (at the first --size).
+    #[arg(long)]
+    ablation: bool,
+    /// Table: how frame time grows with lights and size.
+    #[arg(long)]
+    growth: bool,
+    /// Table: the material features.
+    #[arg(long)]
+    materials: bool,
+    /// Table: the stylized modes.
+    #[arg(long)]
+    stylized: bool,
+    /// Table: the street lamps with cookies and shadows, near and far (at the first --size).
+    #[arg(long)]
+    lamps: bool,
+    /// Table: many meshes and materials (the grids of --count).
+    #[arg(long)]
+    cubes: bool,
+    /// Print one Phong median (ms) of --scene at --size and exit (the WebGL2 table runs each
+    /// of its measurements so, in a process of its own).
+    #[arg(long)]
+    one_row: bool,
+    /// Turn every camera half a degree around the scene's middle before each frame.
+    #[arg(long)]
+    orbit: bool,
+    /// Frames measured per measurement.
+    #[arg(long, value_name = "F")]
+    frames: Option<usize>,
+    /// The Phong column's PhongLightCulling.
+    #[arg(long, value_enum)]
+    culling: Option<Culling>,
+    /// A grid of the many-materials table: N cubes (repeatable).
+    #[arg(long = "count", value_name = "N")]
+    counts: Vec<usize>,
+    /// An image size, N² pixels (repeatable): the frame times' rows; the first also sizes
+    /// the ablation and the lamps.
+    #[arg(long = "size", value_name = "N")]
+    sizes: Vec<u32>,
+    /// A scene of the frame times (repeatable): showcase, field16, field256, field4096,
+    /// wide3840, wide60000, or lamps with any of -cookies, -shadows, -far (in that order).
+    #[arg(long = "scene", value_name = "S", value_parser = parse_scene)]
+    scenes: Vec<Scene>,
+}
+
+/// `--culling`.
+#[derive(Clone, Copy, ValueEnum)]
+enum Culling {
+    /// `PhongLightCulling::NONE`.
+    None,
+    /// `PhongLightCulling::EXACT`.
+    Exact,
+    /// `PhongLightCulling::default()`.
+    Default,
+}
+
+/// A scene named on the command line.
+fn parse_scene(name: &str) -> Result<Scene, String> {
+    match name {
+        "showcase" => Ok(Scene::Showcase),
+        "field16" => Ok(Scene::Field { lights: 16 }),
+        "field256" => Ok(Scene::Field { lights: 256 }),
+        "field4096" => Ok(Scene::Field { lights: 4096 }),
+        "wide3840" => Ok(Scene::WideWorld {
+            lights: 256,
+            far: 3_840,
+        }),
+        "wide60000" => Ok(Scene::WideWorld {
+            lights: 256,
+            far: 60_000,
+        }),
+        lamps => lamps::Lamps::from_name(lamps)
+            .map(Scene::Lamps)
+            .ok_or_else(|| {
+                String::from(
+                    "expected showcase, field16, field256, field4096, wide3840, wide60000, or \
+                     lamps with any of -cookies, -shadows, -far (in that order)",
+                )
+            }),
+    }
+}
+
 impl Options {
-    fn from_args() -> Self {
-        let args: Vec<String> = std::env::args().skip(1).collect();
-        let mut options = Self::defaults(args.iter().any(|arg| arg == "--quick"));
-        options.variants = !args.iter().any(|arg| arg == "--no-variants");
-        options.tables = Tables::from_args(&args);
-        options.one_row = args.iter().any(|arg| arg == "--one-row");
-        let values = |flag: &str| -> Vec<String> {
-            args.windows(2)
-                .filter(|pair| pair[0] == flag)
-                .map(|pair| pair[1].clone())
-                .collect()
-        };
-        if let Some(frames) = values("--frames").first().and_then(|v| v.parse().ok()) {
+    fn from_args(args: &Args) -> Self {
+        let mut options = Self::defaults(args.quick);
+        options.variants = !args.no_variants;
+        options.tables = Tables::from_args(args);
+        options.one_row = args.one_row;
+        if let Some(frames) = args.frames {
             options.frames.measured = frames;
         }
-        for name in values("--culling") {
-            match name.as_str() {
-                "none" => options.culling = PhongLightCulling::NONE,
-                "exact" => options.culling = PhongLightCulling::EXACT,
-                "default" => options.culling = PhongLightCulling::default(),
-                other => eprintln!("unknown culling {other}: none, exact or default"),
-            }
+        if let Some(culling) = args.culling {
+            options.culling = match culling {
+                Culling::None => PhongLightCulling::NONE,
+                Culling::Exact => PhongLightCulling::EXACT,
+                Culling::Default => PhongLightCulling::default(),
+            };
         }
-        let counts: Vec<usize> = values("--count")
-            .iter()
-            .filter_map(|v| v.parse().ok())
-            .collect();
-        if !counts.is_empty() {
-            options.cube_counts = counts;
+        if !args.counts.is_empty() {
+            options.cube_counts.clone_from(&args.counts);
         }
-        let sizes: Vec<u32> = values("--size")
-            .iter()
-            .filter_map(|v| v.parse().ok())
-            .collect();
-        if let Some(&size) = sizes.first() {
+        if let Some(&size) = args.sizes.first() {
             options.ablation_size = size;
-            options.sizes = sizes;
+            options.sizes.clone_from(&args.sizes);
         }
-        let scenes: Vec<Scene> = values("--scene")
-            .iter()
-            .filter_map(|name| match name.as_str() {
-                "showcase" => Some(Scene::Showcase),
-                "field16" => Some(Scene::Field { lights: 16 }),
-                "field256" => Some(Scene::Field { lights: 256 }),
-                "field4096" => Some(Scene::Field { lights: 4096 }),
-                "wide3840" => Some(Scene::WideWorld {
-                    lights: 256,
-                    far: 3_840,
-                }),
-                "wide60000" => Some(Scene::WideWorld {
-                    lights: 256,
-                    far: 60_000,
-                }),
-                lamps if lamps.starts_with("lamps") => {
-                    lamps::Lamps::from_name(lamps).map(Scene::Lamps)
-                }
-                other => {
-                    eprintln!(
-                        "unknown scene {other}: showcase, field16, field256, field4096, \
-                         wide3840, wide60000, or lamps with any of -cookies, -shadows, -far \
-                         (in that order)"
-                    );
-                    None
-                }
-            })
-            .collect();
-        if !scenes.is_empty() {
-            options.scenes = scenes;
+        if !args.scenes.is_empty() {
+            options.scenes.clone_from(&args.scenes);
         }
         options
     }
@@ -266,18 +337,17 @@ impl Tables {
     };
 
     /// The tables whose flags are in `args`, or all of them when none is.
-    fn from_args(args: &[String]) -> Self {
-        let named = |flag: &str| args.iter().any(|arg| arg == flag);
+    fn from_args(args: &Args) -> Self {
         let picked = Self {
-            frame_times: named("--frame-times"),
-            shadows: named("--shadows"),
-            fallback: named("--webgl2"),
-            ablation: named("--ablation"),
-            growth: named("--growth"),
-            materials: named("--materials"),
-            stylized: named("--stylized"),
-            lamps: named("--lamps"),
-            cubes: named("--cubes"),
+            frame_times: args.frame_times,
+            shadows: args.shadows,
+            fallback: args.webgl2,
+            ablation: args.ablation,
+            growth: args.growth,
+            materials: args.materials,
+            stylized: args.stylized,
+            lamps: args.lamps,
+            cubes: args.cubes,
         };
         let any = picked.frame_times
             || picked.shadows
@@ -297,13 +367,15 @@ fn ms(duration: Duration) -> f64 {
 }
 
 fn main() {
-    let options = Options::from_args();
-    if std::env::args().any(|arg| arg == "--orbit") {
+    let args = Args::parse();
+    let options = Options::from_args(&args);
+    if args.orbit {
         timing::orbit_cameras();
     }
     if options.one_row {
         return one_row(&options);
     }
+    progress::start(planned_measurements(&options));
     let directory = Path::new("target/bench");
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
@@ -328,16 +400,16 @@ fn main() {
         growth::table(&options.growth, options.frames, options.culling, directory);
     }
     if tables.shadows {
-        shadow_costs(&options, directory);
+        showcase_costs::shadow_costs(&options, directory);
     }
     if tables.fallback {
         fallback_costs(&options, directory);
     }
     if tables.materials {
-        material_costs(&options, directory);
+        showcase_costs::material_costs(&options, directory);
     }
     if tables.stylized {
-        stylized_costs(&options, directory);
+        showcase_costs::stylized_costs(&options, directory);
     }
     if tables.cubes {
         cubes::table(
@@ -359,17 +431,64 @@ fn main() {
                 .copied()
                 .unwrap_or(256)
                 .min(options.shadow_size),
-            options.rounds.min(3),
+            lamp_rounds(&options),
             options.frames,
             options.culling,
-            if options.quick {
-                &lamps::QUICK_KINDS
-            } else {
-                &lamps::KINDS
-            },
+            lamp_kinds(&options),
             directory,
         );
     }
+}
+
+/// The lamp scenes a run measures: cookies and shadows both only, in the smoke run.
+fn lamp_kinds(options: &Options) -> &'static [(bool, lamps::LampShadows)] {
+    if options.quick {
+        &lamps::QUICK_KINDS
+    } else {
+        &lamps::KINDS
+    }
+}
+
+/// The rounds of the lamps' table: at most three.
+fn lamp_rounds(options: &Options) -> usize {
+    options.rounds.min(3)
+}
+
+/// How many measurements the run makes: the sum over the picked tables.
+fn planned_measurements(options: &Options) -> usize {
+    let tables = options.tables;
+    let mut planned = 0;
+    if tables.frame_times {
+        planned += frame_times::measurements(options);
+        if options.variants {
+            planned += variants::measurements(options);
+        }
+    }
+    if tables.ablation {
+        planned += ablation::measurements(options.rounds);
+    }
+    if tables.growth {
+        planned += growth::measurements(&options.growth);
+    }
+    if tables.shadows {
+        planned += showcase_costs::SHADOW_ROWS * options.rounds;
+    }
+    if tables.fallback {
+        planned += FALLBACK_ROWS * options.rounds;
+    }
+    if tables.materials {
+        planned += showcase_costs::MATERIAL_ROWS * options.rounds;
+    }
+    if tables.stylized {
+        planned += showcase_costs::STYLIZED_ROWS * options.rounds;
+    }
+    if tables.cubes {
+        planned += cubes::measurements(&options.cube_counts);
+    }
+    if tables.lamps {
+        planned += lamps::measurements(lamp_kinds(options), lamp_rounds(options));
+    }
+    planned
 }
 
 /// The median of each row's measurements over `rounds` rounds in which the rows take turns:
@@ -405,6 +524,9 @@ fn alternating_medians_of(
         .collect()
 }
 
+/// The rows of the WebGL2 table: two scenes, each on both paths.
+const FALLBACK_ROWS: usize = 4;
+
 /// The scene data in storage buffers beside the data texture of devices without them
 /// (WebGL2), all measured in this run. Each measurement runs in a process of its own, the
 /// texture's with `WGPU_SETTINGS_PRIO=webgl2`, as a game gets its device: Bevy 0.19 did
@@ -421,11 +543,11 @@ fn fallback_costs(options: &Options, directory: &Path) {
         ("data texture (WebGL2 limits)", Some("webgl2")),
     ];
     let mut csv = String::from("scene,size,path,round,median_ms\n");
-    let times: [f64; 4] = alternating_medians(options.rounds, |row, round| {
+    let times: [f64; FALLBACK_ROWS] = alternating_medians(options.rounds, |row, round| {
         let ((argument, scene), (path, priority)) = (scenes[row / 2], paths[row % 2]);
         let median = one_row_in_own_process(argument, size, options.frames.measured, priority);
         let _ = writeln!(csv, "{},{size},{path},{round},{median:.3}", scene.name());
-        eprintln!(
+        crate::measured!(
             "{} {size}² {path}, round {round}: {median:.1} ms",
             scene.name()
         );
@@ -482,196 +604,6 @@ fn one_row(options: &Options) {
         options.frames,
     );
     println!("{:.3}", ms(time));
-}
-
-/// The cost of shadows: the showcase on a floor with its lights casting shadows or not, and
-/// casting them into a split screen (two cameras side by side, each with cascades of its
-/// own), Phong beside `StandardMaterial`, all measured in this run.
-fn shadow_costs(options: &Options, directory: &Path) {
-    let size = options.shadow_size;
-    let phong = Shading::Phong(Some(SpecularModel::Phong));
-    let mut csv = String::from("size,shading,shadows,split_screen,round,median_ms\n");
-    let rows = [
-        ("Phong", phong, false, false),
-        ("Phong", phong, true, false),
-        ("Phong", phong, true, true),
-        ("Standard", Shading::Standard, false, false),
-        ("Standard", Shading::Standard, true, false),
-        ("Standard", Shading::Standard, true, true),
-    ];
-    let times: [f64; 6] = alternating_medians(options.rounds, |row, round| {
-        let (name, shading, shadows, split_screen) = rows[row];
-        let scene = Scene::ShowcaseOnFloor {
-            shadows,
-            split_screen,
-        };
-        let median = ms(median_frame_time(
-            scene,
-            size,
-            shading,
-            options.culling,
-            options.frames,
-        ));
-        let _ = writeln!(
-            csv,
-            "{size},{name},{shadows},{split_screen},{round},{median:.3}"
-        );
-        eprintln!(
-            "{} {size}² {name}, round {round}: {median:.1} ms",
-            scene.name()
-        );
-        median
-    });
-    let [
-        phong_off,
-        phong_on,
-        phong_split,
-        standard_off,
-        standard_on,
-        standard_split,
-    ] = times;
-    let table = format!(
-        "| size | cameras | Phong | Phong, shadows | Standard | Standard, shadows | Phong shadows / Standard shadows | Phong shadows / Phong |\n\
-         |---|---|---|---|---|---|---|---|\n\
-         | {size}² | one | {phong_off:.1} | {phong_on:.1} | {standard_off:.1} | {standard_on:.1} | {:.2} | {:.2} |\n\
-         | {size}² | two side by side | | {phong_split:.1} | | {standard_split:.1} | {:.2} | |\n\
-         \n\
-         Split screen over one camera, shadows on: Phong {:.2}, Standard {:.2}.\n",
-        phong_on / standard_on,
-        phong_on / phong_off,
-        phong_split / standard_split,
-        phong_split / phong_on,
-        standard_split / standard_on,
-    );
-    println!(
-        "\nShadows, median ms (the median of {} rounds): the showcase on a floor, a cascaded directional light and two \
-         point lights casting shadows or not (1024² maps), seen by one camera or by two side by side (each drawing half \
-         the picture, each with cascades of its own):\n\n{table}",
-        options.rounds
-    );
-    write(&directory.join("shadows.csv"), &csv);
-}
-
-/// The showcase with each group of material features beside the plain showcase, Phong and
-/// Standard (with the nearest settings Bevy has), at the shadow table's size, the rows
-/// taking turns over the rounds.
-fn material_costs(options: &Options, directory: &Path) {
-    let size = options.shadow_size;
-    let phong = Shading::Phong(Some(SpecularModel::Phong));
-    let groups = [
-        None,
-        Some(features::Features::SurfaceInputs),
-        Some(features::Features::BakedLight),
-        Some(features::Features::Environment),
-        Some(features::Features::Converted),
-        Some(features::Features::ConvertedEnvironment),
-    ];
-    const GROUPS: usize = 6;
-    let scene = |group: Option<features::Features>| group.map_or(Scene::Showcase, Scene::Featured);
-    let mut csv = String::from("size,scene,shading,round,median_ms\n");
-    // Each row's picture (from its first round), to show that its features are drawn.
-    let mut pictures: [Vec<u8>; 2 * GROUPS] = [const { Vec::new() }; 2 * GROUPS];
-    let times: [f64; 2 * GROUPS] = alternating_medians(options.rounds, |row, round| {
-        let (name, shading) = if row < GROUPS {
-            ("Phong", phong)
-        } else {
-            ("Standard", Shading::Standard)
-        };
-        let scene = scene(groups[row % GROUPS]);
-        let (median, picture) = median_frame_time_and_picture(
-            scene,
-            size,
-            shading,
-            options.culling,
-            options.frames,
-            &[],
-        );
-        let median = ms(median);
-        if round == 0 {
-            pictures[row] = picture;
-        }
-        let _ = writeln!(csv, "{size},{},{name},{round},{median:.3}", scene.name());
-        eprintln!(
-            "{} {size}² {name}, round {round}: {median:.1} ms",
-            scene.name()
-        );
-        median
-    });
-    let mut table = String::from(
-        "| scene | Phong ms | Standard ms | Phong / Standard | Phong / plain Phong | Standard / plain Standard | pixels changed, Phong / Standard |\n|---|---|---|---|---|---|---|\n",
-    );
-    for (row, group) in groups.iter().enumerate() {
-        let (phong, standard) = (times[row], times[GROUPS + row]);
-        let _ = writeln!(
-            table,
-            "| {} | {phong:.1} | {standard:.1} | {:.2} | {:.2} | {:.2} | {:.0} % / {:.0} % |",
-            scene(*group).name(),
-            phong / standard,
-            phong / times[0],
-            standard / times[GROUPS],
-            ablation::changed_percent(&pictures[0], &pictures[row]),
-            ablation::changed_percent(&pictures[GROUPS], &pictures[GROUPS + row]),
-        );
-    }
-    println!(
-        "\nMaterial features, median ms at {size}² (the median of {} rounds):\n\n{table}",
-        options.rounds
-    );
-    write(&directory.join("materials.csv"), &csv);
-}
-
-/// The showcase drawn with each stylized mode beside the default material, Phong only, at
-/// the shadow table's size, the rows taking turns over the rounds.
-fn stylized_costs(options: &Options, directory: &Path) {
-    use features::Features;
-    let size = options.shadow_size;
-    let modes = [
-        None,
-        Some(Features::Wrap),
-        Some(Features::ToonBands),
-        Some(Features::ToonRamp),
-        Some(Features::ToonHighlight),
-        Some(Features::Rim),
-        Some(Features::RimLitSide),
-        Some(Features::Hemisphere),
-        Some(Features::Cookies),
-    ];
-    let scene = |mode: Option<Features>| mode.map_or(Scene::Showcase, Scene::Featured);
-    let phong = Shading::Phong(Some(SpecularModel::Phong));
-    let mut csv = String::from("size,scene,round,median_ms\n");
-    let mut pictures: [Vec<u8>; 9] = [const { Vec::new() }; 9];
-    let times: [f64; 9] = alternating_medians(options.rounds, |row, round| {
-        let scene = scene(modes[row]);
-        let (median, picture) =
-            median_frame_time_and_picture(scene, size, phong, options.culling, options.frames, &[]);
-        let median = ms(median);
-        if round == 0 {
-            pictures[row] = picture;
-        }
-        let _ = writeln!(csv, "{size},{},{round},{median:.3}", scene.name());
-        eprintln!(
-            "{} {size}² Phong, round {round}: {median:.1} ms",
-            scene.name()
-        );
-        median
-    });
-    let mut table =
-        String::from("| scene | Phong ms | × the default | pixels changed |\n|---|---|---|---|\n");
-    for (row, mode) in modes.iter().enumerate() {
-        let _ = writeln!(
-            table,
-            "| {} | {:.1} | {:.2} | {:.0} % |",
-            scene(*mode).name(),
-            times[row],
-            times[row] / times[0],
-            ablation::changed_percent(&pictures[0], &pictures[row]),
-        );
-    }
-    println!(
-        "\nStylized modes, median ms at {size}² (the median of {} rounds):\n\n{table}",
-        options.rounds
-    );
-    write(&directory.join("stylized.csv"), &csv);
 }
 
 fn write(path: &Path, contents: &str) {

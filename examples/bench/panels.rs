@@ -65,6 +65,27 @@ pub fn spawn_panels(world: &mut World, panels: Panels) {
     }
 }
 
+/// The highlight choices each count of panels is measured with.
+const HIGHLIGHTS: [AreaHighlight; 3] = [
+    AreaHighlight::Exact,
+    AreaHighlight::Fitted,
+    AreaHighlight::RepresentativePoint,
+];
+
+/// The counts of panels a run measures: 16 only in the smoke run (`--quick`).
+fn counts(options: &Options) -> &'static [usize] {
+    if options.quick {
+        &[Panels::QUICK_COUNT]
+    } else {
+        &Panels::COUNTS
+    }
+}
+
+/// How many measurements [`time_against_error`] makes.
+pub fn measurements(options: &Options) -> usize {
+    counts(options).len() * HIGHLIGHTS.len()
+}
+
 /// Times each count of panels with each highlight choice and measures its error, as the
 /// point-light variants are: a row of `table` and `csv` and a choice of the plot's `series`
 /// each (each count a scene of its own); the smoke run (`--quick`) measures 16 panels only.
@@ -74,17 +95,8 @@ pub fn time_against_error(
     csv: &mut String,
     series: &mut Vec<plot::Choice>,
 ) {
-    let counts: &[usize] = if options.quick {
-        &[Panels::QUICK_COUNT]
-    } else {
-        &Panels::COUNTS
-    };
-    for &count in counts {
-        for highlight in [
-            AreaHighlight::Exact,
-            AreaHighlight::Fitted,
-            AreaHighlight::RepresentativePoint,
-        ] {
+    for &count in counts(options) {
+        for highlight in HIGHLIGHTS {
             let scene = Scene::Panels(Panels { count, highlight });
             let shading = Shading::Phong(Some(SpecularModel::Phong));
             let culling = PhongLightCulling::default();
@@ -98,7 +110,7 @@ pub fn time_against_error(
             let accuracy = accuracy::measure(scene, shading, culling);
             let (error, p95) = (accuracy.max, accuracy.p95);
             let name = scene.name();
-            eprintln!("{name}: {time:.1} ms, error {error:.2e} (95 % within {p95:.2e})");
+            crate::measured!("{name}: {time:.1} ms, error {error:.2e} (95 % within {p95:.2e})");
             let _ = writeln!(
                 table,
                 "| {name} | {time:.1} | {error:.2e} | {:.3} | {p95:.2e} |",

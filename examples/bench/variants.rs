@@ -98,6 +98,19 @@ fn variants() -> Vec<Variant> {
     variants
 }
 
+/// The variants a run measures: all, or in the smoke run (`--quick`) [`QUICK_VARIANTS`].
+fn picked(options: &Options) -> impl Iterator<Item = Variant> {
+    let quick = options.quick;
+    variants()
+        .into_iter()
+        .filter(move |variant| !quick || QUICK_VARIANTS.contains(&variant.name.as_str()))
+}
+
+/// How many measurements [`time_against_error`] makes.
+pub fn measurements(options: &Options) -> usize {
+    picked(options).count() + panels::measurements(options)
+}
+
 /// Each variant's frame time next to its error against the reference model.
 pub fn time_against_error(options: &Options, directory: &Path) {
     let lights = options.variant_lights;
@@ -107,10 +120,7 @@ pub fn time_against_error(options: &Options, directory: &Path) {
     );
     let mut csv = String::from("variant,median_ms,max_error,p95_error\n");
     let mut series = Vec::new();
-    let variants = variants()
-        .into_iter()
-        .filter(|variant| !options.quick || QUICK_VARIANTS.contains(&variant.name.as_str()));
-    for variant in variants {
+    for variant in picked(options) {
         let scene = if variant.ranged {
             Scene::Field { lights }
         } else {
@@ -125,7 +135,7 @@ pub fn time_against_error(options: &Options, directory: &Path) {
         ));
         let accuracy = accuracy::measure(scene, variant.shading, variant.culling);
         let (error, p95) = (accuracy.max, accuracy.p95);
-        eprintln!(
+        crate::measured!(
             "{}: {time:.1} ms, error {error:.2e} (95 % within {p95:.2e})",
             variant.name
         );

@@ -14,8 +14,8 @@
 //! lights), and how many pixels it could not judge (texel edges, maps sampled with filtering,
 //! environment maps). With `--check` it also fails where that difference exceeds the render
 //! tests' tolerance (`bevy_phong_headless::TOLERANCE`, 4e-4), or where no pixel could be
-//! judged. The reference model's quadrature over an area light is costly: a scene of area
-//! lights takes minutes to compare (docs/scene-files.md).
+//! judged. The reference model integrates an area light by quadrature over its shape: a
+//! scene of area lights at 256² compares in seconds (docs/scene-files.md).
 //!
 //! `cargo run --example render_scene -- assets/scenes/shapes.phong_scene.ron --out DIR`;
 //! `--help` lists the options.
@@ -25,103 +25,53 @@ mod output;
 use bevy::prelude::World;
 use bevy_phong::{extension::PhongLightKind, prelude::*};
 use bevy_phong_headless::{FloatImage, Harness, SurfaceInputs, TOLERANCE};
+use clap::Parser;
 use std::{path::PathBuf, process::ExitCode};
 
-const HELP: &str = "\
-render_scene: render a *.phong_scene.ron file headless to PNG and OpenEXR files
-
-USAGE:
-    cargo run --example render_scene -- SCENE [OPTIONS]
-
-ARGUMENTS:
-    SCENE              the scene file (*.phong_scene.ron)
-
-OPTIONS:
-    --out DIR          where to write color.png, color.exr, position.exr, normal.exr
-                       [default: target/render_scene]
-    --size WxH         image size in pixels [default: 512x512]
-    --compare          after writing the files, compare each pixel with the reference
-                       model and print the largest difference (on every core, with a
-                       progress line); not for a scene that casts shadows
-    --check            --compare, and fail where a pixel differs by more than the render
-                       tests' tolerance (4e-4 of max(1, |expected|)), or where no pixel
-                       is judged
-    --assets DIR       the asset folder: files the scene names (material files, textures)
-                       must be inside it [default: the nearest folder named `assets`
-                       that holds the scene file, else the scene file's folder]
-    -h, --help         print this help
-
-The render device is the first Vulkan adapter (WGPU_ADAPTER_NAME=llvmpipe picks Mesa's
-software renderer). The scene's camera is used; without one the camera is at (0, 2.5, 7)
-looking at the origin.";
-
+/// Render a *.phong_scene.ron file headless to PNG and OpenEXR files.
+#[derive(Parser)]
+#[command(
+    name = "render_scene",
+    override_usage = "cargo run --example render_scene -- SCENE [OPTIONS]",
+    after_help = "The render device is the first Vulkan adapter (WGPU_ADAPTER_NAME=llvmpipe \
+                  picks Mesa's software renderer). The scene's camera is used; without one the \
+                  camera is at (0, 2.5, 7) looking at the origin."
+)]
 struct Options {
+    /// The scene file (*.phong_scene.ron).
     scene: PathBuf,
+    /// Where to write color.png, color.exr, position.exr and normal.exr.
+    #[arg(long, value_name = "DIR", default_value = "target/render_scene")]
     out: PathBuf,
-    width: u32,
-    height: u32,
-    assets: Option<PathBuf>,
+    /// The image size in pixels, each side 1 to 8192.
+    #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = parse_size)]
+    size: (u32, u32),
+    /// After writing the files, compare each pixel with the reference model and print the
+    /// largest difference (on every core, with a progress line); not for a scene that casts
+    /// shadows.
+    #[arg(long)]
     compare: bool,
+    /// --compare, and fail where a pixel differs by more than the render tests' tolerance
+    /// (4e-4 of max(1, |expected|)), or where no pixel is judged.
+    #[arg(long)]
     check: bool,
+    /// The asset folder: files the scene names (material files, textures) must be inside it
+    /// [default: the nearest folder named `assets` that holds the scene file, else the scene
+    /// file's folder].
+    #[arg(long, value_name = "DIR")]
+    assets: Option<PathBuf>,
 }
 
-fn parse_options() -> Result<Option<Options>, String> {
-    let mut args = std::env::args().skip(1);
-    let mut scene = None;
-    let mut out = PathBuf::from("target/render_scene");
-    let (mut width, mut height) = (512, 512);
-    let mut assets = None;
-    let mut compare = false;
-    let mut check = false;
-    while let Some(arg) = args.next() {
-        let mut value = |name: &str| args.next().ok_or(format!("{name} needs a value"));
-        match arg.as_str() {
-            "-h" | "--help" => return Ok(None),
-            "--out" => out = value("--out")?.into(),
-            "--compare" => compare = true,
-            "--check" => (compare, check) = (true, true),
-            "--assets" => assets = Some(value("--assets")?.into()),
-            "--size" => {
-                let size = value("--size")?;
-                let parsed = size
-                    .split_once('x')
-                    .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
-                    .filter(|&(w, h): &(u32, u32)| {
-                        (1..=8192).contains(&w) && (1..=8192).contains(&h)
-                    });
-                (width, height) =
-                    parsed.ok_or(format!("--size {size}: expected WxH, each 1 to 8192"))?;
-            }
-            other if other.starts_with('-') => return Err(format!("unknown option {other}")),
-            other if scene.is_none() => scene = Some(PathBuf::from(other)),
-            other => return Err(format!("unexpected argument {other}")),
-        }
-    }
-    let scene = scene.ok_or("no scene file given")?;
-    Ok(Some(Options {
-        scene,
-        out,
-        width,
-        height,
-        assets,
-        compare,
-        check,
-    }))
+/// `WxH`, each side 1 to 8192 pixels.
+fn parse_size(size: &str) -> Result<(u32, u32), String> {
+    size.split_once('x')
+        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+        .filter(|&(w, h): &(u32, u32)| (1..=8192).contains(&w) && (1..=8192).contains(&h))
+        .ok_or_else(|| format!("expected WxH, each 1 to 8192, not {size}"))
 }
 
 fn main() -> ExitCode {
-    let options = match parse_options() {
-        Ok(Some(options)) => options,
-        Ok(None) => {
-            println!("{HELP}");
-            return ExitCode::SUCCESS;
-        }
-        Err(message) => {
-            eprintln!("render_scene: {message}\n\n{HELP}");
-            return ExitCode::from(2);
-        }
-    };
-    match render(&options) {
+    match render(&Options::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("render_scene: {message}");
@@ -157,19 +107,16 @@ fn render(options: &Options) -> Result<(), String> {
         .to_string_lossy()
         .into_owned();
 
-    let mut harness = Harness::with_assets(
-        options.width,
-        options.height,
-        root.to_string_lossy().into_owned(),
-        |_| {},
-    );
+    let (width, height) = options.size;
+    let mut harness =
+        Harness::with_assets(width, height, root.to_string_lossy().into_owned(), |_| {});
     harness.load_scene(&relative)?;
 
     harness.settle();
     let rendered = harness.render_next_frame();
     let inputs = harness.capture_inputs();
     write_files(&options.out, &rendered, &inputs)?;
-    if options.compare {
+    if options.compare || options.check {
         compare(&mut harness, &rendered, options.check)?;
     }
     Ok(())
@@ -216,6 +163,12 @@ fn compare(harness: &mut Harness, rendered: &FloatImage, check: bool) -> Result<
          {:.2e} (relative to max(1, |expected|))",
         comparison.lit_pixels, comparison.skipped_pixels, comparison.max_error
     );
+    if let Some((x, y, rendered, expected)) = comparison.worst_pixel {
+        println!(
+            "  at pixel ({x}, {y}): rendered {rendered:?}, the reference model {:?}",
+            expected.to_array()
+        );
+    }
     if check && (comparison.lit_pixels == 0 || comparison.max_error > TOLERANCE) {
         return Err(format!(
             "--check: {} pixels judged, largest difference {:.2e} (tolerance {TOLERANCE:.0e})",

@@ -39,15 +39,21 @@ const POSITION_TOLERANCE: f64 = 3.0;
 /// run together.
 const SPOT_RADIUS: f64 = 20.0;
 
-/// `--check PATH` from the command line, if given.
-pub fn path_from_args() -> Option<PathBuf> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let index = args.iter().position(|arg| arg == "--check")?;
-    Some(
-        args.get(index + 1)
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from("target/showcase.png")),
-    )
+/// The showcase's own option.
+#[derive(clap::Args)]
+pub struct CheckOption {
+    /// Check that the picture at PATH (by default target/showcase.png) shows the sphere's
+    /// three highlights where the lighting model puts them, then exit.
+    #[arg(long, value_name = "PATH")]
+    check: Option<Option<PathBuf>>,
+}
+
+impl CheckOption {
+    /// The picture to check, if `--check` was given.
+    pub fn path(self) -> Option<PathBuf> {
+        self.check
+            .map(|path| path.unwrap_or_else(|| PathBuf::from("target/showcase.png")))
+    }
 }
 
 /// Checks the picture at `path`; returns the process exit code (0 when every highlight is

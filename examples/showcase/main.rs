@@ -90,10 +90,16 @@ fn seed_material(hex: &str) -> PhongMaterial {
 
 fn main() -> AppExit {
     #[cfg(not(target_arch = "wasm32"))]
-    if let Some(path) = check::path_from_args() {
-        std::process::exit(check::run(&path));
-    }
-    let mut app = support::example_app("showcase");
+    let mode = {
+        let (mode, check) = support::command_line::<check::CheckOption>("showcase");
+        if let Some(path) = check.path() {
+            std::process::exit(check::run(&path));
+        }
+        mode
+    };
+    #[cfg(target_arch = "wasm32")]
+    let mode = support::RunMode::from_args("showcase");
+    let mut app = support::example_app_in(mode, "showcase", |plugins| plugins);
     support::show_key_help(&mut app, "S shadows on / off")
         .add_plugins(PhongPlugin)
         // Seed 000's default ambient light.

@@ -47,22 +47,22 @@ impl RunMode {
         RunMode::Canvas
     }
 
-    /// `--headless PATH` renders to PATH; `--compare` compares with the reference model
-    /// (after writing PATH, where both are given); without a display (no `DISPLAY` or
-    /// `WAYLAND_DISPLAY`) it renders to `target/NAME.png`; otherwise it opens a window.
+    /// The mode the command line asks for ([`command_line`]).
     #[cfg(not(target_arch = "wasm32"))]
     pub fn from_args(name: &str) -> Self {
-        let args: Vec<String> = std::env::args().skip(1).collect();
+        command_line::<NoMoreOptions>(name).0
+    }
+
+    /// `--headless [PATH]` renders to PATH (by default `target/NAME.png`); `--compare`
+    /// compares with the reference model (after writing PATH, where both are given);
+    /// without a display (no `DISPLAY` or `WAYLAND_DISPLAY`) it renders to
+    /// `target/NAME.png`; otherwise it opens a window.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn from_example_args(name: &str, args: ExampleArgs) -> Self {
         let headless = args
-            .iter()
-            .position(|arg| arg == "--headless")
-            .map(|index| {
-                args.get(index + 1)
-                    .filter(|path| !path.starts_with("--"))
-                    .map(PathBuf::from)
-                    .unwrap_or_else(|| default_png(name))
-            });
-        if args.iter().any(|arg| arg == "--compare") {
+            .headless
+            .map(|path| path.unwrap_or_else(|| default_png(name)));
+        if args.compare {
             return RunMode::Compare(headless);
         }
         if let Some(path) = headless {
@@ -79,6 +79,45 @@ impl RunMode {
             RunMode::Headless(path)
         }
     }
+}
+
+/// The options every example takes natively.
+#[cfg(not(target_arch = "wasm32"))]
+#[derive(clap::Args)]
+struct ExampleArgs {
+    /// Render one frame headless into PATH (by default target/NAME.png), then exit.
+    #[arg(long, value_name = "PATH")]
+    headless: Option<Option<PathBuf>>,
+    /// Compare the scene with the reference model pixel by pixel, then exit (failing where
+    /// they differ); with --headless, the picture is written first.
+    #[arg(long)]
+    compare: bool,
+}
+
+/// An example without options of its own.
+#[cfg(not(target_arch = "wasm32"))]
+#[derive(clap::Args)]
+pub struct NoMoreOptions {}
+
+/// The example `name`'s command line: the options every example takes, and its own
+/// (`More`). `--help` lists both; an unknown option ends the process with a usage message.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn command_line<More: clap::Args + clap::FromArgMatches>(name: &str) -> (RunMode, More) {
+    use clap::{Args as _, FromArgMatches as _};
+    // The about line is set last: each `Args` derive sets its own doc comment as one.
+    let matches = More::augment_args(ExampleArgs::augment_args(clap::Command::new(
+        name.to_owned(),
+    )))
+    .about(format!(
+        "The bevy_phong example {name}: in a window where a display exists, else rendered \
+             headless to a PNG file"
+    ))
+    .override_usage(format!("cargo run --example {name} -- [OPTIONS]"))
+    .get_matches();
+    let parsed = ExampleArgs::from_arg_matches(&matches)
+        .and_then(|args| Ok((args, More::from_arg_matches(&matches)?)));
+    let (args, more) = parsed.unwrap_or_else(|error| error.exit());
+    (RunMode::from_example_args(name, args), more)
 }
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -134,7 +173,15 @@ pub fn example_app_with(
     name: &str,
     configure: impl FnOnce(PluginGroupBuilder) -> PluginGroupBuilder,
 ) -> App {
-    let mode = RunMode::from_args(name);
+    example_app_in(RunMode::from_args(name), name, configure)
+}
+
+/// [`example_app_with`] in `mode` (from an example's own [`command_line`]).
+pub fn example_app_in(
+    mode: RunMode,
+    name: &str,
+    configure: impl FnOnce(PluginGroupBuilder) -> PluginGroupBuilder,
+) -> App {
     let mut app = App::new();
     match &mode {
         #[cfg(not(target_arch = "wasm32"))]

@@ -34,7 +34,7 @@ mod random;
 use crate::random::Random;
 use bevy::prelude::*;
 use bevy_phong::prelude::*;
-use bevy_phong_headless::Harness;
+use bevy_phong_headless::{Harness, Progress};
 use std::time::Instant;
 
 /// Render size: small, so that the run measures the crate's per-frame work rather than
@@ -676,7 +676,11 @@ fn soak_of_random_light_and_mesh_churn_stays_finite_flat_and_steady() {
     let (mut panics, mut readbacks, mut covered_pixels, mut bad_pixels) = (0, 0, 0, 0);
     let mut peak_rss = warm_rss;
     let mut most_lights = 0;
+    // Frames done and left, and the time left: on a terminal one line drawn over itself, in
+    // a log a line every tenth of the run.
+    let mut progress = Progress::new("soak frames", frames);
     for frame in 1..=frames {
+        progress.report(frame - 1);
         let read = frame % READBACK_EVERY == 0 || frame == frames;
         let run = std::panic::AssertUnwindSafe(|| {
             soak.churn(target_lights(frame, frames), caster_window(frame, frames));
@@ -722,6 +726,9 @@ fn soak_of_random_light_and_mesh_churn_stays_finite_flat_and_steady() {
                 break;
             }
         }
+    }
+    if panics == 0 {
+        progress.finish();
     }
     let end_rss = resident_bytes();
     peak_rss = peak_rss.max(end_rss);

@@ -14,7 +14,7 @@
 
 use crate::builder::Buffers;
 use crate::room::{self, Surface};
-use crate::{base64, images, room_bake};
+use crate::{encoding, images, room_bake};
 use serde_json::{Value, json};
 
 /// Where the asset lives, relative to the bevy_phong crate's root.
@@ -78,8 +78,8 @@ pub fn baked_room_gltf() -> String {
         .map(|(name, surface, material)| mesh(&mut buffers, name, surface, *material))
         .collect();
 
-    let uri = base64::data_uri("application/octet-stream", &buffers.bytes);
-    let image = |name: &str, png: Vec<u8>| json!({"name": name, "uri": base64::data_uri("image/png", &png)});
+    let uri = encoding::data_uri("application/octet-stream", &buffers.bytes);
+    let image = |name: &str, png: Vec<u8>| json!({"name": name, "uri": encoding::data_uri("image/png", &png)});
     let occlusion = json!({"index": 1, "texCoord": 1});
     let document = json!({
         "asset": {"version": "2.0", "generator": "phong_gltf_asset (bevy_phong)"},

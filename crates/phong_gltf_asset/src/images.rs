@@ -1,6 +1,6 @@
 //! The asset's textures, as PNG files.
 
-use crate::png;
+use crate::encoding;
 use core::f64::consts::TAU;
 
 /// Texture side, texels.
@@ -27,7 +27,7 @@ pub fn checker() -> Vec<u8> {
             vec![96, 80, 64]
         }
     });
-    png::encode(SIZE, SIZE, 3, &pixels)
+    encoding::png(SIZE, SIZE, 3, &pixels)
 }
 
 /// The ground's normal map (linear, +Y up: green points to the image's top): the normals
@@ -47,7 +47,7 @@ pub fn bumps() -> Vec<u8> {
             .map(|n| ((n / length * 0.5 + 0.5) * 255.0).round() as u8)
             .to_vec()
     });
-    png::encode(SIZE, SIZE, 3, &pixels)
+    encoding::png(SIZE, SIZE, 3, &pixels)
 }
 
 /// The fence's base color: vertical white bars two texels wide (alpha 1) with gaps two
@@ -60,5 +60,5 @@ pub fn bars() -> Vec<u8> {
             vec![255, 255, 255, 0]
         }
     });
-    png::encode(SIZE, SIZE, 4, &pixels)
+    encoding::png(SIZE, SIZE, 4, &pixels)
 }

@@ -22,10 +22,9 @@
 //! - `Sun`: a directional light of 3,000 lux pointing down at 60° toward −Z.
 
 pub mod baked_room;
-mod base64;
 mod builder;
+mod encoding;
 mod images;
-mod png;
 mod room;
 mod room_bake;
 mod shapes;
@@ -86,8 +85,8 @@ pub fn phong_test_gltf() -> String {
     let morph_times = buffers.data(&[[0.0], [1.0]]);
     let morph_weights = buffers.data(&[[0.0], [1.0]]);
 
-    let uri = base64::data_uri("application/octet-stream", &buffers.bytes);
-    let image = |name: &str, png: Vec<u8>| json!({"name": name, "uri": base64::data_uri("image/png", &png)});
+    let uri = encoding::data_uri("application/octet-stream", &buffers.bytes);
+    let image = |name: &str, png: Vec<u8>| json!({"name": name, "uri": encoding::data_uri("image/png", &png)});
 
     let document = json!({
         "asset": {"version": "2.0", "generator": "phong_gltf_asset (bevy_phong)"},

@@ -7,7 +7,7 @@
 //!   `6 · max(N·L, 0) / (1 + 0.8 d²)`, shadowed by the pedestal (a ray test against its
 //!   box), plus a cool sky term of about 0.06.
 
-use crate::png;
+use crate::encoding;
 use crate::room::{self, ATLAS, Quad};
 
 /// Where the baked window light stands, and its color.
@@ -130,7 +130,7 @@ pub fn light_map() -> Vec<u8> {
     let pixels = atlas(3, |point, normal| {
         light(point, normal).map(srgb_byte).to_vec()
     });
-    png::encode(ATLAS, ATLAS, 3, &pixels)
+    encoding::png(ATLAS, ATLAS, 3, &pixels)
 }
 
 /// The AO map (its red channel; linear).
@@ -139,7 +139,7 @@ pub fn ao_map() -> Vec<u8> {
         let ao = (occlusion(point, normal) * 255.0).round() as u8;
         vec![ao, ao, ao]
     });
-    png::encode(ATLAS, ATLAS, 3, &pixels)
+    encoding::png(ATLAS, ATLAS, 3, &pixels)
 }
 
 #[cfg(test)]
