@@ -11,9 +11,11 @@ mod vertex_lighting;
 
 pub use features::MaterialFeatures;
 pub(crate) use from_standard::{
-    ANISOTROPY, CLEARCOAT, TRANSMISSION, Unmapped, VOLUME, bevy_dielectric_f0,
-    converted_standard_material, unmapped_standard_features, warn_unmapped,
+    Unmapped, converted_standard_material, unmapped_standard_features, warn_unmapped,
 };
+// What the glTF conversion shares with the StandardMaterial one.
+#[cfg(feature = "gltf")]
+pub(crate) use from_standard::{ANISOTROPY, CLEARCOAT, TRANSMISSION, VOLUME, bevy_dielectric_f0};
 pub use key::PhongMaterialKey;
 #[cfg(feature = "testing")]
 pub(crate) use key::culled_in_view;
