@@ -375,120 +375,131 @@ fn main() {
     if options.one_row {
         return one_row(&options);
     }
-    progress::start(planned_measurements(&options));
     let directory = Path::new("target/bench");
     if let Err(error) = std::fs::create_dir_all(directory) {
         eprintln!("cannot create {}: {error}", directory.display());
     }
-    let tables = options.tables;
-    if tables.frame_times {
-        frame_times::table(&options, directory);
-        if options.variants {
-            variants::time_against_error(&options, directory);
+    let tables = picked_tables(&options, directory);
+    progress::start(tables.iter().map(|table| table.measurements).sum());
+    for table in tables {
+        (table.run)();
+    }
+}
+
+/// A table the run measures: how many measurements it makes, and the run that makes them,
+/// prints the table and writes its files.
+struct Table<'a> {
+    measurements: usize,
+    run: Box<dyn FnOnce() + 'a>,
+}
+
+impl<'a> Table<'a> {
+    fn new(measurements: usize, run: impl FnOnce() + 'a) -> Self {
+        Self {
+            measurements,
+            run: Box::new(run),
         }
     }
-    if tables.ablation {
-        ablation::table(
-            options.ablation_size,
-            options.rounds,
-            options.frames,
-            options.culling,
-            directory,
-        );
+}
+
+/// The tables `options` picks, in the order they run, their files written into `directory`.
+fn picked_tables<'a>(options: &'a Options, directory: &'a Path) -> Vec<Table<'a>> {
+    let picked = options.tables;
+    let mut tables = Vec::new();
+    if picked.frame_times {
+        tables.push(Table::new(frame_times::measurements(options), || {
+            frame_times::table(options, directory);
+        }));
+        if options.variants {
+            tables.push(Table::new(variants::measurements(options), || {
+                variants::time_against_error(options, directory);
+            }));
+        }
     }
-    if tables.growth {
-        growth::table(&options.growth, options.frames, options.culling, directory);
+    if picked.ablation {
+        tables.push(Table::new(ablation::measurements(options.rounds), || {
+            ablation::table(
+                options.ablation_size,
+                options.rounds,
+                options.frames,
+                options.culling,
+                directory,
+            );
+        }));
     }
-    if tables.shadows {
-        showcase_costs::shadow_costs(&options, directory);
+    if picked.growth {
+        tables.push(Table::new(growth::measurements(&options.growth), || {
+            growth::table(&options.growth, options.frames, options.culling, directory);
+        }));
     }
-    if tables.fallback {
-        fallback_costs(&options, directory);
-    }
-    if tables.materials {
-        showcase_costs::material_costs(&options, directory);
-    }
-    if tables.stylized {
-        showcase_costs::stylized_costs(&options, directory);
-    }
-    if tables.cubes {
-        cubes::table(
-            64,
-            &options.cube_counts,
-            Frames {
-                warmup: 1,
-                measured: options.frames.measured.min(15),
-                budget: options.frames.budget,
+    if picked.shadows {
+        tables.push(Table::new(
+            showcase_costs::SHADOW_ROWS * options.rounds,
+            || {
+                showcase_costs::shadow_costs(options, directory);
             },
-            directory,
-        );
+        ));
     }
-    if tables.lamps {
-        lamps::table(
-            options
-                .sizes
-                .first()
-                .copied()
-                .unwrap_or(256)
-                .min(options.shadow_size),
-            lamp_rounds(&options),
-            options.frames,
-            options.culling,
-            lamp_kinds(&options),
-            directory,
-        );
+    if picked.fallback {
+        tables.push(Table::new(FALLBACK_ROWS * options.rounds, || {
+            fallback_costs(options, directory);
+        }));
     }
-}
-
-/// The lamp scenes a run measures: cookies and shadows both only, in the smoke run.
-fn lamp_kinds(options: &Options) -> &'static [(bool, lamps::LampShadows)] {
-    if options.quick {
-        &lamps::QUICK_KINDS
-    } else {
-        &lamps::KINDS
+    if picked.materials {
+        tables.push(Table::new(
+            showcase_costs::MATERIAL_ROWS * options.rounds,
+            || {
+                showcase_costs::material_costs(options, directory);
+            },
+        ));
     }
-}
-
-/// The rounds of the lamps' table: at most three.
-fn lamp_rounds(options: &Options) -> usize {
-    options.rounds.min(3)
-}
-
-/// How many measurements the run makes: the sum over the picked tables.
-fn planned_measurements(options: &Options) -> usize {
-    let tables = options.tables;
-    let mut planned = 0;
-    if tables.frame_times {
-        planned += frame_times::measurements(options);
-        if options.variants {
-            planned += variants::measurements(options);
-        }
+    if picked.stylized {
+        tables.push(Table::new(
+            showcase_costs::STYLIZED_ROWS * options.rounds,
+            || {
+                showcase_costs::stylized_costs(options, directory);
+            },
+        ));
     }
-    if tables.ablation {
-        planned += ablation::measurements(options.rounds);
+    if picked.cubes {
+        tables.push(Table::new(
+            cubes::measurements(&options.cube_counts),
+            || {
+                let frames = Frames {
+                    warmup: 1,
+                    measured: options.frames.measured.min(15),
+                    budget: options.frames.budget,
+                };
+                cubes::table(64, &options.cube_counts, frames, directory);
+            },
+        ));
     }
-    if tables.growth {
-        planned += growth::measurements(&options.growth);
+    if picked.lamps {
+        // The smoke run measures cookies and shadows both only; at most three rounds.
+        let kinds: &[_] = if options.quick {
+            &lamps::QUICK_KINDS
+        } else {
+            &lamps::KINDS
+        };
+        let rounds = options.rounds.min(3);
+        let size = options
+            .sizes
+            .first()
+            .copied()
+            .unwrap_or(256)
+            .min(options.shadow_size);
+        tables.push(Table::new(lamps::measurements(kinds, rounds), move || {
+            lamps::table(
+                size,
+                rounds,
+                options.frames,
+                options.culling,
+                kinds,
+                directory,
+            );
+        }));
     }
-    if tables.shadows {
-        planned += showcase_costs::SHADOW_ROWS * options.rounds;
-    }
-    if tables.fallback {
-        planned += FALLBACK_ROWS * options.rounds;
-    }
-    if tables.materials {
-        planned += showcase_costs::MATERIAL_ROWS * options.rounds;
-    }
-    if tables.stylized {
-        planned += showcase_costs::STYLIZED_ROWS * options.rounds;
-    }
-    if tables.cubes {
-        planned += cubes::measurements(&options.cube_counts);
-    }
-    if tables.lamps {
-        planned += lamps::measurements(lamp_kinds(options), lamp_rounds(options));
-    }
-    planned
+    tables
 }
 
 /// The median of each row's measurements over `rounds` rounds in which the rows take turns:
