@@ -277,7 +277,8 @@ pub struct PhongMaterial {
     ///   reflectance at normal incidence (`specular_color` and its map; glTF's 0.04) and
     ///   `E` the single-scattering albedo of a GGX lobe of roughness `r` (Bevy's compensation
     ///   for multiple scattering);
-    /// - `α ← clamp(2 / r⁴ − 2, 1, 10⁴)`, the width of a GGX lobe of roughness `r`.
+    /// - `α ←` the exponent fitted to Bevy's GGX lobe of roughness `r`, in `[1, 10⁴]`
+    ///   (SPEC.md, "Metallic-roughness map": `0.669/r⁴ + 1.42/r² − 1.59`).
     ///
     /// So `shininess` is not read where the map is drawn (a material lit per vertex takes it
     /// at its vertices), and `specular_strength` stays a factor on the highlight (π for a

@@ -62,7 +62,7 @@ pub use environment_light::{environment_light_direction, environment_light_level
 pub use hemisphere::Hemisphere;
 pub use lights::{Light, Lights, OtherLights, ReferenceLight, attenuation, rgb, spot_cone};
 pub use metallic_roughness::{
-    MAX_SHININESS, MEAN_N_DOT_V, MetallicRoughness, shininess_from_roughness,
+    EXPONENT_FIT, MAX_SHININESS, MEAN_N_DOT_V, MetallicRoughness, shininess_from_roughness,
     with_multiple_scattering,
 };
 pub use normals::{bumped_normal, face_normal, mapped_normal};

@@ -20,13 +20,14 @@ use bevy::gltf::GltfMaterial;
 /// | each texture's `texCoord` (the `*_channel` fields) | the map's `*_channel`; `PhongGltfPlugin` reads `KHR_texture_transform`'s `texCoord` from the file, which overrides it and which Bevy's loader drops |
 /// | `unlit` (`KHR_materials_unlit`) | `unlit`, with `base_color` as it is (not darkened by `metallic`) |
 /// | `occlusion_texture`, `occlusion_channel` (occlusionTexture and its texCoord) | `ao_map_texture`, `ao_map_channel`, `ao_map_intensity: 1` (`PhongGltfPlugin` then reads the file's `strength`, which `GltfMaterial` drops) |
-/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(F₀, base_color, m)`, Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = π` |
+/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ and `specular_tint` t (`KHR_materials_specular`, as Bevy's loader reads it) | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(F₀, base_color, m)`, Bevy's `F₀ = 0.16 · (ρ·t)²` (0.04 without the extension) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(0.669/r⁴ + 1.42/r² − 1.59, 1, 10⁴)`, `specular_strength = π` |
 /// | `metallic_roughness_texture` (metallicRoughnessTexture), `metallic_roughness_channel` | the same, with `metallic` and `perceptual_roughness` as its factors: the rules above applied per texel by the shader, `base_color` and `specular_color = F₀` kept as they are (`PhongGltfPlugin` reads the texture's `KHR_texture_transform` `texCoord`) |
 /// | (Bevy's weights on the ambient light) | `ambient_factor = 0.4524` (Bevy's weight on the diffuse color), `ambient_specular: true` and `perceptual_roughness = r`: the ambient light reflected by `specular_color` as Bevy weighs it (SPEC.md, "Ambient specular") |
 /// | (Bevy's `EnvironmentMapLight` on the camera) | `environment_light: true`: its diffuse cube lights the diffuse color, its specular cube is reflected by the same weights (SPEC.md, "Environment light") |
 ///
-/// The exponent gives a Blinn-Phong lobe `cos^n(θ_h)` the width of a GGX / Beckmann lobe
-/// of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007); `r = 0` gives the maximum, `10⁴`. The
+/// The exponent gives the Blinn-Phong lobe `cos^n(θ_h)` nearest Bevy's GGX lobe of roughness
+/// `r` as a display shows them (SPEC.md, "Metallic-roughness map"); `r = 0` gives the
+/// maximum, `10⁴`. The
 /// normalized Blinn-Phong model is three.js's BRDF `F · (n + 2)/(8π) · cos^n(θ_h)` times
 /// `N·L`, with Schlick's Fresnel; the crate's diffuse term `k_d · max(N·L, 0)` is the
 /// Lambert BRDF `k_d/π` times π, so the strength π draws the BRDF in the same units. A glTF
@@ -59,7 +60,7 @@ use bevy::gltf::GltfMaterial;
 /// // more than once: never darker than the color.
 /// let specular = phong.specular_color.to_linear();
 /// assert!(specular.red >= 1.0 && specular.green >= 0.8 && specular.blue >= 0.3);
-/// assert_eq!(phong.shininess, 30.0); // 2 / 0.5⁴ − 2
+/// assert!((phong.shininess - 14.794).abs() < 1e-4); // 0.669·16 + 1.42·4 − 1.59
 /// ```
 pub fn phong_material_from_gltf(material: &GltfMaterial, label: Option<&str>) -> PhongMaterial {
     if let Some(label) = label {
@@ -187,7 +188,12 @@ mod tests {
             compensated([1.0, 0.8, 0.3, 1.0], 0.5),
             "F0",
         );
-        assert_eq!(phong.shininess, 30.0, "2 / 0.5⁴ − 2");
+        // 0.669 · 16 + 1.42 · 4 − 1.59.
+        assert!(
+            (phong.shininess - 14.794).abs() < 1e-4,
+            "{}",
+            phong.shininess
+        );
     }
 
     #[test]
@@ -209,8 +215,12 @@ mod tests {
             compensated([0.27, 0.52, 0.02, 1.0], 0.25),
             "mix(0.04, c, 0.5)",
         );
-        // 2 / 0.25⁴ − 2 = 510.
-        assert_eq!(phong.shininess, 510.0);
+        // 0.669 / 0.25⁴ + 1.42 / 0.25² − 1.59 = 171.264 + 22.72 − 1.59 = 192.394.
+        assert!(
+            (phong.shininess - 192.394).abs() < 1e-3,
+            "{}",
+            phong.shininess
+        );
     }
 
     #[test]
@@ -222,10 +232,13 @@ mod tests {
         assert_eq!(shininess_from_roughness(f32::NEG_INFINITY), 1e4);
         assert_eq!(shininess_from_roughness(1.0), 1.0);
         assert_eq!(shininess_from_roughness(f32::INFINITY), 1.0, "clamped to 1");
-        assert_eq!(shininess_from_roughness(f32::NAN), 30.0, "NaN taken as 0.5");
-        // Just above the cap's threshold r⁴ = 2 / 10002 the formula takes over.
+        // 0.669 · 16 + 1.42 · 4 − 1.59 = 14.794.
+        let half = shininess_from_roughness(f32::NAN);
+        assert!((half - 14.794).abs() < 1e-4, "NaN taken as 0.5: {half}");
+        // Just above the cap's threshold (r ≈ 0.09) the fit takes over.
         let r = 0.2_f32;
-        assert!((shininess_from_roughness(r) - (2.0 / r.powi(4) - 2.0)).abs() < 1e-2);
+        let fitted = 0.669 / r.powi(4) + 1.42 / r.powi(2) - 1.59;
+        assert!((shininess_from_roughness(r) - fitted).abs() < 1e-2);
         // Monotonic: smoother is sharper, over the whole range.
         let mut previous = f32::INFINITY;
         for i in 0..=1000 {
@@ -267,7 +280,12 @@ mod tests {
             "F0",
         );
         assert_eq!(phong.emissive, LinearRgba::new(0.0, 2.0, 0.0, 1.0));
-        assert_eq!(phong.shininess, 30.0, "NaN roughness taken as 0.5");
+        // NaN roughness taken as 0.5.
+        assert!(
+            (phong.shininess - 14.794).abs() < 1e-4,
+            "{}",
+            phong.shininess
+        );
     }
 
     #[test]
@@ -445,7 +463,12 @@ mod tests {
         assert_close(linear(phong.base_color), [0.8, 0.4, 0.2, 0.5], "base color");
         assert_close(linear(phong.specular_color), [0.04, 0.04, 0.04, 1.0], "F0");
         assert_eq!(phong.specular_strength, core::f32::consts::PI);
-        assert_eq!(phong.shininess, 30.0, "the factor's, for the vertices");
+        // The factor's, for the vertices.
+        assert!(
+            (phong.shininess - 14.794).abs() < 1e-4,
+            "{}",
+            phong.shininess
+        );
         assert!(
             crate::MaterialFeatures::of(&phong)
                 .contains(crate::MaterialFeatures::METALLIC_ROUGHNESS_MAP_UV_B)

@@ -8,8 +8,8 @@
 //! - the base color is the diffuse color times `1 − metallic`; the specular color is the
 //!   Fresnel reflectance at normal incidence `F₀ = mix(0.04, base color, metallic)` with
 //!   Bevy's compensation for multiple scattering, on a normalized Blinn-Phong highlight
-//!   (three.js's: Schlick's Fresnel and `N·L`) of exponent `n = 2 / r⁴ − 2` for roughness `r`
-//!   (clamped to `[1, 10⁴]`), the width of a GGX lobe of the same roughness, at strength π;
+//!   (three.js's: Schlick's Fresnel and `N·L`) whose exponent is fitted to Bevy's GGX lobe
+//!   of roughness `r` (in `[1, 10⁴]`; SPEC.md, "Metallic-roughness map"), at strength π;
 //! - there is no geometry term, and the Blinn-Phong lobe lacks GGX's long tails
 //!   (docs/switching.md measures the difference);
 //! - there is no image-based lighting: metals lit only by punctual lights look darker than

@@ -14,7 +14,7 @@ use bevy::{
 /// | `StandardMaterial` | `PhongMaterial` |
 /// |---|---|
 /// | `base_color`, `base_color_texture`, `base_color_channel` | `base_color = base_color · (1 − metallic)` in linear RGB (alpha kept), the same texture and UV set |
-/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ, `specular_tint` t | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(0.16 · (ρ·t)², base_color, m)` (Bevy's `F₀`; 0.04 at the default ρ = 0.5) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(2 / r⁴ − 2, 1, 10⁴)`, `specular_strength = π` |
+/// | `metallic` m, `perceptual_roughness` r, `reflectance` ρ, `specular_tint` t | `specular_model: NormalizedBlinnPhong`, `specular_color = k · (1 + k · (1/E − 1))` with `k = mix(0.16 · (ρ·t)², base_color, m)` (Bevy's `F₀`; 0.04 at the default ρ = 0.5) and `E` a GGX lobe's single-scattering albedo at `r` (Bevy's compensation for multiple scattering), `shininess` n `= clamp(0.669/r⁴ + 1.42/r² − 1.59, 1, 10⁴)` (SPEC.md, "Metallic-roughness map"), `specular_strength = π` |
 /// | `emissive`, `emissive_texture`, `emissive_channel` | the same |
 /// | `normal_map_texture`, `normal_map_channel`, `flip_normal_map_y` | the same |
 /// | `occlusion_texture`, `occlusion_channel` | `ao_map_texture`, `ao_map_channel` (intensity 1) |
@@ -39,7 +39,7 @@ use bevy::{
 ///     ..default()
 /// };
 /// let phong = PhongMaterial::from(&plastic);
-/// assert_eq!(phong.shininess, 30.0); // 2 / 0.5⁴ − 2
+/// assert!((phong.shininess - 14.794).abs() < 1e-4); // 0.669·16 + 1.42·4 − 1.59
 /// assert_eq!(phong.specular_model, SpecularModel::NormalizedBlinnPhong);
 /// assert_eq!(phong.specular_strength, std::f32::consts::PI); // the BRDF drawn times π
 /// ```
@@ -188,7 +188,12 @@ mod tests {
             compensated([0.04, 0.04, 0.04, 1.0], 0.5),
             "F₀",
         );
-        assert_eq!(phong.shininess, 30.0, "2 / 0.5⁴ − 2");
+        // 0.669 · 16 + 1.42 · 4 − 1.59.
+        assert!(
+            (phong.shininess - 14.794).abs() < 1e-4,
+            "{}",
+            phong.shininess
+        );
         assert_eq!(
             phong.specular_strength,
             core::f32::consts::PI,
@@ -231,7 +236,12 @@ mod tests {
             compensated([1.0, 0.8, 0.3, 1.0], 0.25),
             "specular",
         );
-        assert_eq!(phong.shininess, 510.0, "2 / 0.25⁴ − 2");
+        // 0.669 / 0.25⁴ + 1.42 / 0.25² − 1.59.
+        assert!(
+            (phong.shininess - 192.394).abs() < 1e-3,
+            "{}",
+            phong.shininess
+        );
     }
 
     #[test]
@@ -311,7 +321,12 @@ mod tests {
         {
             assert!(!value.is_nan(), "{phong:?}");
         }
-        assert_eq!(phong.shininess, 30.0, "NaN roughness taken as 0.5");
+        // NaN roughness taken as 0.5.
+        assert!(
+            (phong.shininess - 14.794).abs() < 1e-4,
+            "{}",
+            phong.shininess
+        );
     }
 
     #[test]

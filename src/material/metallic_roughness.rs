@@ -11,8 +11,9 @@
 //!   `k · (1 + k · (1/E − 1))` per channel ([`with_multiple_scattering`]);
 //! - three.js's normalized Blinn-Phong highlight ([`SpecularModel::NormalizedBlinnPhong`]:
 //!   `F · (n + 2)/(8π) · cos^n(θ_h) · N·L`, Schlick's Fresnel on `f₀ = k_s · strength`) of
-//!   exponent `n = clamp(2 / r⁴ − 2, 1, 10⁴)` for perceptual roughness `r`, the width of a
-//!   GGX / Beckmann lobe of `α = r²` (`n = 2/α² − 2`, Walter et al. 2007), with strength π:
+//!   exponent `n = clamp(a/r⁴ + b/r² + c, 1, 10⁴)` for perceptual roughness `r`
+//!   ([`shininess_from_roughness`]), the lobe nearest Bevy's GGX lobe of roughness `r` as a
+//!   display shows them (SPEC.md, "Metallic-roughness map"), with strength π:
 //!   the crate's diffuse term `k_d · max(N·L, 0)` is the Lambert BRDF `k_d/π` times π, so a
 //!   BRDF is drawn times π;
 //! - the ambient light as `StandardMaterial` weighs it: `ambient_factor` [`BEVY_DIFFUSE_AMBIENT`]
@@ -37,9 +38,10 @@ pub(crate) const METALLIC: Limits = Limits::new(0.0, 1.0, 0.0);
 /// Perceptual roughness: `[0, 1]`, NaN → 0.5 (the default of both sources).
 pub(crate) const ROUGHNESS: Limits = Limits::new(0.0, 1.0, 0.5);
 
-/// The smallest and largest highlight exponent the conversion gives: `r = 1` (fully rough)
-/// would give 0, a flat highlight; below `r ≈ 0.119` the exponent exceeds `10⁴`, where the
-/// highlight is already a point at any screen resolution.
+/// The smallest and largest highlight exponent the conversion gives: the fit
+/// ([`shininess_from_roughness`]) would give 0.5 at `r = 1`, a highlight flatter than the
+/// diffuse light; from `r ≈ 0.09` down it exceeds `10⁴`, where the highlight is already a
+/// point at any screen resolution.
 pub(crate) const SHININESS_RANGE: (f32, f32) = (1.0, 1e4);
 
 /// The specular reflectance of a dielectric at normal incidence (glTF's `F₀`, and Bevy's at
@@ -174,19 +176,20 @@ impl MetallicRoughness {
     }
 }
 
-/// The Blinn-Phong exponent of roughness `r`: `clamp(2 / r⁴ − 2, 1, 10⁴)`; NaN is taken as
-/// 0.5, values outside `[0, 1]` are clamped first ([`ROUGHNESS`]).
+/// `(a, b, c)` of the highlight exponent `a/r⁴ + b/r² + c` of perceptual roughness `r`: the
+/// normalized Blinn-Phong lobe nearest Bevy's GGX lobe of roughness `r` as a display shows
+/// them (SPEC.md, "Metallic-roughness map"; fitted by the unit test `reference::ggx_fit`).
+const EXPONENT_FIT: [f32; 3] = [0.669, 1.42, -1.59];
+
+/// The Blinn-Phong exponent of roughness `r`: `clamp(a/r⁴ + b/r² + c, 1, 10⁴)` with
+/// [`EXPONENT_FIT`], `r²` taken as at least `10⁻⁴` (the exponent is `10⁴` from `r ≈ 0.09`
+/// down); NaN is taken as 0.5, values outside `[0, 1]` are clamped first ([`ROUGHNESS`]).
 pub(crate) fn shininess_from_roughness(roughness: f32) -> f32 {
     let r = ROUGHNESS.apply(roughness);
     let (min, max) = SHININESS_RANGE;
-    let alpha_squared = r * r * r * r;
-    // 2/α² − 2 ≥ max exactly when α² ≤ 2 / (max + 2): this also covers r = 0 (and the
-    // subnormal α² whose quotient would overflow) without dividing by zero.
-    if alpha_squared <= 2.0 / (max + 2.0) {
-        max
-    } else {
-        (2.0 / alpha_squared - 2.0).clamp(min, max)
-    }
+    let [a, b, c] = EXPONENT_FIT;
+    let x = 1.0 / (r * r).max(1e-4);
+    ((a * x + b) * x + c).clamp(min, max)
 }
 
 /// `emissive` in [`limits::INTENSITY`]'s range, alpha 1 (the shader reads its RGB only).
@@ -222,6 +225,25 @@ pub(crate) mod tests {
             assert!(
                 (a - e).abs() <= ROUNDING,
                 "{what}: {actual:?}, expected {expected:?}"
+            );
+        }
+    }
+
+    /// The conversion's fit is the reference model's, to f32's precision.
+    #[cfg(feature = "reference")]
+    #[test]
+    fn the_exponent_is_the_reference_models() {
+        assert_eq!(
+            super::EXPONENT_FIT.map(f64::from),
+            crate::reference::EXPONENT_FIT.map(|c| f64::from(c as f32))
+        );
+        for step in 0..=100 {
+            let r = step as f32 / 100.0;
+            let expected = crate::reference::shininess_from_roughness(f64::from(r));
+            let actual = f64::from(super::shininess_from_roughness(r));
+            assert!(
+                (actual / expected - 1.0).abs() < 1e-5,
+                "r = {r}: {actual}, {expected}"
             );
         }
     }

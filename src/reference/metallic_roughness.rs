@@ -17,16 +17,19 @@ pub struct MetallicRoughness {
 /// The largest highlight exponent a roughness gives.
 pub const MAX_SHININESS: f64 = 1e4;
 
+/// `(a, b, c)` of the highlight exponent `a/r⁴ + b/r² + c` of perceptual roughness `r`: the
+/// normalized Blinn-Phong lobe nearest Bevy's GGX lobe of roughness `r` as a display shows
+/// them, by least squares over the hemisphere (SPEC.md, "Metallic-roughness map"; the unit
+/// test `reference::ggx_fit` fits them).
+pub const EXPONENT_FIT: [f64; 3] = [0.669, 1.42, -1.59];
+
 /// The Blinn-Phong exponent of perceptual roughness `r` (in `[0, 1]`):
-/// `clamp(2 / r⁴ − 2, 1, 10⁴)`, the width of a GGX lobe of `α = r²`; `10⁴` wherever
-/// `2 / r⁴ − 2` reaches it (`r = 0` included).
+/// `clamp(a/r⁴ + b/r² + c, 1, 10⁴)` with [`EXPONENT_FIT`]; `r²` is taken as at least `10⁻⁴`
+/// (the exponent is `10⁴` well above that, from `r ≈ 0.09`), so `r = 0` never divides.
 pub fn shininess_from_roughness(r: f64) -> f64 {
-    let alpha_squared = r.powi(4);
-    if alpha_squared <= 2.0 / (MAX_SHININESS + 2.0) {
-        MAX_SHININESS
-    } else {
-        (2.0 / alpha_squared - 2.0).clamp(1.0, MAX_SHININESS)
-    }
+    let [a, b, c] = EXPONENT_FIT;
+    let x = 1.0 / (r * r).max(1e-4);
+    ((a * x + b) * x + c).clamp(1.0, MAX_SHININESS)
 }
 
 /// The mean `N·V` over the visible half of a sphere, weighted by its projected area
@@ -100,7 +103,10 @@ mod tests {
             with_multiple_scattering(DVec3::new(0.8, 0.4, 0.2), 0.5)
         );
         // 2 / 0.5⁴ − 2 = 30, worked by hand; the strength stays the material's.
-        assert_eq!(metal.shininess, 30.0);
+        assert!(
+            (metal.shininess - 14.794).abs() < 1e-9,
+            "0.669·16 + 1.42·4 − 1.59"
+        );
         assert_eq!(metal.specular_strength, 1.0);
     }
 
@@ -117,7 +123,10 @@ mod tests {
         // mix(0.04, 0.8, 0.25) = 0.23 in red, compensated at r = 0.5.
         let red = with_multiple_scattering(DVec3::splat(0.23), 0.5).x;
         assert!((texel.specular.x - red).abs() < 1e-15, "{}", texel.specular);
-        assert_eq!(texel.shininess, 30.0);
+        assert!(
+            (texel.shininess - 14.794).abs() < 1e-9,
+            "0.669·16 + 1.42·4 − 1.59"
+        );
         let dielectric = plastic().at_metallic_roughness_texel(FACTORS_ONE, 0.0, 1.0);
         assert_eq!(dielectric.diffuse, plastic().diffuse);
         assert_eq!(
@@ -143,8 +152,9 @@ mod tests {
     #[test]
     fn the_exponent_is_capped_and_never_divides_by_zero() {
         assert_eq!(shininess_from_roughness(0.0), MAX_SHININESS);
-        assert_eq!(shininess_from_roughness(0.1), MAX_SHININESS);
-        assert!((shininess_from_roughness(0.2) - (2.0 / 0.2f64.powi(4) - 2.0)).abs() < 1e-9);
+        assert_eq!(shininess_from_roughness(0.05), MAX_SHININESS);
+        let fitted = 0.669 / 0.2f64.powi(4) + 1.42 / 0.2f64.powi(2) - 1.59;
+        assert!((shininess_from_roughness(0.2) - fitted).abs() < 1e-9);
         assert_eq!(shininess_from_roughness(1.0), 1.0);
         // Out-of-range products are clamped before: a texel of 2 is a full metal.
         let clamped = plastic().at_metallic_roughness_texel(FACTORS_ONE, 2.0, -1.0);
