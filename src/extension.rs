@@ -266,7 +266,7 @@
 //!
 //! A kind that takes a [`PhongLightCookie`](crate::PhongLightCookie) on its lights' entities
 //! says how the image lies over its rays in [`PhongLightKind::cookie_projection`] (a
-//! [`PhongCookieProjection`]: a spot cone, a cube around the light, or a plane). The plugin
+//! [`PhongCookieProjection`]: a cone, a cube around the light, or a plane). The plugin
 //! puts the image in its cookie atlas and the cookie's record after the built-in lights,
 //! and hands the record's index plus one to [`PhongLightKind::set_cookie`] (`0`: none this
 //! frame): store it in a `u32` of the record. While some light has a cookie, the flag
@@ -536,8 +536,8 @@ mod tests {
                 padding: self.range,
             }
         }
-        fn reach(record: &GpuLamp, _epsilon: f32) -> f32 {
-            record.padding
+        fn reach(&self, _record: &GpuLamp, _epsilon: f32) -> f32 {
+            self.range
         }
         fn validate(&mut self, checker: &mut Checker) {
             checker.number("range", &mut self.range, 0.0..=f32::INFINITY, 0.0);
@@ -569,7 +569,7 @@ mod tests {
             }
         }
         fn cookie_projection(&self) -> Option<PhongCookieProjection> {
-            Some(PhongCookieProjection::Point)
+            Some(PhongCookieProjection::Cube)
         }
         fn set_cookie(record: &mut GpuLantern, cookie: u32) {
             record.cookie = cookie;
@@ -605,7 +605,7 @@ mod tests {
         let record: GpuCookie = bytemuck::cast(built_in.records()[index as usize - 1]);
         assert_eq!(
             record.projection,
-            GpuCookie::POINT,
+            GpuCookie::CUBE,
             "a cube, laid out as Bevy's default"
         );
         let translation = record.light_from_world.map(|row| row[3]);

@@ -75,20 +75,23 @@ pub trait PhongLightKind: Component<Mutability = Mutable> {
         false
     }
 
-    /// How far the light of `record` reaches, world units: past it the light may be skipped.
-    /// `epsilon` is the light's share of
+    /// How far this light, whose record is `record`, reaches, world units: past it the light
+    /// may be skipped. The component holds what limits it (a range) and the record what it
+    /// gives (its colors and fall-off as the shader reads them). `epsilon` is the light's
+    /// share of
     /// [`PhongLightCulling::epsilon`](crate::PhongLightCulling::epsilon) (linear RGB; `0` for the
     /// exact model, and for a kind without [`Self::SHARES_EPSILON`]): a light that fades may stop
     /// where it falls below it, as the built-in lights do
     /// ([`influence_radius`](crate::extension::influence_radius)). `f32::INFINITY` (the default)
     /// reaches everywhere; `0` leaves the light out of the buffer.
-    fn reach(record: &Self::Gpu, epsilon: f32) -> f32 {
+    fn reach(&self, record: &Self::Gpu, epsilon: f32) -> f32 {
         let _ = (record, epsilon);
         f32::INFINITY
     }
 
     /// Stores the light's [`Self::reach`] in its record, for the shader to cut the light
-    /// off there (where the kind's reach is not a fixed field). The default stores nothing.
+    /// off there: the one place a record's reach is written (the gather calls it after
+    /// [`Self::to_gpu`]). The default stores nothing.
     fn set_reach(record: &mut Self::Gpu, reach: f32) {
         let _ = (record, reach);
     }

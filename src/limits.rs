@@ -64,9 +64,9 @@ pub const EXPONENT: Limits = Limits::new(0.0, MAX_EXPONENT, 0.0);
 /// Each `Decay` coefficient: `[0, 1e6]`, NaN → 0.
 pub const DECAY: Limits = Limits::new(0.0, MAX_DECAY, 0.0);
 
-/// A spot's `inner_angle` and `outer_angle`, radians: `[0, π]` (0° to 180°), NaN → 0
-/// (an outer angle of 0 is an empty cone).
-pub const SPOT_ANGLE: Limits = Limits::new(0.0, core::f32::consts::PI, 0.0);
+/// A cone's half-angle (a spot light's `inner_angle` and `outer_angle`, a cookie's cone),
+/// radians: `[0, π]` (0° to 180°), NaN → 0 (an outer angle of 0 is an empty cone).
+pub const CONE_ANGLE: Limits = Limits::new(0.0, core::f32::consts::PI, 0.0);
 
 /// An area light's `width`, `height` and `radius`, world units: `[0, 1e6]`, NaN → 0 (no
 /// area: no light).
@@ -129,9 +129,9 @@ pub const TOON_BANDS: u32 = 256;
 /// [`PhongLightCookie`](crate::PhongLightCookie)'s image is resampled to it.
 pub const COOKIE_RESOLUTION: u32 = 256;
 
-/// The widest spot cone, in radians, that a cookie's image is laid across (89.5°): a cone
-/// past 90° has no plane to lay it on, so a wider one takes its image at this angle.
-pub const WIDEST_SPOT_COOKIE: f32 = 89.5 * core::f32::consts::PI / 180.0;
+/// The widest cone, in radians, that a cookie's image is laid across (89.5°): a cone past
+/// 90° has no plane to lay it on, so a wider one takes its image at this angle.
+pub const WIDEST_COOKIE_CONE: f32 = 89.5 * core::f32::consts::PI / 180.0;
 
 /// The most distinct cookie images a scene uses at once (layers of the atlas); lights whose
 /// image comes later are drawn without their cookie, with a warning.
@@ -182,7 +182,7 @@ mod tests {
         assert_eq!(INTENSITY.apply(f32::INFINITY), MAX_INTENSITY);
         assert_eq!(ALPHA.apply(f32::NAN), 1.0);
         assert_eq!(
-            SPOT_ANGLE.apply(1e9_f32.to_radians()),
+            CONE_ANGLE.apply(1e9_f32.to_radians()),
             core::f32::consts::PI
         );
     }

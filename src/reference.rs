@@ -60,7 +60,7 @@ pub use cookies::{Cookie, CookieProjection, cube_face_uv};
 pub use environment::{cube_direction, environment_direction, environment_lod, with_environment};
 pub use environment_light::{environment_light_direction, environment_light_level};
 pub use hemisphere::Hemisphere;
-pub use lights::{Light, Lights, OtherLights, ReferenceLight, attenuation, rgb, spot_cone};
+pub use lights::{Light, Lights, OtherLights, ReferenceLight, attenuation, cone_factor, rgb};
 pub use metallic_roughness::{
     EXPONENT_FIT, MAX_SHININESS, MEAN_N_DOT_V, MetallicRoughness, shininess_from_roughness,
     with_multiple_scattering,

@@ -173,26 +173,27 @@ impl PhongLightKind for Searchlight {
             color: linear_rgb(self.color),
             specular: linear_rgb(self.specular.unwrap_or(self.color)),
             decay: self.decay.to_array(),
-            reach: self.range.unwrap_or(f32::INFINITY),
+            reach: f32::MAX,
             ..default()
         }
     }
 
     /// The range, shortened to where the beam has faded below `epsilon` (its largest
     /// channel times its decay).
-    fn reach(record: &GpuSearchlight, epsilon: f32) -> f32 {
+    fn reach(&self, record: &GpuSearchlight, epsilon: f32) -> f32 {
         let intensity = record
             .color
             .into_iter()
             .chain(record.specular)
             .fold(0.0, f32::max);
-        record
-            .reach
+        self.range
+            .unwrap_or(f32::INFINITY)
             .min(influence_radius(record.decay, intensity, epsilon))
     }
 
+    /// The one place the record's reach is written.
     fn set_reach(record: &mut GpuSearchlight, reach: f32) {
-        record.reach = reach;
+        record.reach = reach.min(f32::MAX);
     }
 
     /// The prism of the beam's cross-section, `reach` long, its soft edge at most

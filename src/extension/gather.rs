@@ -129,7 +129,7 @@ impl<L: PhongLightKind> PhongLightKindBuffer<L> {
             L::set_shadow(&mut record, inputs.slots.get(entity));
             let cookie = inputs.cookies.slot_of(entity);
             L::set_cookie(&mut record, inputs.built_in.cookie_index(cookie));
-            let reach = L::reach(&record, epsilon);
+            let reach = light.reach(&record, epsilon);
             if reach == 0.0 {
                 continue;
             }

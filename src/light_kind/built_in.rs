@@ -86,12 +86,12 @@ macro_rules! fading_reach_kind {
     () => {
         const SHARES_EPSILON: bool = true;
 
-        fn reach(record: &$crate::light_kind::GpuLight, epsilon: f32) -> f32 {
-            $crate::light_kind::built_in::fading_reach(record, epsilon)
+        fn reach(&self, record: &$crate::light_kind::GpuLight, epsilon: f32) -> f32 {
+            $crate::light_kind::built_in::fading_reach(record, self.range, epsilon)
         }
 
         fn set_reach(record: &mut $crate::light_kind::GpuLight, reach: f32) {
-            record.range = reach.min(f32::MAX);
+            record.reach = $crate::light_kind::built_in::stored_reach(reach);
         }
 
         fn bounding_sphere(
@@ -122,17 +122,17 @@ pub(crate) fn place(record: &mut GpuLight, transform: &GlobalTransform, placed: 
     }
 }
 
-/// How far a point or spot light of `record` reaches for the per-light `epsilon`: its
-/// range, shortened to its influence radius (see [`crate::culling`]) from its largest color
-/// or specular channel; `f32::INFINITY` for one without a range that ε does not limit, and
-/// `0` where it reaches nowhere.
-pub(crate) fn fading_reach(record: &GpuLight, epsilon: f32) -> f32 {
+/// How far a point or spot light of `record` and `range` reaches for the per-light
+/// `epsilon`: its range, shortened to its influence radius (see [`crate::culling`]) from its
+/// largest color or specular channel; `f32::INFINITY` for one without a range that ε does
+/// not limit, and `0` where it reaches nowhere.
+pub(crate) fn fading_reach(record: &GpuLight, range: Option<f32>, epsilon: f32) -> f32 {
     let intensity = brightest_channel(record.color, record.specular);
-    unlimited_past_max(
-        record
-            .range
-            .min(influence_radius(record.decay, intensity, epsilon)),
-    )
+    unlimited_past_max(range.unwrap_or(f32::INFINITY).min(influence_radius(
+        record.decay,
+        intensity,
+        epsilon,
+    )))
 }
 
 /// The largest channel of a light's diffuse and specular intensities.
@@ -140,8 +140,8 @@ pub(crate) fn brightest_channel(color: [f32; 3], specular: [f32; 3]) -> f32 {
     color.into_iter().chain(specular).fold(0.0, f32::max)
 }
 
-/// `reach`, read as unlimited (`f32::INFINITY`) from `f32::MAX` on, where a stored range
-/// means none ([`stored_range`]).
+/// `reach`, read as unlimited (`f32::INFINITY`) from `f32::MAX` on, where a stored reach
+/// means none ([`stored_reach`]).
 pub(crate) fn unlimited_past_max(reach: f32) -> f32 {
     if reach >= f32::MAX {
         f32::INFINITY
@@ -150,9 +150,10 @@ pub(crate) fn unlimited_past_max(reach: f32) -> f32 {
     }
 }
 
-/// `range`, with `None` stored as `f32::MAX` (never reached).
-pub(crate) fn stored_range(range: Option<f32>) -> f32 {
-    range.unwrap_or(f32::MAX)
+/// `reach` as a record stores it: an unlimited one (`f32::INFINITY`) as `f32::MAX`, which
+/// no distance passes.
+pub(crate) fn stored_reach(reach: f32) -> f32 {
+    reach.min(f32::MAX)
 }
 
 /// The diffuse and specular intensities of a light whose specular color may default.

@@ -3,7 +3,7 @@
 //! local lights (see [`GpuLightsHeader`](crate::render::GpuLightsHeader)).
 
 use super::GpuLight;
-use super::built_in::{brightest_channel, intensities, stored_range, unlimited_past_max};
+use super::built_in::{brightest_channel, intensities, unlimited_past_max};
 use crate::lights::{AreaHighlight, Decay, PhongShadows};
 use crate::shadows::{PhongShadowProjection, PhongShadowRequest};
 use bevy::{color::Color, math::Vec3, shape::BoundingSphere};
@@ -23,9 +23,11 @@ use bytemuck::{Pod, Zeroable};
 pub struct GpuAreaLight {
     /// World-space center of the shape.
     pub center: [f32; 3],
-    /// Distance from the light's nearest point past which it is cut off; `f32::MAX` when
-    /// unlimited.
-    pub range: f32,
+    /// Distance from the light's nearest point past which it is cut off: its reach, its range
+    /// shortened where its light falls below ε, which the gather writes
+    /// ([`PhongLightKind::set_reach`](crate::extension::PhongLightKind::set_reach));
+    /// `f32::MAX` when unlimited, and in a record as `unplaced` makes it.
+    pub reach: f32,
     /// Half the width along the light's local X, world units.
     pub half_width: [f32; 3],
     /// Half the height along the light's local Y, world units.
@@ -73,7 +75,6 @@ impl GpuAreaLight {
         shape: UnplacedShape,
         (color, specular): (Color, Option<Color>),
         decay: Decay,
-        range: Option<f32>,
         (two_sided, highlight): (bool, AreaHighlight),
     ) -> Self {
         let (color, specular) = intensities(color, specular);
@@ -97,7 +98,7 @@ impl GpuAreaLight {
         };
         GpuAreaLight {
             center: [0.0; 3],
-            range: stored_range(range),
+            reach: f32::MAX,
             half_width: [shape.half_extents[0], 0.0, 0.0],
             half_height: [0.0, shape.half_extents[1], 0.0],
             color: per_area(color),
@@ -129,10 +130,14 @@ impl GpuAreaLight {
         (self.area() / core::f32::consts::PI).sqrt()
     }
 
-    /// The shadow the light casts with `settings`: a cube of maps from its center
+    /// The shadow the light of `range` casts with `settings`: a cube of maps from its center
     /// (percentage-closer soft shadows with [`Self::light_size`] as the light's size, in
     /// place of `settings.softness`), reaching its range past its shape.
-    pub(crate) fn shadow_request(&self, settings: PhongShadows) -> PhongShadowRequest {
+    pub(crate) fn shadow_request(
+        &self,
+        settings: PhongShadows,
+        range: Option<f32>,
+    ) -> PhongShadowRequest {
         PhongShadowRequest {
             projection: PhongShadowProjection::Omni {
                 position: Vec3::from(self.center),
@@ -141,7 +146,7 @@ impl GpuAreaLight {
                 softness: self.light_size(),
                 ..settings
             },
-            reach: unlimited_past_max(self.range) + self.circumradius(),
+            reach: range.unwrap_or(f32::INFINITY) + self.circumradius(),
         }
     }
 
@@ -172,14 +177,15 @@ impl GpuAreaLight {
         }
     }
 
-    /// How far the light reaches from its nearest point for the per-light `epsilon` (see
+    /// How far the light of `range` reaches from its nearest point for the per-light
+    /// `epsilon` (see
     /// [`PhongLightKind::reach`](crate::extension::PhongLightKind::reach)): its range,
     /// shortened where its light falls below ε. At distance `d` from its nearest point, each
     /// of its points is at least `d` away, so its solid angle is at most `|S| / d²` and its
     /// light at most `I · A(d) / d²` (`I` its largest channel times `|S|`, `A` the decay):
     /// below ε past `√(I / ε)`, and past `max(r, 1)` for the decay's influence radius `r`.
     /// `f32::INFINITY` where neither limits it; `0` for a light without area.
-    pub(crate) fn reach(&self, epsilon: f32) -> f32 {
+    pub(crate) fn reach(&self, range: Option<f32>, epsilon: f32) -> f32 {
         let area = self.area();
         // A NaN area too.
         if area.is_nan() || area <= 0.0 {
@@ -188,7 +194,8 @@ impl GpuAreaLight {
         let intensity = brightest_channel(self.color, self.specular) * area;
         let inverse_square = (intensity / epsilon).sqrt();
         let decayed = crate::lights::influence_radius(self.decay, intensity, epsilon).max(1.0);
-        unlimited_past_max(self.range.min(inverse_square).min(decayed))
+        let range = range.unwrap_or(f32::INFINITY);
+        unlimited_past_max(range.min(inverse_square).min(decayed))
     }
 
     /// A sphere around the light's shape grown by `reach`, for the clusters; `None` for an
@@ -237,12 +244,12 @@ macro_rules! area_light_kind {
             true
         }
 
-        fn reach(record: &$crate::light_kind::GpuAreaLight, epsilon: f32) -> f32 {
-            record.reach(epsilon)
+        fn reach(&self, record: &$crate::light_kind::GpuAreaLight, epsilon: f32) -> f32 {
+            record.reach(self.range, epsilon)
         }
 
         fn set_reach(record: &mut $crate::light_kind::GpuAreaLight, reach: f32) {
-            record.range = reach.min(f32::MAX);
+            record.reach = $crate::light_kind::built_in::stored_reach(reach);
         }
 
         fn bounding_sphere(
@@ -260,7 +267,10 @@ macro_rules! area_light_kind {
             &self,
             transform: &bevy::transform::components::GlobalTransform,
         ) -> Option<$crate::shadows::PhongShadowRequest> {
-            Some(self.to_gpu(transform).shadow_request(self.shadows))
+            Some(
+                self.to_gpu(transform)
+                    .shadow_request(self.shadows, self.range),
+            )
         }
 
         fn set_shadow(record: &mut $crate::light_kind::GpuAreaLight, shadow: u32) {

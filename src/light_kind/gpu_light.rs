@@ -15,8 +15,11 @@ use bytemuck::{Pod, Zeroable};
 pub struct GpuLight {
     /// World-space position (point, spot).
     pub position: [f32; 3],
-    /// Distance past which the light is cut off; `f32::MAX` when unlimited (point, spot).
-    pub range: f32,
+    /// Distance past which the light is cut off (point, spot): its reach, its range shortened
+    /// where its light falls below ε, which the gather writes
+    /// ([`PhongLightKind::set_reach`](crate::extension::PhongLightKind::set_reach));
+    /// `f32::MAX` when unlimited, and in a record as `to_gpu` makes it.
+    pub reach: f32,
     /// Unit vector along which the light travels (directional, spot); zero for a point light.
     pub direction: [f32; 3],
     /// `1 - cos(outer_angle)` (spot), computed in `f64`; `-1` for an empty cone;

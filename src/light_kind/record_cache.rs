@@ -57,7 +57,8 @@ impl<L: PhongLightKind> Default for RecordCache<L> {
 impl<L: PhongLightKind + Clone + PartialEq> RecordCache<L> {
     /// The record of the `index`-th visible light, placed at `transform` (with
     /// [`PhongLightKind::place`] on its cached constants), and its reach for the per-light
-    /// `epsilon` ([`PhongLightKind::reach`], from the record as `to_gpu` made it; `0` where
+    /// `epsilon` ([`PhongLightKind::reach`], of the light and its record as `to_gpu` made
+    /// it; `0` where
     /// it reaches nowhere). A kind that cannot place a record gets `to_gpu` each time.
     ///
     /// The constants are made again when `entity` differs from the entry's, or when `light`
@@ -94,7 +95,7 @@ impl<L: PhongLightKind + Clone + PartialEq> RecordCache<L> {
         if limited.epsilon.to_bits() != epsilon.to_bits() {
             *limited = LimitedReach {
                 epsilon,
-                reach: L::reach(&self.constants[index], epsilon),
+                reach: light.reach(&self.constants[index], epsilon),
             };
         }
         let mut record = self.constants[index];

@@ -63,20 +63,21 @@ pub struct PhongLightCookie {
 /// How a light's [`PhongLightCookie`] lays its image over the light's rays: what a kind of
 /// light answers in
 /// [`PhongLightKind::cookie_projection`](crate::extension::PhongLightKind::cookie_projection).
-/// The spot light's is `Spot`, the point light's `Point`, the directional light's
-/// `Directional` (see [`PhongLightCookie`] for each one's mapping).
+/// A cone for a light that shines within one (the spot light), a cube for one that shines
+/// all around (the point light), a plane for parallel rays (the directional light); see
+/// [`PhongLightCookie`] for each one's mapping.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PhongCookieProjection {
-    /// Over a cone of half-angle `outer_angle` (radians) along the light's `-Z` axis.
-    Spot {
+    /// Over a cone of half-angle `half_angle` (radians) along the light's `-Z` axis.
+    Cone {
         /// The cone's half-angle, radians; clamped to `[0, π]` and then to the widest cone a
         /// cookie spans.
-        outer_angle: f32,
+        half_angle: f32,
     },
     /// A cube map around the light, packed by the cookie's `cubemap_layout`.
-    Point,
+    Cube,
     /// A plane: the light's local XY plane, repeated where the cookie is `tiled`.
-    Directional,
+    Plane,
 }
 
 /// The format of the cookie images copied into the atlas unchanged: 8-bit sRGB, which keeps

@@ -1,9 +1,9 @@
 //! Light cookies in the reference model (SPEC.md, "Light cookies"): the tint a light's
 //! image gives it at a point, from the atlas layer the crate made of the image.
 
-use crate::lights::PhongLightCookie;
 use crate::lights::cookie_layer_texels;
-use crate::limits::{SPOT_ANGLE, WIDEST_SPOT_COOKIE};
+use crate::lights::{PhongCookieProjection, PhongLightCookie};
+use crate::limits::{CONE_ANGLE, WIDEST_COOKIE_CONE};
 use bevy::{
     camera::primitives::CubemapLayout, image::Image, transform::components::GlobalTransform,
 };
@@ -12,15 +12,15 @@ use glam::{DAffine3, DVec2, DVec3};
 /// How a cookie's image is laid over its light.
 #[derive(Clone, Copy, Debug)]
 pub enum CookieProjection {
-    /// Across a spot light's cone: `tan` of its outer angle (below 89.5°).
-    Spot {
-        /// `tan(outer_angle)`.
-        tan_outer: f64,
+    /// Across a cone: `tan` of its half-angle (below 89.5°).
+    Cone {
+        /// `tan(half_angle)`.
+        tan_half_angle: f64,
     },
-    /// Around a point light, as a cube map packed by the layout.
-    Point(CubemapLayout),
-    /// On a directional light's plane, once or repeated.
-    Directional {
+    /// Around the light, as a cube map packed by the layout.
+    Cube(CubemapLayout),
+    /// On the light's local XY plane, once or repeated.
+    Plane {
         /// Whether the image repeats.
         tiled: bool,
         /// Whether the light is dark outside an untiled image.
@@ -44,14 +44,13 @@ pub struct Cookie {
 }
 
 impl Cookie {
-    /// The cookie `cookie`, whose image is `image`, on a light at `transform`: a spot light
-    /// with `spot_outer_angle`, else a point light (`point`) or a directional light.
+    /// The cookie `cookie`, whose image is `image`, on a light at `transform` that lays it
+    /// over its rays by `projection` (its kind's `PhongLightKind::cookie_projection`).
     pub fn new(
         cookie: &PhongLightCookie,
         image: &Image,
         transform: &GlobalTransform,
-        spot_outer_angle: Option<f32>,
-        point: bool,
+        projection: PhongCookieProjection,
     ) -> Option<Self> {
         let texels = cookie_layer_texels(image)?;
         let side = (texels.len() as f64).sqrt() as u32;
@@ -62,12 +61,13 @@ impl Cookie {
             affine.matrix3.z_axis.as_dvec3(),
             affine.translation.as_dvec3(),
         );
-        let projection = match (spot_outer_angle, point) {
-            (Some(outer), _) => CookieProjection::Spot {
-                tan_outer: f64::from(SPOT_ANGLE.apply(outer).min(WIDEST_SPOT_COOKIE)).tan(),
+        let projection = match projection {
+            PhongCookieProjection::Cone { half_angle } => CookieProjection::Cone {
+                tan_half_angle: f64::from(CONE_ANGLE.apply(half_angle).min(WIDEST_COOKIE_CONE))
+                    .tan(),
             },
-            (None, true) => CookieProjection::Point(cookie.cubemap_layout),
-            (None, false) => CookieProjection::Directional {
+            PhongCookieProjection::Cube => CookieProjection::Cube(cookie.cubemap_layout),
+            PhongCookieProjection::Plane => CookieProjection::Plane {
                 tiled: cookie.tiled,
                 dark_outside: cookie.dark_outside,
             },
@@ -84,19 +84,19 @@ impl Cookie {
     /// The tint at world position `position`: the image's linear color there (bilinear
     /// between texel centers, the coordinates clamped, or wrapped for a tiled image),
     /// clamped to `[0, 1]`, or its red channel thrice with `red_only`; 1 where the image
-    /// does not reach (behind a spot light, off an untiled directional light's tile), 0 off
-    /// the tile of one that is dark outside it.
+    /// does not reach (behind a cone's apex, off an untiled plane's tile), 0 off the tile
+    /// of one that is dark outside it.
     pub fn tint(&self, position: DVec3) -> DVec3 {
         let local = self.light_from_world.transform_point3(position);
         let (uv, tiled) = match self.projection {
-            CookieProjection::Spot { tan_outer } => {
+            CookieProjection::Cone { tan_half_angle } => {
                 if local.z >= 0.0 {
                     return DVec3::ONE;
                 }
-                let plane = local.truncate() / (local.z * tan_outer);
+                let plane = local.truncate() / (local.z * tan_half_angle);
                 (plane * DVec2::new(-0.5, 0.5) + 0.5, false)
             }
-            CookieProjection::Directional {
+            CookieProjection::Plane {
                 tiled,
                 dark_outside,
             } => {
@@ -110,7 +110,7 @@ impl Cookie {
                 }
                 (uv, tiled)
             }
-            CookieProjection::Point(layout) => (cube_face_uv(local, layout), false),
+            CookieProjection::Cube(layout) => (cube_face_uv(local, layout), false),
         };
         let tint = self.sample(uv, tiled).clamp(DVec3::ZERO, DVec3::ONE);
         if self.red_only {

@@ -192,7 +192,7 @@ pub fn attenuation(
 /// `t = clamp((cosθ - cos_outer) / (cos_inner - cos_outer), 0, 1)` (a soft edge; `t² (3 − 2t)`
 /// for [`ConeEdge::Smooth`]) or, when the inner cone is not narrower than the outer one,
 /// `step(cos_outer, cosθ)` (a hard edge).
-pub fn spot_cone(
+pub fn cone_factor(
     cos_theta: f64,
     cos_inner: f64,
     cos_outer: f64,

@@ -2,8 +2,8 @@
 //! highlight models (SPEC.md, "The equation" and "Shadows").
 
 use super::{
-    Light, Lights, MIN_LENGTH_SQUARED, Material, SurfacePoint, Texels, attenuation, diffuse_factor,
-    highlight_factor, normalize_or_zero, rim_factor, spot_cone,
+    Light, Lights, MIN_LENGTH_SQUARED, Material, SurfacePoint, Texels, attenuation, cone_factor,
+    diffuse_factor, highlight_factor, normalize_or_zero, rim_factor,
 };
 use crate::material::{DiffuseMode, SpecularModel};
 use glam::DVec3;
@@ -192,7 +192,7 @@ pub fn light_contribution(surface: &SurfacePoint, material: &Material, light: &L
                 return DVec3::ZERO;
             }
             let cos_theta = (-to_light).dot(normalize_or_zero(direction));
-            let cone = spot_cone(
+            let cone = cone_factor(
                 cos_theta,
                 inner_angle.cos(),
                 outer_angle.cos(),

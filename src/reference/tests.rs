@@ -184,7 +184,7 @@ fn attenuation_is_zero_past_the_range_as_seed_001_cuts_it() {
 fn seed_004_soft_cone_is_full_inside_12_5_degrees_and_dark_past_17_5() {
     let (inner, outer) = (12.5f64.to_radians().cos(), 17.5f64.to_radians().cos());
     assert!(close(
-        spot_cone(
+        cone_factor(
             10f64.to_radians().cos(),
             inner,
             outer,
@@ -194,7 +194,7 @@ fn seed_004_soft_cone_is_full_inside_12_5_degrees_and_dark_past_17_5() {
         1.0
     ));
     assert_eq!(
-        spot_cone(
+        cone_factor(
             18f64.to_radians().cos(),
             inner,
             outer,
@@ -208,7 +208,7 @@ fn seed_004_soft_cone_is_full_inside_12_5_degrees_and_dark_past_17_5() {
     let by_hand = (0.965_925_826_289_068 - 0.953_716_950_748_227)
         / (0.976_296_007_119_933_4 - 0.953_716_950_748_227);
     assert!(close(
-        spot_cone(
+        cone_factor(
             15f64.to_radians().cos(),
             inner,
             outer,
@@ -224,7 +224,7 @@ fn seed_004_soft_cone_is_full_inside_12_5_degrees_and_dark_past_17_5() {
 #[test]
 fn a_smooth_cone_edge_is_the_smoothstep_of_the_linear_one() {
     let (inner, outer) = (12.5f64.to_radians().cos(), 17.5f64.to_radians().cos());
-    let smooth = spot_cone(
+    let smooth = cone_factor(
         15f64.to_radians().cos(),
         inner,
         outer,
@@ -233,7 +233,7 @@ fn a_smooth_cone_edge_is_the_smoothstep_of_the_linear_one() {
     );
     assert!((smooth - 0.560_940_2).abs() < 1e-6, "{smooth}");
     assert_eq!(
-        spot_cone(
+        cone_factor(
             10f64.to_radians().cos(),
             inner,
             outer,
@@ -243,7 +243,7 @@ fn a_smooth_cone_edge_is_the_smoothstep_of_the_linear_one() {
         1.0
     );
     assert_eq!(
-        spot_cone(
+        cone_factor(
             18f64.to_radians().cos(),
             inner,
             outer,
@@ -258,11 +258,11 @@ fn a_smooth_cone_edge_is_the_smoothstep_of_the_linear_one() {
 fn seed_000_hard_cone_is_a_step_at_the_angle() {
     let edge = 20f64.to_radians().cos();
     assert_eq!(
-        spot_cone(19f64.to_radians().cos(), edge, edge, 0.0, ConeEdge::Linear),
+        cone_factor(19f64.to_radians().cos(), edge, edge, 0.0, ConeEdge::Linear),
         1.0
     );
     assert_eq!(
-        spot_cone(21f64.to_radians().cos(), edge, edge, 0.0, ConeEdge::Linear),
+        cone_factor(21f64.to_radians().cos(), edge, edge, 0.0, ConeEdge::Linear),
         0.0
     );
 }
@@ -270,7 +270,7 @@ fn seed_000_hard_cone_is_a_step_at_the_angle() {
 #[test]
 fn seed_001_spot_exponent_darkens_by_cos_theta_to_the_exponent() {
     let cos_theta = 5f64.to_radians().cos();
-    let cone = spot_cone(
+    let cone = cone_factor(
         cos_theta,
         1.0_f64.cos(),
         1.2_f64.cos(),
@@ -451,8 +451,8 @@ fn a_light_reaches_a_point_at_exactly_its_range() {
 #[test]
 fn a_hard_edged_spot_lights_its_outer_angle_itself() {
     for edge in [ConeEdge::Linear, ConeEdge::Smooth] {
-        assert_eq!(spot_cone(0.5, 0.5, 0.5, 0.0, edge), 1.0);
-        assert_eq!(spot_cone(0.499_999, 0.5, 0.5, 0.0, edge), 0.0);
+        assert_eq!(cone_factor(0.5, 0.5, 0.5, 0.0, edge), 1.0);
+        assert_eq!(cone_factor(0.499_999, 0.5, 0.5, 0.0, edge), 0.0);
     }
 }
 

@@ -107,7 +107,7 @@ fn a_rect_light_is_validated_gathered_after_the_local_lights_clustered_and_model
     let records = area_records(buffer);
     let first = records[0];
     assert_eq!(first.center, [0.0, 2.0, 0.0]);
-    assert_eq!(first.range, f32::MAX, "unlimited");
+    assert_eq!(first.reach, f32::MAX, "unlimited");
     let close = |a: [f32; 3], b: [f32; 3]| (Vec3::from(a) - Vec3::from(b)).length() < 1e-6;
     // Its local X is forward × up = −Y × Z = −X.
     assert!(close(first.half_width, [-1.0, 0.0, 0.0]), "{first:?}");

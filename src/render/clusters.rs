@@ -374,13 +374,12 @@ pub fn sphere_bits(center: Vec3, radius: f32) -> [u32; 4] {
 
 /// A built-in point or spot light's sphere of reach, as bits.
 pub fn light_sphere_bits(light: &GpuLight) -> [u32; 4] {
-    sphere_bits(Vec3::from(light.position), light.range)
+    sphere_bits(Vec3::from(light.position), light.reach)
 }
 
-/// A built-in area light's sphere of reach (its reach in `range`), as bits: `range` out from
-/// its shape ([`GpuAreaLight::bounding_sphere`]).
+/// A built-in area light's sphere of reach, as bits: its reach out from its shape ([`GpuAreaLight::bounding_sphere`]).
 pub fn area_light_sphere_bits(area: &GpuAreaLight) -> [u32; 4] {
-    area.bounding_sphere(area.range).map_or_else(
+    area.bounding_sphere(area.reach).map_or_else(
         || sphere_bits(Vec3::from(area.center), f32::MAX),
         |sphere| sphere_bits(sphere.center.into(), sphere.radius()),
     )
@@ -388,8 +387,8 @@ pub fn area_light_sphere_bits(area: &GpuAreaLight) -> [u32; 4] {
 
 /// The center and radius of a sphere from [`sphere_bits`].
 fn sphere(bits: &[u32; 4]) -> (Vec3, f32) {
-    let [x, y, z, range] = bits.map(f32::from_bits);
-    (Vec3::new(x, y, z), range)
+    let [x, y, z, radius] = bits.map(f32::from_bits);
+    (Vec3::new(x, y, z), radius)
 }
 
 /// Whether a sphere at `center` of radius `radius` is finite, so that clusters can hold it.

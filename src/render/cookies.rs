@@ -7,7 +7,7 @@ use super::cookie_atlas::{PHONG_COOKIE_ATLAS, atlas_image};
 use super::gpu_types::GpuCookie;
 use crate::light_kind::PhongLightKind;
 use crate::lights::{PhongCookieProjection, PhongLightCookie, cookie_layer_texels};
-use crate::limits::{MAX_COOKIE_IMAGES, SPOT_ANGLE, WIDEST_SPOT_COOKIE};
+use crate::limits::{CONE_ANGLE, MAX_COOKIE_IMAGES, WIDEST_COOKIE_CONE};
 use crate::scene_variants::SceneVariants;
 use crate::storage_buffer::LightBufferResized;
 use bevy::{
@@ -233,14 +233,12 @@ fn cookie_record(
     let (m, t) = (light_from_world.matrix3, light_from_world.translation);
     let row = |i: usize| [m.x_axis[i], m.y_axis[i], m.z_axis[i], t[i]];
     let (projection, tan_outer) = match projection {
-        PhongCookieProjection::Spot { outer_angle } => {
-            let angle = SPOT_ANGLE.apply(outer_angle).min(WIDEST_SPOT_COOKIE);
-            (GpuCookie::SPOT, f64::from(angle).tan() as f32)
+        PhongCookieProjection::Cone { half_angle } => {
+            let angle = CONE_ANGLE.apply(half_angle).min(WIDEST_COOKIE_CONE);
+            (GpuCookie::CONE, f64::from(angle).tan() as f32)
         }
-        PhongCookieProjection::Point => {
-            (GpuCookie::POINT + layout_index(cookie.cubemap_layout), 0.0)
-        }
-        PhongCookieProjection::Directional => (GpuCookie::DIRECTIONAL, 0.0),
+        PhongCookieProjection::Cube => (GpuCookie::CUBE + layout_index(cookie.cubemap_layout), 0.0),
+        PhongCookieProjection::Plane => (GpuCookie::PLANE, 0.0),
     };
     let flags = if cookie.red_only {
         GpuCookie::RED_ONLY

@@ -303,22 +303,22 @@ fn in_clusters(
         .is_some_and(|sphere| is_finite_sphere(sphere.center.into(), sphere.radius()))
 }
 
-/// Whether a local light's record, as [`push_cached`] wrote it (its reach in `range`), goes
+/// Whether a local light's record, as [`push_cached`] wrote it (with its reach), goes
 /// into the clusters (as [`has_sphere`] found: the built-in local kinds share their sphere,
 /// [`local_sphere`]).
 fn clustered(culling: &PhongLightCulling, light: &GpuLight) -> bool {
-    in_clusters(culling.clusters, light.range, || {
-        local_sphere(light, light.range)
+    in_clusters(culling.clusters, light.reach, || {
+        local_sphere(light, light.reach)
     })
 }
 
 /// Whether an area light's record, as [`push_cached`] wrote it in a [`GpuLight`]'s place
-/// (its reach in `range`), goes into the clusters (as [`has_sphere`] found: the built-in area
+/// (with its reach), goes into the clusters (as [`has_sphere`] found: the built-in area
 /// kinds share their sphere, [`GpuAreaLight::bounding_sphere`]).
 fn clustered_area(culling: &PhongLightCulling, record: &GpuLight) -> bool {
     let area = GpuAreaLight::in_record(record);
-    in_clusters(culling.clusters, area.range, || {
-        area.bounding_sphere(area.range)
+    in_clusters(culling.clusters, area.reach, || {
+        area.bounding_sphere(area.reach)
     })
 }
 

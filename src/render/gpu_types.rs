@@ -17,10 +17,10 @@ pub struct GpuCookie {
     pub light_from_world: [[f32; 4]; 3],
     /// The cookie atlas's layer that holds the image.
     pub layer: u32,
-    /// How the image is laid over the light ([`Self::SPOT`], [`Self::DIRECTIONAL`], or
-    /// [`Self::POINT`] plus the cube map layout's index).
+    /// How the image is laid over the light ([`Self::CONE`], [`Self::PLANE`], or
+    /// [`Self::CUBE`] plus the cube map layout's index).
     pub projection: u32,
-    /// `tan(outer_angle)` of a spot light (its angle below 90°).
+    /// `tan` of a cone's half-angle (below 90°).
     pub tan_outer: f32,
     /// [`Self::RED_ONLY`], [`Self::TILED`] and [`Self::DARK_OUTSIDE`].
     pub flags: u32,
@@ -29,12 +29,12 @@ pub struct GpuCookie {
 }
 
 impl GpuCookie {
-    /// A spot light's cone.
-    pub const SPOT: u32 = 0;
-    /// A directional light's plane.
-    pub const DIRECTIONAL: u32 = 1;
-    /// A point light's cube map, plus the index of its `CubemapLayout` (0 to 3).
-    pub const POINT: u32 = 2;
+    /// A cone (`PhongCookieProjection::Cone`).
+    pub const CONE: u32 = 0;
+    /// A plane (`PhongCookieProjection::Plane`).
+    pub const PLANE: u32 = 1;
+    /// A cube map, plus the index of its `CubemapLayout` (0 to 3).
+    pub const CUBE: u32 = 2;
     /// The red channel tints all three.
     pub const RED_ONLY: u32 = 1;
     /// The image repeats over a directional light's plane.

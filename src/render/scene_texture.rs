@@ -210,7 +210,7 @@ mod tests {
         let mut bytes = bytemuck::bytes_of(&header).to_vec();
         for index in 0..count {
             let record = GpuLight {
-                range: index as f32,
+                reach: index as f32,
                 ..bytemuck::Zeroable::zeroed()
             };
             bytes.extend_from_slice(bytemuck::bytes_of(&record));

@@ -18,7 +18,9 @@ use bevy::{
     prelude::*,
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
-use bevy_phong::{prelude::*, reference, testing::limits::COOKIE_RESOLUTION};
+use bevy_phong::{
+    extension::PhongCookieProjection, prelude::*, reference, testing::limits::COOKIE_RESOLUTION,
+};
 use bevy_phong_headless::{CAMERA_POSITION, Harness, pixel_model::near_a_cube_edge};
 use glam::DVec3;
 
@@ -52,23 +54,21 @@ pub(crate) fn wave(t: u32, period: f32) -> u8 {
 /// A light of the reference model and the cookie on it.
 type Cookied = (reference::Light, reference::Cookie);
 
-/// The reference model's `light` with `cookie` on it at `at`, its image read from `world`
-/// (`spot_angle`: a spot light's outer angle; `is_point`: a point light's cube).
+/// The reference model's `light` with `cookie` on it at `at`, laid over its rays by
+/// `projection`, its image read from `world`.
 fn cookied(
     world: &World,
     light: reference::Light,
     cookie: &PhongLightCookie,
     at: Transform,
-    spot_angle: Option<f32>,
-    is_point: bool,
+    projection: PhongCookieProjection,
 ) -> Cookied {
     let images = world.resource::<Assets<Image>>();
     let cookie = reference::Cookie::new(
         cookie,
         images.get(&cookie.image).unwrap(),
         &GlobalTransform::from(at),
-        spot_angle,
-        is_point,
+        projection,
     )
     .expect("a readable cookie");
     (light, cookie)
@@ -83,7 +83,10 @@ fn spot_with_cookie(
 ) -> Cookied {
     world.spawn((spot.clone(), at, cookie.clone()));
     let light = reference::Light::spot(&spot, &GlobalTransform::from(at));
-    cookied(world, light, &cookie, at, Some(spot.outer_angle), false)
+    let cone = PhongCookieProjection::Cone {
+        half_angle: spot.outer_angle,
+    };
+    cookied(world, light, &cookie, at, cone)
 }
 
 /// Spawns `point` at `at` with `cookie`; returns it as the reference model takes it.
@@ -95,7 +98,7 @@ fn point_with_cookie(
 ) -> Cookied {
     world.spawn((point.clone(), at, cookie.clone()));
     let light = reference::Light::point(&point, &GlobalTransform::from(at));
-    cookied(world, light, &cookie, at, None, true)
+    cookied(world, light, &cookie, at, PhongCookieProjection::Cube)
 }
 
 /// A floor `floor` units square and a sphere at `sphere_x` for the cookies to fall on.
@@ -240,8 +243,7 @@ fn cookies_tint_each_light_kind(layout: CubemapLayout) {
             directional,
             &tile_cookie,
             directional_at,
-            None,
-            false,
+            PhongCookieProjection::Plane,
         ),
     ];
     let objects = floor_and_sphere(8.0, 1.2);

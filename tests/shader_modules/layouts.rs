@@ -46,7 +46,7 @@ fn gpu_light_matches_wgsl_phong_light() {
     assert_eq!(size as usize, size_of::<GpuLight>());
     let rust = [
         ("position", offset_of!(GpuLight, position)),
-        ("range", offset_of!(GpuLight, range)),
+        ("reach", offset_of!(GpuLight, reach)),
         ("direction", offset_of!(GpuLight, direction)),
         ("outer_versine", offset_of!(GpuLight, outer_versine)),
         ("color", offset_of!(GpuLight, color)),

@@ -16,6 +16,7 @@ use bevy::{
 };
 use bevy_phong::{
     MaterialFeatures,
+    extension::{PhongCookieProjection, PhongLightKind},
     prelude::*,
     reference::{self, SurfacePoint},
     testing::{SurfaceInput, SurfaceInputsMaterial, SurfaceInputsPlugin, is_finite_transform},
@@ -570,21 +571,25 @@ impl Harness {
             if !visibility.get() || !is_finite_transform(transform) {
                 continue;
             }
-            // Each light of the entity, with the cookie as it lies on that light's kind.
+            // Each light of the entity, with the cookie as its kind lays it over its rays.
             let kinds = [
-                directional.map(|l| (reference::Light::directional(l, transform), None, false)),
-                point.map(|l| (reference::Light::point(l, transform), None, true)),
-                spot.map(|l| {
-                    let light = reference::Light::spot(l, transform);
-                    (light, Some(l.outer_angle), false)
+                directional.map(|l| {
+                    (
+                        reference::Light::directional(l, transform),
+                        l.cookie_projection(),
+                    )
                 }),
+                point.map(|l| (reference::Light::point(l, transform), l.cookie_projection())),
+                spot.map(|l| (reference::Light::spot(l, transform), l.cookie_projection())),
             ];
-            for (light, spot_angle, cube) in kinds.into_iter().flatten() {
+            for (light, projection) in kinds.into_iter().flatten() {
+                let projection = projection.expect("a built-in local light takes a cookie");
                 let cookie = cookie.and_then(|cookie| {
                     let image = images.get(&cookie.image)?;
-                    reference::Cookie::new(cookie, image, transform, spot_angle, cube)
+                    reference::Cookie::new(cookie, image, transform, projection)
                 });
                 lights.push(light);
+                let cube = projection == PhongCookieProjection::Cube;
                 cookies.push(cookie.map(|cookie| (cookie, cube)));
             }
         }

@@ -18,7 +18,7 @@ impl PhongDirectionalLight {
 
     /// A cookie lies on its local XY plane.
     fn cookie_mapping(&self) -> PhongCookieProjection {
-        PhongCookieProjection::Directional
+        PhongCookieProjection::Plane
     }
 
     /// Its transform sets the direction only.

@@ -27,7 +27,6 @@ impl PhongDiskLight {
             },
             (self.color, self.specular),
             self.decay,
-            self.range,
             (self.two_sided, self.highlight),
         )
     }
@@ -39,7 +38,8 @@ impl PhongLightKind for PhongDiskLight {
     // Written by `area_light_kind!` (gpu_area_light.rs), as for every area kind: `type Gpu =
     // GpuAreaLight`, `SHARES_EPSILON = true`, `to_gpu` (`unplaced_record` above, placed by
     // `place`: the transform's translation and rotation), `reach` and `set_reach`
-    // (`GpuAreaLight::reach`, into `range`), `bounding_sphere` (around its shape),
+    // (`GpuAreaLight::reach` of its `range`, into the record's `reach`), `bounding_sphere`
+    // (around its shape),
     // `casts_shadows`, `shadow` and `set_shadow` (`GpuAreaLight::shadow_request`) and
     // `reference_light` (`Self::REFERENCE`).
     area_light_kind!();

@@ -34,8 +34,8 @@ impl PhongLightKind for LineLight {
         }
     }
 
-    fn reach(record: &GpuLine, _epsilon: f32) -> f32 {
-        record.range
+    fn reach(&self, _record: &GpuLine, _epsilon: f32) -> f32 {
+        self.range
     }
 
     fn bounding_sphere(record: &GpuLine, reach: f32) -> Option<BoundingSphere> {

@@ -2,9 +2,7 @@
 //! shadow and cookie projection.
 
 use super::PhongPointLight;
-use crate::light_kind::built_in::{
-    Placed, built_in_record, fading_reach_kind, intensities, stored_range,
-};
+use crate::light_kind::built_in::{Placed, built_in_record, fading_reach_kind, intensities};
 use crate::light_kind::{GpuLight, PhongLightKind};
 use crate::lights::PhongCookieProjection;
 #[cfg(feature = "reference")]
@@ -20,7 +18,7 @@ impl PhongPointLight {
 
     /// A cookie is a cube map around it.
     fn cookie_mapping(&self) -> PhongCookieProjection {
-        PhongCookieProjection::Point
+        PhongCookieProjection::Cube
     }
 
     /// Its transform sets the position only.
@@ -29,12 +27,12 @@ impl PhongPointLight {
         direction: false,
     };
 
-    /// The record without its position or shadow slot: intensities, range, decay and the
+    /// The record without its position, shadow slot or reach: intensities, decay and the
     /// whole sphere as its cone (a local light, as the shader reads it).
     fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
         GpuLight {
-            range: stored_range(self.range),
+            reach: f32::MAX,
             outer_versine: GpuLight::WHOLE_SPHERE,
             color,
             specular,
@@ -53,7 +51,7 @@ impl PhongLightKind for PhongPointLight {
     built_in_record!();
     // Written by `fading_reach_kind!` (built_in.rs), as for the spot and point lights:
     // `SHARES_EPSILON = true`, `reach` (`built_in::fading_reach`: its range, shortened to its
-    // influence radius for ε), `set_reach` (into `range`) and `bounding_sphere` (around its
+    // influence radius for ε), `set_reach` (into the record's `reach`) and `bounding_sphere` (around its
     // position).
     fading_reach_kind!();
 

@@ -30,7 +30,6 @@ impl PhongRectLight {
             },
             (self.color, self.specular),
             self.decay,
-            self.range,
             (self.two_sided, self.highlight),
         )
     }
@@ -42,7 +41,8 @@ impl PhongLightKind for PhongRectLight {
     // Written by `area_light_kind!` (gpu_area_light.rs), as for every area kind: `type Gpu =
     // GpuAreaLight`, `SHARES_EPSILON = true`, `to_gpu` (`unplaced_record` above, placed by
     // `place`: the transform's translation and rotation), `reach` and `set_reach`
-    // (`GpuAreaLight::reach`, into `range`), `bounding_sphere` (around its shape),
+    // (`GpuAreaLight::reach` of its `range`, into the record's `reach`), `bounding_sphere`
+    // (around its shape),
     // `casts_shadows`, `shadow` and `set_shadow` (`GpuAreaLight::shadow_request`) and
     // `reference_light` (`Self::REFERENCE`).
     area_light_kind!();

@@ -9,10 +9,10 @@ use crate::limits;
 /// ([`ConeEdge::Smooth`]), or `0` (a hard edge at the outer angle) where the inner cone is
 /// not narrower. A cone whose outer angle is not positive is empty:
 /// its `1 - cos(outer)` is stored as `-1`, which no `1 - cos θ` reaches. Angles are first
-/// brought into `[0, π]` ([`crate::limits::SPOT_ANGLE`]).
+/// brought into `[0, π]` ([`crate::limits::CONE_ANGLE`]).
 pub(super) fn spot_cone_terms(inner_angle: f32, outer_angle: f32, edge: ConeEdge) -> (f32, f32) {
-    let inner_angle = limits::SPOT_ANGLE.apply(inner_angle);
-    let outer_angle = limits::SPOT_ANGLE.apply(outer_angle);
+    let inner_angle = limits::CONE_ANGLE.apply(inner_angle);
+    let outer_angle = limits::CONE_ANGLE.apply(outer_angle);
     if outer_angle <= 0.0 {
         return (-1.0, 0.0);
     }

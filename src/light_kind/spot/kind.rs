@@ -2,9 +2,7 @@
 //! shadow and cookie projection.
 
 use super::{PhongSpotLight, cone::spot_cone_terms};
-use crate::light_kind::built_in::{
-    Placed, built_in_record, fading_reach_kind, intensities, stored_range,
-};
+use crate::light_kind::built_in::{Placed, built_in_record, fading_reach_kind, intensities};
 use crate::light_kind::{GpuLight, PhongLightKind};
 use crate::lights::{PhongCookieProjection, light_direction};
 use crate::limits;
@@ -21,8 +19,8 @@ impl PhongSpotLight {
 
     /// A cookie spans its cone.
     fn cookie_mapping(&self) -> PhongCookieProjection {
-        PhongCookieProjection::Spot {
-            outer_angle: self.outer_angle,
+        PhongCookieProjection::Cone {
+            half_angle: self.outer_angle,
         }
     }
 
@@ -32,14 +30,14 @@ impl PhongSpotLight {
         direction: true,
     };
 
-    /// The record without its placement or shadow slot: intensities, range, decay and the
+    /// The record without its placement, shadow slot or reach: intensities, decay and the
     /// cone's terms.
     fn constants(&self) -> GpuLight {
         let (color, specular) = intensities(self.color, self.specular);
         let (outer_versine, cone_scale) =
             spot_cone_terms(self.inner_angle, self.outer_angle, self.cone_edge);
         GpuLight {
-            range: stored_range(self.range),
+            reach: f32::MAX,
             outer_versine,
             color,
             cone_scale,
@@ -61,7 +59,7 @@ impl PhongLightKind for PhongSpotLight {
     built_in_record!();
     // Written by `fading_reach_kind!` (built_in.rs), as for the spot and point lights:
     // `SHARES_EPSILON = true`, `reach` (`built_in::fading_reach`: its range, shortened to its
-    // influence radius for ε), `set_reach` (into `range`) and `bounding_sphere` (around its
+    // influence radius for ε), `set_reach` (into the record's `reach`) and `bounding_sphere` (around its
     // position).
     fading_reach_kind!();
 
@@ -91,8 +89,8 @@ impl PhongLightKind for PhongSpotLight {
 /// Brings the cone's angles into `[0, π]` and the inner one to at most the outer one (a hard
 /// edge), each replacement reported by `checker`.
 fn validate_angles(checker: &mut Checker, light: &mut PhongSpotLight) {
-    checker.scalar("inner_angle", &mut light.inner_angle, limits::SPOT_ANGLE);
-    checker.scalar("outer_angle", &mut light.outer_angle, limits::SPOT_ANGLE);
+    checker.scalar("inner_angle", &mut light.inner_angle, limits::CONE_ANGLE);
+    checker.scalar("outer_angle", &mut light.outer_angle, limits::CONE_ANGLE);
     let outer = light.outer_angle;
     checker.at_most(
         "inner_angle",

@@ -36,10 +36,10 @@ impl LightClusters {
     }
 }
 
-fn point(position: Vec3, range: f32) -> GpuLight {
+fn point(position: Vec3, reach: f32) -> GpuLight {
     GpuLight {
         position: position.to_array(),
-        range,
+        reach,
         ..GpuLight::default()
     }
 }
@@ -168,16 +168,16 @@ fn assert_every_reached_point_lists_its_light(
     let mut drawn = 0;
     for (index, light) in lights.iter().enumerate() {
         for sample in 0..samples {
-            let position = Vec3::from(light.position) + in_unit_ball(sample) * light.range;
+            let position = Vec3::from(light.position) + in_unit_ball(sample) * light.reach;
             if !is_drawn(&view, position, near) {
                 continue;
             }
             drawn += 1;
             assert!(
                 lights_at(clusters, view_index, position).contains(&(index as u32)),
-                "light {index} at {:?} (range {}) missing at {position}",
+                "light {index} at {:?} (reach {}) missing at {position}",
                 light.position,
-                light.range
+                light.reach
             );
         }
     }
@@ -433,7 +433,7 @@ fn the_same_input_keeps_the_clusters_and_any_change_rebuilds_them() {
     assert!(!clusters.build_lights(&[view], &lights, 0..2, 2..2));
     assert_eq!(clusters.data(), first);
 
-    lights[1].range = 0.5;
+    lights[1].reach = 0.5;
     assert!(clusters.build_lights(&[view], &lights, 0..2, 2..2));
     let mut moved = view;
     moved.view_from_world *= Mat4::from_translation(Vec3::X);

@@ -123,27 +123,39 @@ fn a_hemisphere_light_adds_its_mean_to_the_ambient_and_its_half_difference_along
 fn fresh_records(app: &mut App) -> Vec<[u32; 20]> {
     let world = app.world_mut();
     let epsilon = world.resource::<PhongLightCulling>().epsilon;
-    let mut records: Vec<GpuLight> = Vec::new();
+    let mut records: Vec<Fresh> = Vec::new();
     push_fresh::<PhongPointLight>(world, &mut records);
     push_fresh::<PhongSpotLight>(world, &mut records);
     let per_light_epsilon = epsilon / records.len().max(1) as f32;
-    records.retain_mut(|record| {
-        // Point and spot lights alike: the point light's reach is the spot light's.
-        let reach = PhongPointLight::reach(record, per_light_epsilon);
-        PhongPointLight::set_reach(record, reach);
-        reach > 0.0
-    });
+    let records: Vec<GpuLight> = records
+        .into_iter()
+        .filter_map(|(mut record, reach)| {
+            let reach = reach(&record, per_light_epsilon);
+            // Point and spot lights alike store their reach as the point light does.
+            PhongPointLight::set_reach(&mut record, reach);
+            (reach > 0.0).then_some(record)
+        })
+        .collect();
     let mut bits: Vec<[u32; 20]> = records.iter().map(|r| bytemuck::cast(*r)).collect();
     bits.sort();
     bits
 }
 
-/// Appends the whole record of every visible light of kind `L`, made afresh.
-fn push_fresh<L: PhongLightKind<Gpu = GpuLight>>(world: &mut World, records: &mut Vec<GpuLight>) {
+/// A light's record as `to_gpu` makes it, and its reach for a per-light ε.
+type Fresh = (GpuLight, Box<dyn Fn(&GpuLight, f32) -> f32>);
+
+/// Appends the whole record of every visible light of kind `L`, made afresh, with its reach.
+fn push_fresh<L: PhongLightKind<Gpu = GpuLight> + Clone>(
+    world: &mut World,
+    records: &mut Vec<Fresh>,
+) {
     let mut lights = world.query::<(&L, &GlobalTransform, &InheritedVisibility)>();
     for (light, transform, visibility) in lights.iter(world) {
         if visibility.get() {
-            records.push(light.to_gpu(transform));
+            let record = light.to_gpu(transform);
+            let light = light.clone();
+            let reach = move |record: &GpuLight, epsilon| light.reach(record, epsilon);
+            records.push((record, Box::new(reach)));
         }
     }
 }
@@ -387,8 +399,8 @@ fn lights_are_ordered_directional_then_local_each_kind_in_its_order() {
     // A directional light has no range; point and spot lights keep "unlimited". The point
     // lights come first, their cone the whole sphere; then the spot light with its cone.
     let records = state.records();
-    assert_eq!(records[0].range, 0.0);
-    assert_eq!(records[1].range, f32::MAX);
+    assert_eq!(records[0].reach, 0.0);
+    assert_eq!(records[1].reach, f32::MAX);
     for point in &records[1..3] {
         assert_eq!(
             (point.direction, point.outer_versine, point.cone_scale),

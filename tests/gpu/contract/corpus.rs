@@ -9,7 +9,7 @@ use bevy_phong::{
     Decay, PhongDirectionalLight, PhongMaterial, PhongPointLight, PhongSpotLight, SpecularModel,
     extension::PhongLightKind,
     reference::{self, SurfacePoint},
-    testing::PhongMaterialUniform,
+    testing::{GpuLight, PhongMaterialUniform},
 };
 use glam::DVec3;
 
@@ -45,6 +45,15 @@ pub struct Case {
     pub light: reference::Light,
 }
 
+/// `light`'s record at `transform` as the gather writes it for the exact model (ε = 0):
+/// with its reach, its range.
+fn gathered<L: PhongLightKind<Gpu = GpuLight>>(light: &L, transform: &GlobalTransform) -> GpuLight {
+    let mut record = light.to_gpu(transform);
+    let reach = light.reach(&record, 0.0);
+    L::set_reach(&mut record, reach);
+    record
+}
+
 impl Case {
     pub fn new(
         regime: Regime,
@@ -59,7 +68,7 @@ impl Case {
                 let transform = GlobalTransform::from(*transform);
                 (
                     0,
-                    light.to_gpu(&transform),
+                    gathered(light, &transform),
                     reference::Light::directional(light, &transform),
                 )
             }
@@ -67,7 +76,7 @@ impl Case {
                 let transform = GlobalTransform::from(*transform);
                 (
                     1,
-                    light.to_gpu(&transform),
+                    gathered(light, &transform),
                     reference::Light::point(light, &transform),
                 )
             }
@@ -75,7 +84,7 @@ impl Case {
                 let transform = GlobalTransform::from(*transform);
                 (
                     2,
-                    light.to_gpu(&transform),
+                    gathered(light, &transform),
                     reference::Light::spot(light, &transform),
                 )
             }
