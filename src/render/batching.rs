@@ -51,7 +51,7 @@ use bevy::{
     },
 };
 
-/// What material batching did in an app's render world (for the crate's tests).
+/// What material batching did in an app's main and render worlds (for the crate's tests).
 #[cfg(feature = "testing")]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct MaterialBatching {
@@ -64,6 +64,15 @@ pub struct MaterialBatching {
     pub class_bind_groups_made: usize,
     /// Meshes drawn with their class's bind group.
     pub meshes_drawn_by_class: usize,
+    /// Materials that hold a slot in the record array now.
+    pub slots: usize,
+    /// Slots given since the app started: one past the highest (a freed slot is given
+    /// again before a new one).
+    pub slots_given: usize,
+    /// Records the record buffer holds room for.
+    pub record_capacity: usize,
+    /// The room it starts with.
+    pub initial_record_capacity: usize,
 }
 
 /// [`MaterialBatching`] of `app` (zero where the device draws every material alone).
@@ -77,6 +86,7 @@ pub fn material_batching(app: &App) -> MaterialBatching {
         return MaterialBatching::default();
     };
     let (count, made) = classes.counts();
+    let slots = app.world().resource::<slots::MaterialSlots>();
     let meshes = world
         .resource::<bevy::pbr::RenderMaterialInstances>()
         .instances
@@ -88,6 +98,10 @@ pub fn material_batching(app: &App) -> MaterialBatching {
         classes: count,
         class_bind_groups_made: made,
         meshes_drawn_by_class: meshes,
+        slots: slots.live(),
+        slots_given: slots.given(),
+        record_capacity: world.resource::<MaterialRecordBuffer>().capacity(),
+        initial_record_capacity: crate::storage_buffer::MIN_CAPACITY,
     }
 }
 

@@ -61,6 +61,9 @@
 //! - `stress`: adversarial whole frames, read back as floats: no NaN or infinite pixel;
 //! - `many_materials`: materials that differ only in their numbers drawn as one class,
 //!   changed, added, removed and moved between frames, against the reference model;
+//! - `churn`: cubes, materials and lights created, changed and removed every frame from a
+//!   seed, every frame against the reference model, the material slots, records and
+//!   classes within the live content;
 //! - `huge_vectors`: light directions of any scale and colors past the bound, against the
 //!   reference model;
 //! - `fuzzed_scenes`: a sample of the fuzzer's files (`tests/fuzz`), rendered: no NaN or
@@ -84,6 +87,7 @@ mod area_shadows;
 mod bevy_light_textures;
 #[path = "../fuzz/cases.rs"]
 mod cases;
+mod churn;
 mod clusters;
 mod contract;
 mod cookies;

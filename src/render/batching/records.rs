@@ -93,7 +93,7 @@ impl MaterialRecordBuffer {
         self.pending.push((slot, record));
     }
 
-    fn capacity(&self) -> usize {
+    pub(crate) fn capacity(&self) -> usize {
         self.bytes.len() / record_stride()
     }
 }

@@ -56,6 +56,18 @@ impl MaterialSlots {
         }
     }
 
+    /// Materials that hold a slot now.
+    #[cfg(feature = "testing")]
+    pub fn live(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// One past the highest slot ever given.
+    #[cfg(feature = "testing")]
+    pub fn given(&self) -> usize {
+        self.next as usize
+    }
+
     /// The slots given and taken back since the main world's last frame began.
     pub fn changes(&self) -> &[(AssetId<PhongMaterial>, Option<u32>)] {
         &self.changes
