@@ -134,7 +134,7 @@ fn measured_app(
     spawn_scene(app.world_mut(), scene, shading);
 
     // Until every pipeline has compiled, then the warm-up frames.
-    run_until_settled(&mut app, 600, |app| {
+    run_until_settled(&mut app, Duration::from_secs(300), |app| {
         frame(app);
     });
     for _ in 0..frames.warmup {

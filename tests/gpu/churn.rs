@@ -1,8 +1,8 @@
 //! Churn: every frame a seeded random share of the scene is created, changed or removed
 //! (cubes spawned with new or shared materials and despawned, materials edited in place and
-//! moved between classes by a map, a highlight model or fog, materials dropped, point and
-//! spot lights added and removed), through the material slots, records and classes and the
-//! light buffer. Every frame is compared pixel by pixel with the reference model, so that a
+//! moved between classes by a map, a highlight model or fog, materials dropped, point, spot
+//! and rectangle lights added and removed, a second camera added and removed), through the
+//! material slots, records and classes, the light buffer and each view's clusters. Every frame is compared pixel by pixel with the reference model, so that a
 //! mesh that reads a freed or stale slot shows; and the slot table, the record buffer and
 //! the classes stay within what the live content needs:
 //!
@@ -26,6 +26,7 @@ use crate::frames::TOLERANCE;
 use crate::random::Random;
 use bevy::{
     asset::RenderAssetUsages,
+    camera::RenderTarget,
     image::ImageSampler,
     prelude::*,
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
@@ -43,7 +44,8 @@ const SIDE: usize = 5;
 const DEFAULT_FRAMES: usize = 40;
 /// At least this many cubes stand after each frame's changes.
 const MIN_CUBES: usize = 4;
-/// At most this many point and spot lights at once (besides the directional light).
+/// At most this many point, spot and rectangle lights at once (besides the directional
+/// light).
 const MAX_LIGHTS: usize = 4;
 /// The seed of the run's random choices.
 const SEED: u64 = 0xc4a2_0064;
@@ -63,6 +65,8 @@ struct Churn {
     cells: Vec<Option<Entity>>,
     materials: Vec<Handle<PhongMaterial>>,
     lights: Vec<Entity>,
+    /// The second camera, while there is one.
+    second_camera: Option<Entity>,
     cube: Handle<Mesh>,
     checker: Handle<Image>,
     /// Materials made this frame.
@@ -120,6 +124,7 @@ impl Churn {
             cells: vec![None; SIDE * SIDE],
             materials: Vec::new(),
             lights: Vec::new(),
+            second_camera: None,
             cube,
             checker,
             added: 0,
@@ -180,12 +185,14 @@ impl Churn {
         let before = world.resource::<Assets<PhongMaterial>>().len();
         self.added = 0;
         for _ in 0..1 + self.random.below(4) {
-            match self.random.below(7) {
+            match self.random.below(8) {
                 0 | 1 => self.spawn_cube(world),
                 2 => self.despawn_cube(world),
                 3 => self.edit_material(world),
                 4 => self.reassign_cube(world),
                 5 => self.drop_material(world),
+                6 => self.churn_light(world),
+                _ if self.random.one_in(3) => self.churn_camera(world),
                 _ => self.churn_light(world),
             }
         }
@@ -292,8 +299,8 @@ impl Churn {
         }
     }
 
-    /// A point or spot light added above the grid, or (at the most, or one time in two) one
-    /// removed.
+    /// A point, spot or rectangle light added above the grid, or (at the most, or one time
+    /// in two) one removed.
     fn churn_light(&mut self, world: &mut World) {
         if !self.lights.is_empty() && (self.lights.len() == MAX_LIGHTS || self.random.one_in(2)) {
             let index = self.random.below(self.lights.len());
@@ -310,17 +317,29 @@ impl Churn {
             self.uniform(1.0, 3.0),
             self.uniform(-2.5, 2.5),
         );
-        let light = if self.random.one_in(2) {
-            world.spawn((
+        let light = match self.random.below(3) {
+            0 => world.spawn((
                 PhongPointLight {
                     color,
                     range: Some(self.uniform(2.0, 8.0)),
                     ..default()
                 },
                 Transform::from_translation(position),
-            ))
-        } else {
-            world.spawn((
+            )),
+            // Without a highlight: a Blinn-Phong lobe over an area is drawn as the Phong lobe
+            // of its solid angle, within a stated share (tests/gpu/area_lights.rs), where the
+            // diffuse light is exact.
+            1 => world.spawn((
+                PhongRectLight {
+                    color,
+                    specular: Some(Color::BLACK),
+                    width: self.uniform(0.3, 1.2),
+                    height: self.uniform(0.3, 1.2),
+                    ..default()
+                },
+                Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Z),
+            )),
+            _ => world.spawn((
                 PhongSpotLight {
                     color,
                     inner_angle: 0.3,
@@ -328,9 +347,32 @@ impl Churn {
                     ..default()
                 },
                 Transform::from_translation(position).looking_at(Vec3::ZERO, Vec3::Y),
-            ))
+            )),
         };
         self.lights.push(light.id());
+    }
+
+    /// A second camera added, looking at the grid from the side into an image of its own,
+    /// or the one there is removed: another view, with clusters of its own.
+    fn churn_camera(&mut self, world: &mut World) {
+        if let Some(camera) = self.second_camera.take() {
+            world.despawn(camera);
+            return;
+        }
+        let target = Image::new_target_texture(32, 32, TextureFormat::Rgba8UnormSrgb, None);
+        let target = world.resource_mut::<Assets<Image>>().add(target);
+        let camera = world
+            .spawn((
+                Camera3d::default(),
+                Camera {
+                    order: 1,
+                    ..default()
+                },
+                RenderTarget::Image(target.into()),
+                Transform::from_xyz(6.0, 2.0, 0.0).looking_at(Vec3::ZERO, Vec3::Y),
+            ))
+            .id();
+        self.second_camera = Some(camera);
     }
 }
 

@@ -9,8 +9,9 @@ use bevy::{
     math::DVec3,
     prelude::*,
     render::{
+        RenderApp,
         error_handler::RenderErrorHandler,
-        render_resource::{TextureFormat, TextureUsages},
+        render_resource::{PipelineCache, TextureFormat, TextureUsages},
         view::Msaa,
     },
 };
@@ -25,6 +26,7 @@ use std::{
     collections::HashMap,
     rc::Rc,
     sync::{Mutex, MutexGuard},
+    time::Duration,
 };
 
 use crate::{
@@ -34,13 +36,16 @@ use crate::{
     pixel_model::{self, SrgbDecoding, near_a_cube_edge},
     read_back_frame, run_until_settled,
     see_through::{self, Behind, SeeThrough},
+    unfinished_pipelines,
 };
 
 /// The camera every scene is seen from.
 pub const CAMERA_POSITION: Vec3 = Vec3::new(0.0, 2.5, 7.0);
 
-/// Frames to wait for pipelines to compile before giving up.
-const MAX_SETTLE_FRAMES: u32 = 600;
+/// How long to wait for pipelines to compile before giving up: longer than any cold
+/// compile of the crate's shaders on lavapipe (the first frame on a fresh machine takes
+/// about a minute).
+const SETTLE_TIMEOUT: Duration = Duration::from_secs(300);
 /// Frames to wait for a scene file and what it names to load before giving up.
 const MAX_LOAD_FRAMES: u32 = 2_000;
 
@@ -380,8 +385,19 @@ impl Harness {
     /// ([`run_until_settled`]); panics if a pipeline failed to compile
     /// ([`failed_pipelines`](crate::failed_pipelines)), since Bevy would draw nothing with it.
     pub fn settle(&mut self) {
-        if !run_until_settled(&mut self.app, MAX_SETTLE_FRAMES, App::update) {
-            panic!("pipelines did not compile within {MAX_SETTLE_FRAMES} frames");
+        if !run_until_settled(&mut self.app, SETTLE_TIMEOUT, App::update) {
+            let cache = self
+                .app
+                .sub_app(RenderApp)
+                .world()
+                .resource::<PipelineCache>();
+            panic!(
+                "pipelines that did not finish compiling: {:?} (one that waits for a shader \
+                 that does not load never finishes: an example's shaders are in the crate's \
+                 assets/, found with `cargo run` or with CARGO_MANIFEST_DIR set to the \
+                 crate's folder)",
+                unfinished_pipelines(cache)
+            );
         }
         assert_no_failed_pipelines(&self.app, "the harness's scene");
     }

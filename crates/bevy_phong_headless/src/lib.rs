@@ -59,6 +59,7 @@ pub use harness::{
 pub use parallel::{Progress, parallel_map};
 pub use pipelines::{
     assert_no_failed_pipelines, failed_pipelines, pipelines_compiling, run_until_settled,
+    unfinished_pipelines,
 };
 #[cfg(not(target_arch = "wasm32"))]
 pub use readback::{MAX_READBACK_FRAMES, read_back_frame, without_row_padding};

@@ -5,32 +5,76 @@ use bevy::{
     asset::AssetId,
     render::{
         RenderApp,
-        render_resource::{CachedPipelineState, PipelineCache, PipelineDescriptor},
+        render_resource::{CachedPipeline, CachedPipelineState, PipelineCache, PipelineDescriptor},
     },
     shader::{Shader, ShaderCacheError},
 };
+use std::time::{Duration, Instant};
 
 /// Frames in a row without a pipeline compiling after which [`run_until_settled`] stops:
 /// a material whose data arrives a frame late queues its pipeline a frame late.
 const SETTLED_FRAMES: u32 = 3;
 
+/// How long a frame waits, while a pipeline compiles, before the next one: Bevy compiles
+/// pipelines on its task pool, and a scene whose frames take a millisecond would otherwise
+/// spin through frames on the cores the compiler needs.
+const COMPILING_PAUSE: Duration = Duration::from_millis(5);
+
+/// How long [`run_until_settled`] waits while no pipeline finishes compiling: a compile on
+/// lavapipe takes seconds, one cold at most tens of them, so pipelines that stay unfinished
+/// for this long are waiting for a shader that will not load (its file not found) and go
+/// through Bevy's queue again and again.
+const NO_PROGRESS_TIMEOUT: Duration = Duration::from_secs(120);
+
 /// Runs `frame` on `app` until no pipeline has been compiling for three frames in a row;
-/// `false` if that did not happen within `max_frames`.
-pub fn run_until_settled(app: &mut App, max_frames: u32, mut frame: impl FnMut(&mut App)) -> bool {
+/// `false` if that did not happen within `timeout`, or if no pipeline finished compiling for
+/// [`NO_PROGRESS_TIMEOUT`] ([`unfinished_pipelines`] then names those left). The
+/// bound is time, not frames: a shader variant compiled cold on a software rasterizer takes
+/// seconds, however quick the scene's frames are.
+pub fn run_until_settled(
+    app: &mut App,
+    timeout: Duration,
+    mut frame: impl FnMut(&mut App),
+) -> bool {
+    let start = Instant::now();
     let mut ready_frames = 0;
-    for _ in 0..max_frames {
+    let (mut compiled, mut last_progress) = (0, start);
+    while start.elapsed() < timeout {
         frame(app);
         let cache = app.sub_app(RenderApp).world().resource::<PipelineCache>();
-        ready_frames = if pipelines_compiling(cache) {
-            0
+        let now_compiled = cache
+            .pipelines()
+            .filter(|pipeline| matches!(pipeline.state, CachedPipelineState::Ok(_)))
+            .count();
+        if now_compiled != compiled {
+            (compiled, last_progress) = (now_compiled, Instant::now());
+        }
+        if pipelines_compiling(cache) {
+            ready_frames = 0;
+            if last_progress.elapsed() > NO_PROGRESS_TIMEOUT {
+                return false;
+            }
+            std::thread::sleep(COMPILING_PAUSE);
         } else {
-            ready_frames + 1
-        };
+            ready_frames += 1;
+        }
         if ready_frames >= SETTLED_FRAMES {
             return true;
         }
     }
     false
+}
+
+/// The labels of the pipelines still on their way to compiling (see
+/// [`pipelines_compiling`]): what [`run_until_settled`] left unfinished.
+pub fn unfinished_pipelines(cache: &PipelineCache) -> Vec<String> {
+    let pipelines: Vec<&CachedPipeline> = cache.pipelines().collect();
+    cache
+        .waiting_pipelines()
+        .filter_map(|id| pipelines.get(id).copied())
+        .filter(|pipeline| has_shader(&pipeline.descriptor))
+        .map(|pipeline| format!("{:?}", label(&pipeline.descriptor)))
+        .collect()
 }
 
 /// Whether some pipeline is still on its way to compiling.
