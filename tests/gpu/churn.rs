@@ -11,7 +11,10 @@
 //! - live slots = live materials, once a frame has passed since the last change;
 //! - the record buffer's capacity ≤ the next power of two of the slots given (it doubles),
 //!   or its initial capacity;
-//! - classes ≤ the distinct classes of the live materials (an empty class is dropped).
+//! - classes ≤ the distinct classes of the live materials (an empty class is dropped);
+//! - the light buffer holds the live lights: the directional one, each point and spot
+//!   light, each rectangle light (none reaches nowhere: ε is 0);
+//! - the clusters hold at most one view per live camera.
 //!
 //! ```sh
 //! cargo test --features testing --test gpu -- churn                               # as CI
@@ -32,7 +35,9 @@ use bevy::{
     render::render_resource::{Extent3d, TextureDimension, TextureFormat},
 };
 use bevy_phong::prelude::*;
-use bevy_phong::testing::{MaterialBatching, material_batching};
+use bevy_phong::testing::{
+    MaterialBatching, PhongLightBuffer, PhongLightClusters, material_batching,
+};
 use bevy_phong_headless::Harness;
 use std::collections::HashSet;
 
@@ -299,6 +304,17 @@ impl Churn {
         }
     }
 
+    /// The live lights: (directional, point and spot, rectangle).
+    fn live_lights(&self, world: &World) -> (u32, u32, u32) {
+        let is = |light: &Entity, kind: fn(&World, Entity) -> bool| kind(world, *light);
+        let local = self
+            .lights
+            .iter()
+            .filter(|light| is(light, |w, e| w.get::<PhongRectLight>(e).is_none()))
+            .count();
+        (1, local as u32, (self.lights.len() - local) as u32)
+    }
+
     /// A point, spot or rectangle light added above the grid, or (at the most, or one time
     /// in two) one removed.
     fn churn_light(&mut self, world: &mut World) {
@@ -437,6 +453,27 @@ fn churned_materials_meshes_and_lights_draw_as_the_reference_says_within_their_l
         let materials = harness.app.world().resource::<Assets<PhongMaterial>>();
         most_materials = most_materials.max(materials.len());
         let classes = distinct_classes(materials);
+        let (directional, local, area) = churn.live_lights(harness.app.world());
+        let header = *harness.app.world().resource::<PhongLightBuffer>().header();
+        assert_eq!(
+            (
+                header.directional_count,
+                header.local_count + header.clustered_local_count,
+                header.area_count + header.clustered_area_count,
+            ),
+            (directional, local, area),
+            "frame {frame}: the light buffer holds the live lights"
+        );
+        let cameras = 1 + u32::from(churn.second_camera.is_some());
+        let views = harness
+            .app
+            .world()
+            .resource::<PhongLightClusters>()
+            .view_count();
+        assert!(
+            views <= cameras,
+            "frame {frame}: {views} views clustered for {cameras} cameras"
+        );
         let batching = material_batching(&harness.app);
         if batching.on {
             assert_within_live_content(&batching, most_materials, classes, frame);
