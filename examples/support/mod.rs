@@ -182,6 +182,8 @@ pub fn example_app_in(
     name: &str,
     configure: impl FnOnce(PluginGroupBuilder) -> PluginGroupBuilder,
 ) -> App {
+    #[cfg(not(target_arch = "wasm32"))]
+    warn_without_assets();
     let mut app = App::new();
     match &mode {
         #[cfg(not(target_arch = "wasm32"))]
@@ -203,6 +205,21 @@ pub fn example_app_in(
     }
     app.insert_resource(mode);
     app
+}
+
+/// Says, at once, when the crate's `assets/` is not where Bevy looks for it (beside the
+/// executable, unless `BEVY_ASSET_ROOT` or `CARGO_MANIFEST_DIR` names another folder): an
+/// example run from `target/` without `cargo run`, whose shaders and models would never load.
+#[cfg(not(target_arch = "wasm32"))]
+fn warn_without_assets() {
+    let assets = bevy::asset::io::file::FileAssetReader::get_base_path().join("assets");
+    if !assets.is_dir() {
+        eprintln!(
+            "warning: no assets folder at {}: run the example with `cargo run --example`, or \
+             set CARGO_MANIFEST_DIR to bevy_phong's folder, so that its shaders and models load",
+            assets.display()
+        );
+    }
 }
 
 /// Runs `app` as its mode says: in a window, headless or in a browser, or, with
