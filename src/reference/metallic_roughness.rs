@@ -161,4 +161,24 @@ mod tests {
         assert_eq!(clamped.diffuse, DVec3::ZERO);
         assert_eq!(clamped.shininess, MAX_SHININESS);
     }
+
+    /// The conversion's fit (`material::metallic_roughness`, f32) is this model's, to f32's
+    /// precision.
+    #[test]
+    fn the_conversions_exponent_is_this_models() {
+        use crate::material::metallic_roughness as conversion;
+        assert_eq!(
+            conversion::EXPONENT_FIT.map(f64::from),
+            EXPONENT_FIT.map(|c| f64::from(c as f32))
+        );
+        for step in 0..=100 {
+            let r = step as f32 / 100.0;
+            let expected = shininess_from_roughness(f64::from(r));
+            let actual = f64::from(conversion::shininess_from_roughness(r));
+            assert!(
+                (actual / expected - 1.0).abs() < 1e-5,
+                "r = {r}: {actual}, {expected}"
+            );
+        }
+    }
 }

@@ -17,7 +17,7 @@ use bevy::{
 };
 use bevy_phong::{
     MaterialFeatures,
-    extension::{PhongCookieProjection, PhongLightKind},
+    extension::PhongLightKind,
     prelude::*,
     reference::{self, SurfacePoint},
     testing::{SurfaceInput, SurfaceInputsMaterial, SurfaceInputsPlugin, is_finite_transform},
@@ -107,9 +107,8 @@ impl<M: Material> SurfaceInputs<M> {
 pub struct ReferenceScene {
     /// The ambient light, the hemisphere light and each light, untinted.
     pub lights: reference::Lights,
-    /// Each light's cookie, in the order of `lights.lights`, and whether it is a point
-    /// light's (a cube map).
-    pub cookies: Vec<Option<(reference::Cookie, bool)>>,
+    /// Each light's cookie, in the order of `lights.lights`.
+    pub cookies: Vec<Option<reference::Cookie>>,
 }
 
 impl ReferenceScene {
@@ -123,10 +122,11 @@ impl ReferenceScene {
             return Some(lights);
         }
         for (light, cookie) in lights.lights.iter_mut().zip(&self.cookies) {
-            let Some((cookie, cube)) = cookie else {
+            let Some(cookie) = cookie else {
                 continue;
             };
-            if *cube && near_a_cube_edge(cookie.light_from_world.transform_point3(position)) {
+            let cube = matches!(cookie.projection, reference::CookieProjection::Cube(_));
+            if cube && near_a_cube_edge(cookie.light_from_world.transform_point3(position)) {
                 return None;
             }
             *light = light.tinted(cookie.tint(position));
@@ -605,8 +605,7 @@ impl Harness {
                     reference::Cookie::new(cookie, image, transform, projection)
                 });
                 lights.push(light);
-                let cube = projection == PhongCookieProjection::Cube;
-                cookies.push(cookie.map(|cookie| (cookie, cube)));
+                cookies.push(cookie);
             }
         }
         ReferenceScene {

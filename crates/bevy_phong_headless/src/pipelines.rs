@@ -68,12 +68,8 @@ pub fn run_until_settled(
 /// The labels of the pipelines still on their way to compiling (see
 /// [`pipelines_compiling`]): what [`run_until_settled`] left unfinished.
 pub fn unfinished_pipelines(cache: &PipelineCache) -> Vec<String> {
-    let pipelines: Vec<&CachedPipeline> = cache.pipelines().collect();
-    cache
-        .waiting_pipelines()
-        .filter_map(|id| pipelines.get(id).copied())
-        .filter(|pipeline| has_shader(&pipeline.descriptor))
-        .map(|pipeline| format!("{:?}", label(&pipeline.descriptor)))
+    unfinished(cache)
+        .map(|pipeline| format!("{:?}", pipeline.and_then(|p| label(&p.descriptor))))
         .collect()
 }
 
@@ -84,12 +80,17 @@ pub fn unfinished_pipelines(cache: &PipelineCache) -> Vec<String> {
 /// pipeline, whose compute shader it does not load where storage buffers are missing
 /// (`bevy_render::render_resource::sparse_buffer_vec`).
 pub fn pipelines_compiling(cache: &PipelineCache) -> bool {
-    let pipelines: Vec<_> = cache.pipelines().collect();
-    cache.waiting_pipelines().any(|id| {
-        pipelines
-            .get(id)
-            .is_none_or(|pipeline| has_shader(&pipeline.descriptor))
-    })
+    unfinished(cache).next().is_some()
+}
+
+/// The pipelines waiting to compile, those without a shader left out (see
+/// [`pipelines_compiling`]); `None` for one the cache lists as waiting but does not hold.
+fn unfinished(cache: &PipelineCache) -> impl Iterator<Item = Option<&CachedPipeline>> {
+    let pipelines: Vec<&CachedPipeline> = cache.pipelines().collect();
+    cache
+        .waiting_pipelines()
+        .map(move |id| pipelines.get(id).copied())
+        .filter(|pipeline| pipeline.is_none_or(|pipeline| has_shader(&pipeline.descriptor)))
 }
 
 /// Whether `descriptor` names a shader (rather than the default handle, which is never
