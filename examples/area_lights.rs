@@ -11,8 +11,8 @@
 //! cargo run --example area_lights -- --headless out.png # a PNG, and exit
 //! ```
 //!
-//! Keys: H the highlight (integrated over each panel, its fitted lobe, or at a representative
-//! point), W the window, T the television.
+//! Keys: H the highlight (integrated over each panel at a bounded cost or exactly, its
+//! fitted lobe, or at a representative point), W the window, T the television.
 
 mod support;
 
@@ -193,9 +193,9 @@ fn setup(
 type RoomLights<'w, 's> =
     Query<'w, 's, (&'static mut Visibility, Has<Window>), Or<(With<Window>, With<Television>)>>;
 
-/// H switches every panel's highlight from integrated to fitted to a representative point
-/// and back; W and
-/// T turn the window and the television (each light and its quad) off and on.
+/// H switches every panel's highlight from bounded to exact to fitted to a representative
+/// point and back; W and T turn the window and the television (each light and its quad) off
+/// and on.
 fn keys(
     input: Res<ButtonInput<KeyCode>>,
     mut panels: Query<&mut PhongRectLight>,
@@ -204,9 +204,10 @@ fn keys(
     if input.just_pressed(KeyCode::KeyH) {
         for mut panel in &mut panels {
             panel.highlight = match panel.highlight {
+                AreaHighlight::Bounded => AreaHighlight::Exact,
                 AreaHighlight::Exact => AreaHighlight::Fitted,
                 AreaHighlight::Fitted => AreaHighlight::RepresentativePoint,
-                AreaHighlight::RepresentativePoint => AreaHighlight::Exact,
+                AreaHighlight::RepresentativePoint => AreaHighlight::Bounded,
             };
             println!("highlight: {:?}", panel.highlight);
         }

@@ -50,7 +50,7 @@
 //! `t − t² ≤ 1/4` of the light, the most at the middle of the edge, and Bevy's meets the dark
 //! outside without a kink; Bevy's specular is a microfacet (GGX) lobe, while a mirrored light's
 //! specular intensity is its diffuse color, shaped by the material's shininess (a mirrored
-//! rectangle's highlight integrated over its area, [`AreaHighlight::Exact`](crate::AreaHighlight));
+//! rectangle's highlight integrated over its area, [`AreaHighlight::Bounded`](crate::AreaHighlight));
 //! Bevy's ambient light on a mesh with a `Lightmap` follows its `affects_lightmapped_meshes`,
 //! a Phong material's ambient term lights every mesh.
 //!

@@ -25,6 +25,7 @@ impl Panels {
 
     pub fn name(self) -> String {
         let highlight = match self.highlight {
+            AreaHighlight::Bounded => "bounded",
             AreaHighlight::Exact => "integrated",
             AreaHighlight::RepresentativePoint => "representative point",
             AreaHighlight::Fitted => "fitted",
@@ -66,7 +67,8 @@ pub fn spawn_panels(world: &mut World, panels: Panels) {
 }
 
 /// The highlight choices each count of panels is measured with.
-const HIGHLIGHTS: [AreaHighlight; 3] = [
+const HIGHLIGHTS: [AreaHighlight; 4] = [
+    AreaHighlight::Bounded,
     AreaHighlight::Exact,
     AreaHighlight::Fitted,
     AreaHighlight::RepresentativePoint,

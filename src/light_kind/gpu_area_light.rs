@@ -67,6 +67,11 @@ impl GpuAreaLight {
     pub const DISK: u32 = 1 << 18;
     /// Its highlight is the fitted lobe's ([`AreaHighlight::Fitted`](crate::AreaHighlight::Fitted)).
     pub const FITTED: u32 = 1 << 19;
+    /// Its highlight is the lobe integrated exactly at any exponent
+    /// ([`AreaHighlight::Exact`](crate::AreaHighlight::Exact)); without it (and without
+    /// another highlight flag), exactly up to a bounded cost
+    /// ([`AreaHighlight::Bounded`](crate::AreaHighlight::Bounded)).
+    pub const EXACT: u32 = 1 << 20;
 
     /// The record of an area light of `shape` at the identity transform (see
     /// [`UnplacedShape`]), its colors per unit area computed in `f64` (zero for a shape
@@ -92,7 +97,8 @@ impl GpuAreaLight {
             flags |= Self::TWO_SIDED;
         }
         flags |= match highlight {
-            AreaHighlight::Exact => 0,
+            AreaHighlight::Bounded => 0,
+            AreaHighlight::Exact => Self::EXACT,
             AreaHighlight::RepresentativePoint => Self::REPRESENTATIVE_POINT,
             AreaHighlight::Fitted => Self::FITTED,
         };

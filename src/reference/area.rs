@@ -21,6 +21,10 @@ pub const RELATIVE_TOLERANCE: f64 = 1e-9;
 /// The tolerance's floor, relative to the light's color per unit area.
 const ABSOLUTE_FLOOR: f64 = 1e-14;
 
+/// The shininess from which the quadrature cuts the light through its highlight's peak (a
+/// lobe of 64 is about 0.3 radians wide, as wide as a light a few units away).
+const SHARP_HIGHLIGHT: f64 = 64.0;
+
 /// An area light's shape, in its own plane (its local X and Y).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AreaShape {
@@ -218,9 +222,19 @@ pub fn visible_area_light_contribution(
             plane.dot(offset),
         )
     };
-    let lines = [line(normal), line(mirror)];
+    let mut lines = vec![line(normal), line(mirror)];
     // The surface point's foot on the light's plane: where `1 / r²` peaks.
-    let near = (-offset.dot(light.right), -offset.dot(light.up));
+    let mut near = (-offset.dot(light.right), -offset.dot(light.up));
+    // A narrow highlight peaks where the mirror ray meets the light's plane, a peak narrower
+    // than the rule's nodes are apart: the pieces are also cut along the two lines through
+    // that point, and integrated around it (a peak inside a piece could be missed, and one on
+    // a piece's far corner takes every inner integral's halving).
+    let reach = light.facing().dot(offset) / light.facing().dot(mirror);
+    if material.shininess > SHARP_HIGHLIGHT && reach > 0.0 && reach.is_finite() {
+        let hit = mirror * reach - offset;
+        near = (hit.dot(light.right), hit.dot(light.up));
+        lines.extend([(1.0, 0.0, -near.0), (0.0, 1.0, -near.1)]);
+    }
     let pieces = match light.shape {
         AreaShape::Rect { width, height } => {
             let (x, y) = (0.5 * width, 0.5 * height);

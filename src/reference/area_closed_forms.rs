@@ -236,6 +236,61 @@ pub enum Specular {
     /// The lobe's fitted linearly transformed cosine integrated over the lit polygon
     /// ([`fitted_lobe`]).
     Fitted,
+    /// The lobe's moment up to [`BOUNDED_EXACT_UP_TO`], the stretched lower lobes beyond it
+    /// ([`bounded_lobe`]).
+    Bounded,
+}
+
+/// The largest exponent [`bounded_lobe`] integrates exactly (as [`lobe`]).
+pub const BOUNDED_EXACT_UP_TO: f64 = 64.0;
+
+/// The exponents of the two lobes [`bounded_lobe`] stretches to a larger exponent's width.
+pub const BOUNDED_LOBES: [u32; 2] = [32, 16];
+
+/// `∫ max(w·ω, 0)^α dω` over the planar polygon `corners` (relative to the surface point) at
+/// a cost that does not grow with `α`: [`lobe`] up to [`BOUNDED_EXACT_UP_TO`]; beyond it,
+/// `2·S(32) − S(16)`, where `S(m)` is the lobe of the integer exponent `m` over the polygon
+/// stretched across `w` by `√(α/m)` ([`stretched_lobe`]), which narrows it to the width of
+/// the lobe of `α` near its peak. `S(m)` errs by about `c/m` of the whole lobe (the lobe of
+/// `m` is not yet the Gaussian the lobe of `α` is); the two taken together cancel that term
+/// (Richardson's extrapolation). Never below 0.
+pub fn bounded_lobe(corners: &[DVec3], axis: DVec3, exponent: f64) -> f64 {
+    if exponent <= BOUNDED_EXACT_UP_TO {
+        return lobe(&on_sphere(&clipped(corners, axis)), axis, exponent);
+    }
+    let [high, low] = BOUNDED_LOBES;
+    (2.0 * stretched_lobe(corners, axis, exponent, high)
+        - stretched_lobe(corners, axis, exponent, low))
+    .max(0.0)
+}
+
+/// The lobe of `exponent` over the planar polygon `corners` (relative to the surface point)
+/// as the lobe of the integer `m` over the polygon stretched across `w` by `k = √(α/m)`
+/// (each corner's components across `w` times `k`, along `w` kept), times
+/// `(m + 1)/(α + 1)`, the ratio of the whole lobes: in the plane tangent to the sphere at
+/// `w`, the lobe of `α` near its peak is the Gaussian `exp(−α r²/2)`, and the stretch maps
+/// the lobe of `m` onto it.
+pub fn stretched_lobe(corners: &[DVec3], axis: DVec3, exponent: f64, m: u32) -> f64 {
+    let stretch = (exponent / f64::from(m)).sqrt();
+    let stretched = across(corners, axis, stretch);
+    let above = on_sphere(&clipped(&stretched, DVec3::Z));
+    whole_lobe(exponent) / whole_lobe(f64::from(m)) * lobe_moment(&above, DVec3::Z, m)
+}
+
+/// The planar polygon `corners` in the frame of `axis` (its +Z), stretched across it by
+/// `stretch`.
+fn across(corners: &[DVec3], axis: DVec3, stretch: f64) -> Vec<DVec3> {
+    let (across, other) = axis.any_orthonormal_pair();
+    corners
+        .iter()
+        .map(|corner| {
+            DVec3::new(
+                stretch * corner.dot(across),
+                stretch * corner.dot(other),
+                corner.dot(axis),
+            )
+        })
+        .collect()
 }
 
 /// `∫ max(w·ω, 0)^α dω` over the planar polygon `corners` (relative to the surface point)
@@ -249,17 +304,7 @@ pub fn fitted_lobe(corners: &[DVec3], axis: DVec3, exponent: f64) -> f64 {
         return 0.0;
     }
     let stretch = (0.585 * exponent + 0.415).sqrt();
-    let (across, other) = axis.any_orthonormal_pair();
-    let stretched: Vec<DVec3> = corners
-        .iter()
-        .map(|corner| {
-            DVec3::new(
-                stretch * corner.dot(across),
-                stretch * corner.dot(other),
-                corner.dot(axis),
-            )
-        })
-        .collect();
+    let stretched = across(corners, axis, stretch);
     let above = on_sphere(&clipped(&stretched, DVec3::Z));
     whole_lobe(exponent) / PI * irradiance(&above, DVec3::Z)
 }
@@ -326,6 +371,7 @@ pub fn contribution(
             representative_highlight(light, surface.position, &lit, mirror, exponent)
         }
         Specular::Fitted => fitted_lobe(&lit, mirror, exponent),
+        Specular::Bounded => bounded_lobe(&lit, mirror, exponent),
     };
     let weight = material.specular * material.specular_strength;
     fall_off

@@ -196,7 +196,7 @@ pub enum LightDescription {
         /// Distance from its nearest point past which it gives no light. Default unlimited.
         #[serde(default)]
         range: Option<f32>,
-        /// How its highlight is computed, as `AreaHighlight`. Default `Exact`.
+        /// How its highlight is computed, as `AreaHighlight`. Default `Bounded`.
         #[serde(default)]
         highlight: AreaHighlight,
         /// Shadow settings, as `PhongShadows` (soft as the light's size). Default off.
@@ -228,7 +228,7 @@ pub enum LightDescription {
         /// Distance from its nearest point past which it gives no light. Default unlimited.
         #[serde(default)]
         range: Option<f32>,
-        /// How its highlight is computed, as `AreaHighlight`. Default `Exact`.
+        /// How its highlight is computed, as `AreaHighlight`. Default `Bounded`.
         #[serde(default)]
         highlight: AreaHighlight,
         /// Shadow settings, as `PhongShadows` (soft as the light's size). Default off.

@@ -59,7 +59,7 @@ pub struct PhongDiskLight {
     /// Distance from the disk's nearest point (world units, `> 0`; `∞` is unlimited) past
     /// which it contributes nothing; `None` (the default) means unlimited.
     pub range: Option<f32>,
-    /// How the highlight is computed. Default [`AreaHighlight::Exact`].
+    /// How the highlight is computed. Default [`AreaHighlight::Bounded`].
     pub highlight: AreaHighlight,
     /// Shadow settings. Default off. The shadow is cast from the disk's center into a cube
     /// of maps, soft as a light of the disk's size (percentage-closer soft shadows whose
@@ -77,7 +77,7 @@ impl Default for PhongDiskLight {
             two_sided: false,
             decay: Decay::NONE,
             range: None,
-            highlight: AreaHighlight::Exact,
+            highlight: AreaHighlight::Bounded,
             shadows: PhongShadows::OFF,
         }
     }

@@ -63,7 +63,7 @@ pub struct PhongRectLight {
     /// Distance from the panel's nearest point (world units, `> 0`; `∞` is unlimited) past
     /// which it contributes nothing; `None` (the default) means unlimited.
     pub range: Option<f32>,
-    /// How the highlight is computed. Default [`AreaHighlight::Exact`].
+    /// How the highlight is computed. Default [`AreaHighlight::Bounded`].
     pub highlight: AreaHighlight,
     /// Shadow settings. Default off. The shadow is cast from the panel's center into a cube
     /// of maps, soft as a light of the panel's size (percentage-closer soft shadows whose
@@ -82,7 +82,7 @@ impl Default for PhongRectLight {
             two_sided: false,
             decay: Decay::NONE,
             range: None,
-            highlight: AreaHighlight::Exact,
+            highlight: AreaHighlight::Bounded,
             shadows: PhongShadows::OFF,
         }
     }
