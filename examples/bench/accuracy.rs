@@ -34,7 +34,17 @@ pub struct Accuracy {
 /// vertex) and `culling`, against the per-pixel model; pixels on a range boundary are left
 /// out.
 pub fn measure(scene: Scene, shading: Shading, culling: PhongLightCulling) -> Accuracy {
-    let mut harness = Harness::new(ERROR_SIZE, ERROR_SIZE);
+    measure_at(scene, shading, culling, ERROR_SIZE)
+}
+
+/// [`measure`] on a `size`² picture.
+pub fn measure_at(
+    scene: Scene,
+    shading: Shading,
+    culling: PhongLightCulling,
+    size: u32,
+) -> Accuracy {
+    let mut harness = Harness::new(size, size);
     harness.world_mut().insert_resource(culling);
     harness.look_from(scene.camera_position());
     spawn_scene(harness.world_mut(), scene, shading);

@@ -70,6 +70,7 @@ pub fn table(options: &Options, directory: &Path) {
                 Scene::Lamps(lamps) => lamps.light_count(),
                 Scene::Cubes(_) => 9,
                 Scene::Panels(panels) => panels.count,
+                Scene::Pairs(pairs) => pairs.lights,
             };
             for (offset, time) in times.iter().enumerate() {
                 series[first_series + offset]

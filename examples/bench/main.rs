@@ -16,6 +16,7 @@
 //! cargo run --example bench -- --stylized   # only the stylized modes (see features.rs)
 //! cargo run --example bench -- --lamps      # only the street lamps (see lamps.rs; --size N)
 //! cargo run --example bench -- --cubes      # only many meshes and materials (cubes.rs; --count N)
+//! cargo run --example bench -- --pairs      # only one light on one pixel, per kind (pairs.rs)
 //! cargo run --example bench -- --frame-times --scene field256 --scene wide60000 --size 32 --orbit
 //!                                           # far lights under a camera that moves every frame
 //! ```
@@ -23,7 +24,7 @@
 //! `--orbit` turns every camera half a degree around the scene's middle before each frame.
 //!
 //! The table flags (`--frame-times`, `--shadows`, `--webgl2`, `--ablation`, `--growth`,
-//! `--materials`, `--stylized`, `--lamps`, `--cubes`)
+//! `--materials`, `--stylized`, `--lamps`, `--cubes`, `--pairs`)
 //! combine: with any of them, the run measures those tables and no other.
 //!
 //! `--one-row --scene S --size N [--frames F]` prints one Phong median (ms) and exits: the
@@ -47,7 +48,9 @@
 //! the same way (`--ablation`; see `ablation.rs`). A sixth shows how frame time grows: the
 //! field under 1 to 4,096 lights at 128² and 256², and under 64 lights from 128² to
 //! 1024², Phong with and without its light clusters beside Standard and the floor, with each
-//! one's fitted cost per light per megapixel (`--growth`; see `growth.rs`).
+//! one's fitted cost per light per megapixel (`--growth`; see `growth.rs`). Another gives
+//! the cost of one light on one pixel for each kind of light, highlight choice and
+//! shininess, with its error (`--pairs`; see `pairs.rs`).
 //!
 //! Each frame is timed from the start of `App::update` until the device has finished the
 //! frame's work; the tables give the median over the measured frames, after the pipelines
@@ -66,6 +69,7 @@ mod features;
 mod frame_times;
 mod growth;
 mod lamps;
+mod pairs;
 mod panels;
 mod plot;
 mod progress;
@@ -154,6 +158,9 @@ struct Args {
     /// Table: many meshes and materials (the grids of --count).
     #[arg(long)]
     cubes: bool,
+    /// Table: the cost of one light on one pixel, per kind, highlight and shininess.
+    #[arg(long)]
+    pairs: bool,
     /// Print one Phong median (ms) of --scene at --size and exit (the WebGL2 table runs each
     /// of its measurements so, in a process of its own).
     #[arg(long)]
@@ -321,6 +328,8 @@ struct Tables {
     lamps: bool,
     /// Many meshes and materials.
     cubes: bool,
+    /// The cost of one light on one pixel.
+    pairs: bool,
 }
 
 impl Tables {
@@ -334,6 +343,7 @@ impl Tables {
         stylized: true,
         lamps: true,
         cubes: true,
+        pairs: true,
     };
 
     /// The tables whose flags are in `args`, or all of them when none is.
@@ -348,6 +358,7 @@ impl Tables {
             stylized: args.stylized,
             lamps: args.lamps,
             cubes: args.cubes,
+            pairs: args.pairs,
         };
         let any = picked.frame_times
             || picked.shadows
@@ -357,7 +368,8 @@ impl Tables {
             || picked.materials
             || picked.stylized
             || picked.cubes
-            || picked.lamps;
+            || picked.lamps
+            || picked.pairs;
         if any { picked } else { Self::ALL }
     }
 }
@@ -499,8 +511,18 @@ fn picked_tables<'a>(options: &'a Options, directory: &'a Path) -> Vec<Table<'a>
             );
         }));
     }
+    if picked.pairs {
+        let size = if options.quick { 32 } else { PAIRS_SIZE };
+        tables.push(Table::new(pairs::measurements(options.quick), move || {
+            pairs::table(size, options.quick, options.frames, directory);
+        }));
+    }
     tables
 }
+
+/// The picture side of the table of one light on one pixel (`--pairs`), pixels: small, since
+/// the exact highlight at shininess 10,000 takes seconds a frame on lavapipe.
+const PAIRS_SIZE: u32 = 128;
 
 /// The median of each row's measurements over `rounds` rounds in which the rows take turns:
 /// a change in the machine's load then falls on every row alike, not on one.

@@ -12,6 +12,7 @@ use bevy_phong::prelude::*;
 use crate::cubes::{self, Cubes};
 use crate::features::{self, Features};
 use crate::lamps::{self, Lamps};
+use crate::pairs::{self, Pairs};
 use crate::panels::{self, Panels};
 
 /// What the scene's meshes are made of.
@@ -60,6 +61,8 @@ pub enum Scene {
     Cubes(Cubes),
     /// Rectangle lights over the field (`panels.rs`).
     Panels(Panels),
+    /// A floor under lights of one kind that each light all of it (`pairs.rs`).
+    Pairs(Pairs),
 }
 
 impl Scene {
@@ -88,6 +91,7 @@ impl Scene {
             Scene::Lamps(lamps) => lamps.name(),
             Scene::Cubes(cubes) => cubes.name(),
             Scene::Panels(panels) => panels.name(),
+            Scene::Pairs(pairs) => pairs.name(),
         }
     }
 
@@ -98,6 +102,7 @@ impl Scene {
                 Vec3::new(0.0, 1.0, 8.5)
             }
             Scene::Cubes(cubes) => cubes.camera_position(),
+            Scene::Pairs(_) => pairs::CAMERA,
             _ => Vec3::new(0.0, 14.0, 16.0),
         }
     }
@@ -167,6 +172,10 @@ pub fn scatter(i: usize) -> (f32, f32, f32) {
 /// `fine_floor`.
 fn objects(scene: Scene, fine_floor: bool) -> Vec<(Mesh, Vec3, Color)> {
     let mut objects: Vec<(Mesh, Vec3, Color)> = Vec::new();
+    if let Scene::Pairs(_) = scene {
+        objects.push((pairs::floor(), Vec3::ZERO, Color::srgb(0.6, 0.6, 0.6)));
+        return objects;
+    }
     if let Scene::ShowcaseOnFloor { .. } = scene {
         objects.push((
             Plane3d::default().mesh().size(30.0, 30.0).into(),
@@ -265,7 +274,7 @@ fn point_lights(scene: Scene) -> Vec<Light> {
             near
         }
         Scene::FieldWithoutRanges { lights } => field(lights, Decay::quadratic(4.0), None),
-        Scene::Lamps(_) | Scene::Cubes(_) | Scene::Panels(_) => Vec::new(),
+        Scene::Lamps(_) | Scene::Cubes(_) | Scene::Panels(_) | Scene::Pairs(_) => Vec::new(),
     }
 }
 
@@ -415,5 +424,8 @@ pub fn spawn_scene(world: &mut World, scene: Scene, shading: Shading) {
     }
     if let Scene::Panels(panels) = scene {
         panels::spawn_panels(world, panels);
+    }
+    if let Scene::Pairs(pairs) = scene {
+        pairs::apply(world, pairs);
     }
 }
