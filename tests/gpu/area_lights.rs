@@ -93,6 +93,13 @@ fn as_disk(
     )
 }
 
+/// The three panels: overhead, standing past the floor's edge, and turned away.
+fn spawn_three_panels(world: &mut World) {
+    world.spawn(overhead_panel());
+    world.spawn(standing_panel());
+    world.spawn(turned_away_panel());
+}
+
 /// The floor and the sphere, their materials, the lights `lights` spawns, settled, with each
 /// pixel's inputs.
 fn scene(lights: impl FnOnce(&mut World)) -> (Harness, SurfaceInputs, [Handle<PhongMaterial>; 2]) {
@@ -190,11 +197,7 @@ fn check_share(harness: &mut Harness, inputs: &SurfaceInputs, case: &str, share:
 
 #[test]
 fn area_lights_match_the_quadrature_over_their_area_at_every_pixel() {
-    let (mut harness, inputs, materials) = scene(|world| {
-        world.spawn(overhead_panel());
-        world.spawn(standing_panel());
-        world.spawn(turned_away_panel());
-    });
+    let (mut harness, inputs, materials) = scene(spawn_three_panels);
     // Diffuse: Lambert's formula over the part above each pixel's horizon.
     check(&mut harness, &inputs, "area_diffuse", TOLERANCE);
 
@@ -232,11 +235,7 @@ fn area_lights_match_the_quadrature_over_their_area_at_every_pixel() {
 /// shininess so that the highlight (at most the whole lobe, `2π / (α + 1)`) stays visible.
 #[test]
 fn the_default_highlight_matches_the_quadrature_up_to_shininess_ten_thousand() {
-    let (mut harness, inputs, materials) = scene(|world| {
-        world.spawn(overhead_panel());
-        world.spawn(standing_panel());
-        world.spawn(turned_away_panel());
-    });
+    let (mut harness, inputs, materials) = scene(spawn_three_panels);
     for (index, shininess) in [50.0, 200.0, 1000.0, 10_000.0].into_iter().enumerate() {
         highlight_only(&mut harness, &materials, SpecularModel::Phong, shininess);
         let mut assets = harness.world_mut().resource_mut::<Assets<PhongMaterial>>();
