@@ -32,9 +32,8 @@ pub enum AreaHighlight {
     /// otherwise (at most 8e-3 of the largest highlight measured); Blinn-Phong integrated as
     /// the Phong lobe of `α / (4 N·V)`, the lobe of the same solid angle (at most 0.4). Its
     /// cost grows with the shininess without bound: about `α/2` steps per edge of the
-    /// light's lit polygon (4 to 6 edges; a disk's 16 to 18), 5,000 at `α = 10⁴`, where its
-    /// `f32` recurrence also drifts (7.6e-3 off measured for a panel, 2.7e-2 for a disk;
-    /// docs/performance.md, "One light on one pixel").
+    /// light's lit polygon (4 to 6 edges; a disk's 16 to 18), 5,000 at `α = 10⁴`: 15 times
+    /// the bounded choice's cost there (docs/performance.md, "One light on one pixel").
     Exact,
     /// The lobe replaced by a linearly transformed cosine fitted to it (a clamped cosine
     /// around the mirror direction squeezed across it by `s = 1/√(0.585 α + 0.415)`, the
