@@ -13,7 +13,7 @@ use bevy::{
 };
 use bevy_phong::{
     PhongMaterial, PhongSceneBindings, SpecularModel,
-    testing::{GpuClustersHeader, GpuShadowView, PhongMaterialUniform},
+    testing::{GpuAreaLight, GpuClustersHeader, GpuShadowView, PhongMaterialUniform},
 };
 use naga::{Expression, Literal};
 
@@ -76,6 +76,23 @@ fn shadow_projection_kinds_are_the_wgsl_constants() {
         GpuShadowView::PERSPECTIVE,
         constant(&types, "SHADOW_PROJECTION_PERSPECTIVE")
     );
+}
+
+#[test]
+fn area_light_flags_are_the_wgsl_constants() {
+    let types = library().module("bevy_phong::shaders::types", &[]);
+    for (flag, name) in [
+        (GpuAreaLight::TWO_SIDED, "AREA_TWO_SIDED"),
+        (
+            GpuAreaLight::REPRESENTATIVE_POINT,
+            "AREA_REPRESENTATIVE_POINT",
+        ),
+        (GpuAreaLight::DISK, "AREA_DISK"),
+        (GpuAreaLight::FITTED, "AREA_FITTED"),
+        (GpuAreaLight::EXACT, "AREA_EXACT"),
+    ] {
+        assert_eq!(flag, constant(&types, name), "{name}");
+    }
 }
 
 /// What a binding holds, in words both sides can be brought to.
