@@ -35,6 +35,8 @@ mod ambient_specular;
 mod area;
 #[cfg(test)]
 mod area_closed_forms;
+#[cfg(test)]
+mod area_disk_polygon;
 mod area_pieces;
 mod camera_effects;
 mod cookies;
@@ -76,6 +78,8 @@ pub use surface::{MIN_LENGTH_SQUARED, Material, SurfacePoint, normalize_or_zero}
 pub use surface_inputs::transformed_uv;
 pub use texture_maps::Texels;
 
+#[cfg(test)]
+mod area_disk_tests;
 #[cfg(test)]
 mod area_tests;
 #[cfg(test)]

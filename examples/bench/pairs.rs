@@ -183,9 +183,13 @@ const KINDS: [PairKind; 10] = [
 /// The shininesses each kind is measured at.
 const SHININESSES: [f32; 4] = [1.0, 50.0, 1000.0, 10_000.0];
 
-/// The smoke run's rows (`--quick`): a point light and the default rect light, at 50 and
-/// 10,000.
-const QUICK_KINDS: [PairKind; 2] = [PairKind::Point, PairKind::Rect(AreaHighlight::Bounded)];
+/// The smoke run's rows (`--quick`): a point light and the default rect and disk lights, at
+/// 50 and 10,000.
+const QUICK_KINDS: [PairKind; 3] = [
+    PairKind::Point,
+    PairKind::Rect(AreaHighlight::Bounded),
+    PairKind::Disk(AreaHighlight::Bounded),
+];
 const QUICK_SHININESSES: [f32; 2] = [50.0, 10_000.0];
 
 /// The diffuse modes beside Lambert's, measured with the default rect light at 50.

@@ -21,6 +21,7 @@
 //! `k (w·ω)ᵏ⁻¹ − (k + 2)(w·ω)ᵏ⁺¹`.
 
 use super::area::{AreaLight, AreaShape};
+use super::area_disk_polygon::disk_polygon;
 use super::{Material, SurfacePoint, attenuation, normalize_or_zero, power, reflect};
 use crate::SpecularModel;
 use bevy::math::DVec3;
@@ -309,8 +310,9 @@ pub fn fitted_lobe(corners: &[DVec3], axis: DVec3, exponent: f64) -> f64 {
     whole_lobe(exponent) / PI * irradiance(&above, DVec3::Z)
 }
 
-/// The corners of `light` (a disk as the regular polygon of `sides` sides with its area),
-/// relative to `point`, winding counterclockwise seen from its facing side.
+/// The corners of `light` (a disk as the polygon of `sides` sides the shader draws it as,
+/// graded toward `point`: `area_disk_polygon`), relative to `point`, winding
+/// counterclockwise seen from its facing side.
 pub fn corners(light: &AreaLight, point: DVec3, sides: usize) -> Vec<DVec3> {
     let relative = |x: f64, y: f64| light.point(x, y) - point;
     match light.shape {
@@ -324,14 +326,15 @@ pub fn corners(light: &AreaLight, point: DVec3, sides: usize) -> Vec<DVec3> {
             ]
         }
         AreaShape::Disk { radius } => {
-            let step = 2.0 * PI / sides as f64;
-            // The circumradius whose polygon has the disk's area.
-            let circumradius = radius * (step / step.sin()).sqrt();
-            (0..sides)
-                .map(|side| {
-                    let (sin, cos) = (side as f64 * step).sin_cos();
-                    relative(circumradius * cos, circumradius * sin)
-                })
+            let offset = point - light.position;
+            let seen = (
+                offset.dot(light.right),
+                offset.dot(light.up),
+                offset.dot(light.facing()),
+            );
+            disk_polygon(radius, seen, sides)
+                .into_iter()
+                .map(|(x, y)| relative(x, y))
                 .collect()
         }
     }

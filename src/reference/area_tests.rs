@@ -5,6 +5,7 @@
 
 use super::area::{AreaLight, AreaShape, area_light_contribution};
 use super::area_closed_forms::{self as closed, Specular};
+use super::area_disk_polygon::DISK_SIDES;
 use super::{Material, SurfacePoint, attenuation, phong_light};
 use crate::SpecularModel;
 use bevy::math::DVec3;
@@ -12,7 +13,7 @@ use bevy::math::DVec3;
 /// Sides of the polygon a disk is drawn as where its shape does not matter to the test.
 const SIDES: usize = 64;
 
-fn material(specular_model: SpecularModel, shininess: f64) -> Material {
+pub(super) fn material(specular_model: SpecularModel, shininess: f64) -> Material {
     Material {
         diffuse: DVec3::new(0.8, 0.6, 0.4),
         specular: DVec3::new(0.5, 0.7, 0.9),
@@ -23,7 +24,7 @@ fn material(specular_model: SpecularModel, shininess: f64) -> Material {
     }
 }
 
-fn diffuse_only() -> Material {
+pub(super) fn diffuse_only() -> Material {
     Material {
         specular_strength: 0.0,
         ..material(SpecularModel::Phong, 1.0)
@@ -227,9 +228,9 @@ fn a_small_far_light_is_a_point_light_with_the_inverse_square() {
     );
 }
 
-/// The disk drawn as a regular polygon of its area: the diffuse term's error against the
-/// disk's quadrature shrinks as `1/sides²` (measured: under 2e-3 at 16 sides, 1.2e-4 at 64),
-/// at every point.
+/// The disk drawn as its polygon (graded toward the point, `area_disk_polygon`): the diffuse
+/// term's error against the disk's quadrature shrinks as `1/sides²` (bounds: 2e-3 at 16
+/// sides, 1.2e-4 at 64, which the regular polygon of the disk's area met too), at every point.
 #[test]
 fn a_disk_drawn_as_a_polygon_of_its_area_errs_by_the_square_of_its_sides() {
     let light = disk();
@@ -353,14 +354,14 @@ fn the_highlights_approximations_stay_within_their_documented_errors() {
     assert!(largest(cosine) < 1e-8, "fitted at α = 1: {cosine:?}");
 }
 
-/// The disk drawn as the regular polygon of its area with the shader's 16 sides
-/// (`area_lighting.wesl`'s `DISK_SIDES`): the diffuse term's error relative to the disk's,
+/// The disk drawn as the shader's polygon (`area_integrals.wesl`'s `disk_polygon`, of
+/// `DISK_SIDES` sides graded toward each point): the diffuse term's error relative to the disk's,
 /// and the highlight's as a share of the largest highlight among the points at that
 /// shininess (the integer Phong lobe, exact over the polygon), over the disk overhead (with
 /// floor points whose mirror ray runs to its rim, where the polygon's edge and the circle's
 /// part the most) and a disk in the grazing scene's place.
 #[test]
-fn a_disk_drawn_as_a_polygon_of_sixteen_sides() {
+fn a_disk_drawn_as_the_shaders_polygon() {
     let overhead = disk();
     let mut points: Vec<SurfacePoint> = surfaces().into_iter().map(|(_, point)| point).collect();
     for (position, angle) in [
@@ -384,7 +385,8 @@ fn a_disk_drawn_as_a_polygon_of_sixteen_sides() {
     for (scene, (light, points)) in [(overhead, points), (standing, floor)].iter().enumerate() {
         for surface in points {
             let reference = area_light_contribution(surface, &diffuse_only(), light);
-            let closed = closed::contribution(surface, &diffuse_only(), light, Specular::Exact, 16);
+            let closed =
+                closed::contribution(surface, &diffuse_only(), light, Specular::Exact, DISK_SIDES);
             if reference.max_element() > 0.0 {
                 diffuse[scene] = diffuse[scene].max(relative_error(closed, reference));
             }
@@ -399,15 +401,16 @@ fn a_disk_drawn_as_a_polygon_of_sixteen_sides() {
                 &material,
                 light,
                 Specular::Exact,
-                16,
+                DISK_SIDES,
             ));
         }
     }
     println!(
-        "a disk of 16 sides (overhead, grazing): diffuse within {diffuse:?} (relative), \
+        "the disk's polygon (overhead, grazing): diffuse within {diffuse:?} (relative), \
          the highlight within {highlight:?} of the largest"
     );
-    // Measured: diffuse 2.6e-4 and 3.1e-3, the highlight 1.1e-4 and 1.3e-3.
+    // Measured: diffuse 2.6e-5 and 4.1e-5, the highlight 2.8e-6 and 1.8e-5 (the regular
+    // 16-gon the shader drew before: 2.6e-4 and 3.1e-3, 1.1e-4 and 1.3e-3).
     assert!(diffuse[0].max(diffuse[1]) < 5e-3, "{diffuse:?}");
     assert!(highlight[0].max(highlight[1]) < 2e-3, "{highlight:?}");
 }

@@ -92,6 +92,7 @@ mod clusters;
 mod contract;
 mod cookies;
 mod culling;
+mod disk_rims;
 mod displacement;
 mod environment;
 mod environment_light;
