@@ -155,6 +155,7 @@ fn load_shaders(app: &mut App) {
         load_shader_library!(app, "shaders/types.wesl");
         load_shader_library!(app, "shaders/lighting.wesl");
         load_shader_library!(app, "shaders/area_integrals.wesl");
+        load_shader_library!(app, "shaders/disk_polygon.wesl");
         load_shader_library!(app, "shaders/area_lighting.wesl");
         load_shader_library!(app, "shaders/bindings.wesl");
         load_shader_library!(app, "shaders/data_texture.wesl");

@@ -21,7 +21,7 @@
 //! `k (w·ω)ᵏ⁻¹ − (k + 2)(w·ω)ᵏ⁺¹`.
 
 use super::area::{AreaLight, AreaShape};
-use super::area_disk_polygon::disk_polygon;
+use super::area_disk_polygon::{DISK_HIGHLIGHT_SIDES, DISK_SIDES, Grading, disk_polygon};
 use super::{Material, SurfacePoint, attenuation, normalize_or_zero, power, reflect};
 use crate::SpecularModel;
 use bevy::math::DVec3;
@@ -310,10 +310,37 @@ pub fn fitted_lobe(corners: &[DVec3], axis: DVec3, exponent: f64) -> f64 {
     whole_lobe(exponent) / PI * irradiance(&above, DVec3::Z)
 }
 
-/// The corners of `light` (a disk as the polygon of `sides` sides the shader draws it as,
-/// graded toward `point`: `area_disk_polygon`), relative to `point`, winding
-/// counterclockwise seen from its facing side.
+/// The corners of `light` relative to `point`, winding counterclockwise seen from its facing
+/// side: a disk as the polygon of `sides` corners the shader's diffuse light takes, graded
+/// toward the rim point nearest `point` (`area_disk_polygon`).
 pub fn corners(light: &AreaLight, point: DVec3, sides: usize) -> Vec<DVec3> {
+    disk_or_rect(light, point, sides, &Grading::nearest)
+}
+
+/// The corners of `light` the highlight's lobe around `mirror` of `exponent` is integrated
+/// over, as [`corners`]: a disk as the shader's polygon of `sides` corners graded toward
+/// where the lobe meets its rim ([`Grading::lobe`]).
+pub fn highlight_corners(
+    light: &AreaLight,
+    point: DVec3,
+    sides: usize,
+    (mirror, exponent): (DVec3, f64),
+) -> Vec<DVec3> {
+    let in_frame = |v: DVec3| (v.dot(light.right), v.dot(light.up), v.dot(light.facing()));
+    let mirror = in_frame(mirror);
+    disk_or_rect(light, point, sides, &|x, y, z| {
+        Grading::lobe(x, y, z, mirror, exponent)
+    })
+}
+
+/// The rectangle's corners, or the disk's polygon of `sides` corners graded by
+/// `grading(x, y, z)` of the point in the disk's frame, in radii.
+fn disk_or_rect(
+    light: &AreaLight,
+    point: DVec3,
+    sides: usize,
+    grading: &dyn Fn(f64, f64, f64) -> Grading,
+) -> Vec<DVec3> {
     let relative = |x: f64, y: f64| light.point(x, y) - point;
     match light.shape {
         AreaShape::Rect { width, height } => {
@@ -326,8 +353,8 @@ pub fn corners(light: &AreaLight, point: DVec3, sides: usize) -> Vec<DVec3> {
             ]
         }
         AreaShape::Disk { radius } => {
-            let offset = point - light.position;
-            let seen = (
+            let offset = (point - light.position) / radius;
+            let seen = grading(
                 offset.dot(light.right),
                 offset.dot(light.up),
                 offset.dot(light.facing()),
@@ -342,7 +369,9 @@ pub fn corners(light: &AreaLight, point: DVec3, sides: usize) -> Vec<DVec3> {
 
 /// The light's term at `surface` by the closed forms: Lambert's diffuse and the Phong lobe
 /// around the mirror direction `R_V = 2(N·V)N − V` (a Blinn-Phong lobe of exponent `α` as the
-/// Phong lobe of `α/4`), for a material of Lambert diffuse and a smooth highlight.
+/// Phong lobe of `α/4`), for a material of Lambert diffuse and a smooth highlight. A disk's
+/// diffuse light is taken over its polygon of `sides` corners ([`corners`]), its highlight
+/// over one of `sides · 16/32` ([`highlight_corners`]), as the shader's 32 and 16.
 pub fn contribution(
     surface: &SurfacePoint,
     material: &Material,
@@ -360,14 +389,22 @@ pub fn contribution(
     if front == 0.0 || (!light.two_sided && front < 0.0) {
         return DVec3::ZERO;
     }
-    let lit = clipped(&corners(light, surface.position, sides), normal);
-    let diffuse = irradiance(&on_sphere(&lit), normal);
+    let diffuse = irradiance(
+        &on_sphere(&clipped(&corners(light, surface.position, sides), normal)),
+        normal,
+    );
     let view = normalize_or_zero(surface.camera - surface.position);
     let mirror = reflect(-view, normal);
     let exponent = match material.specular_model {
         SpecularModel::Phong => material.shininess,
         _ => blinn_as_phong(material.shininess, normal.dot(view)),
     };
+    // The highlight's polygon of a disk has the shader's share of the diffuse one's corners.
+    let highlight_sides = (sides * DISK_HIGHLIGHT_SIDES / DISK_SIDES).max(3);
+    let lit = clipped(
+        &highlight_corners(light, surface.position, highlight_sides, (mirror, exponent)),
+        normal,
+    );
     let highlight = match specular {
         Specular::Exact => lobe(&on_sphere(&clipped(&lit, mirror)), mirror, exponent),
         Specular::RepresentativePoint => {

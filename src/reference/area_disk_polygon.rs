@@ -13,32 +13,77 @@
 //! `ds/du = β √(s² + s₀²)` (`s₀ = π / sinh β ≈ π δ / g`) grows in proportion to the angle
 //! from the nearest rim point, and near it is proportional to `δ`: each edge subtends about
 //! the same angle seen from the point, however near the rim it is. Far from the disk
-//! (`δ ≫ g`) `β → 0` and the polygon is regular. Each corner stands at `r √(g(θ₋) g(θ₊))`,
+//! (`δ ≫ g`) `β → 0` and the polygon is regular. The diffuse light is integrated over a
+//! polygon of [`DISK_SIDES`] corners crowded toward the rim point nearest the surface point;
+//! the highlight over one of [`DISK_HIGHLIGHT_SIDES`] crowded toward where its lobe meets
+//! the rim, where that is nearer ([`Grading::lobe`]). Each corner stands at `r √(g(θ₋) g(θ₊))`,
 //! `g(θ) = √(θ / sin θ)` of its two edges' angles, the circumradius that gives each edge's
 //! triangle its sector's area (for a regular polygon, the polygon of the disk's area).
 
 use std::f64::consts::PI;
 
-/// The sides of the polygon a disk is drawn as (`area_integrals.wesl`'s `DISK_SIDES`).
+/// The corners of the polygon the diffuse light is integrated over (`disk_polygon.wesl`'s
+/// `DISK_SIDES`).
 pub const DISK_SIDES: usize = 32;
 
-/// The grading `g` of the disk's polygon (`area_integrals.wesl`'s `DISK_GRADING`): how many
-/// radii from the rim the polygon starts to crowd its corners toward the nearest rim point.
+/// The corners of the polygon the highlight is integrated over (`DISK_HIGHLIGHT_SIDES`).
+pub const DISK_HIGHLIGHT_SIDES: usize = 16;
+
+/// The grading `g` of the disk's polygons (`DISK_GRADING`): how many radii from the rim
+/// they start to crowd their corners.
 pub const DISK_GRADING: f64 = 1.0;
 
 /// The least distance to the rim, in radii, the grading follows (`DISK_NEAREST_RIM`): closer
 /// points are graded as at this distance.
 pub const DISK_NEAREST_RIM: f64 = 1e-6;
 
-/// The polygon's corners for a disk of radius `radius` with a surface point at `(x, y, z)`
-/// in the disk's frame (its center the origin, its plane `z = 0`), as `(x, y)` in that
-/// plane, winding from +X toward +Y: `sides` corners graded toward the rim point nearest the
-/// surface point (see the module docs).
-pub fn disk_polygon(radius: f64, (x, y, z): (f64, f64, f64), sides: usize) -> Vec<(f64, f64)> {
-    let from_axis = x.hypot(y);
-    let nearest = y.atan2(x);
-    let to_rim = (from_axis - radius).hypot(z) / radius;
-    let beta = (DISK_GRADING / to_rim.max(DISK_NEAREST_RIM)).asinh();
+/// Where a polygon crowds its corners: toward the rim point at the angle `toward` (radians
+/// from the disk's X toward its Y), `to_rim` radii from it.
+#[derive(Clone, Copy, Debug)]
+pub struct Grading {
+    pub toward: f64,
+    pub to_rim: f64,
+}
+
+impl Grading {
+    /// Toward the rim point nearest `(x, y, z)` in the disk's frame (its center the origin,
+    /// its plane `z = 0`), in radii.
+    pub fn nearest(x: f64, y: f64, z: f64) -> Self {
+        Self {
+            toward: y.atan2(x),
+            to_rim: (x.hypot(y) - 1.0).hypot(z),
+        }
+    }
+
+    /// For the highlight's lobe around `mirror` of `exponent` from the surface point `(x, y,
+    /// z)` (both in the disk's frame, in radii): toward the rim point nearest where the
+    /// mirror ray meets the disk's plane, as far as the larger of that point's distance to
+    /// the rim and the lobe's width there (`2 distance / √exponent`); or [`Self::nearest`]
+    /// where that is nearer, or the ray runs away from the plane.
+    pub fn lobe(x: f64, y: f64, z: f64, mirror: (f64, f64, f64), exponent: f64) -> Self {
+        let surface = Self::nearest(x, y, z);
+        let distance = -z / mirror.2;
+        if !(distance > 0.0 && distance < 1e30) {
+            return surface;
+        }
+        let (hx, hy) = (x + distance * mirror.0, y + distance * mirror.1);
+        let width = 2.0 * distance / exponent.max(1.0).sqrt();
+        let lobe = Self {
+            toward: hy.atan2(hx),
+            to_rim: (hx.hypot(hy) - 1.0).abs().max(width),
+        };
+        if lobe.to_rim.max(DISK_NEAREST_RIM) < surface.to_rim.max(DISK_NEAREST_RIM) {
+            lobe
+        } else {
+            surface
+        }
+    }
+}
+
+/// The corners of a disk of radius `radius`'s polygon of `sides` corners graded by
+/// `grading`, as `(x, y)` in its plane, winding from +X toward +Y (see the module docs).
+pub fn disk_polygon(radius: f64, grading: Grading, sides: usize) -> Vec<(f64, f64)> {
+    let beta = (DISK_GRADING / grading.to_rim.max(DISK_NEAREST_RIM)).asinh();
     let angle = |j: isize| -> f64 {
         let u = (2 * j + 1) as f64 / sides as f64 - 1.0;
         if beta < 1e-4 {
@@ -57,12 +102,11 @@ pub fn disk_polygon(radius: f64, (x, y, z): (f64, f64, f64), sides: usize) -> Ve
                 wrapped(j + 1, sides, &angle),
             );
             let corner = radius * (scale(here - before) * scale(after - here)).sqrt();
-            let (sin, cos) = (nearest + here).sin_cos();
+            let (sin, cos) = (grading.toward + here).sin_cos();
             (corner * cos, corner * sin)
         })
         .collect()
 }
-
 /// The angle of corner `j` (one past either end, wrapped a turn).
 fn wrapped(j: isize, sides: usize, angle: &impl Fn(isize) -> f64) -> f64 {
     let sides = sides as isize;

@@ -16,13 +16,13 @@
 //! Blinn-Phong as the Phong lobe of `α / (4 N·V)` 0.4, the representative point 0.5, the
 //! fitted lobe 0.2.
 //!
-//! The disks (the same three placements) are drawn by the shader as a polygon of 32 corners
-//! graded toward each pixel's nearest rim point, and the quadrature integrates the disk
-//! itself: each term is held to the bound the regular 16-gon drawn before met
-//! (`reference::area_tests` measures both over the same two scenes) as a share of the frame's
-//! largest value: the diffuse light 5e-3 (measured 4.1e-5 relative; the 16-gon 3.1e-3), the
-//! integer Phong highlight 2e-3 (1.8e-5; the 16-gon 1.3e-3). Where a disk meets a floor:
-//! `disk_rims`.
+//! The disks (the same three placements) are drawn by the shader as polygons graded toward
+//! each pixel's nearest rim point (32 corners, the diffuse light) and its highlight's lobe
+//! (16, the highlight), and the quadrature integrates the disk itself: each term is held to
+//! the bound the regular 16-gon drawn before met (`reference::area_tests` measures both over
+//! the same two scenes) as a share of the frame's largest value: the diffuse light 5e-3
+//! (measured 4.1e-5 relative; the 16-gon 3.1e-3), the integer Phong highlight 2e-3 (1.5e-4;
+//! the 16-gon 1.3e-3). Where a disk meets a floor: `disk_rims`.
 
 use bevy::prelude::*;
 use bevy_phong::prelude::*;

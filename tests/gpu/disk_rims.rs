@@ -2,13 +2,15 @@
 //! above it, against the reference model's quadrature over the disk itself (not over the
 //! shader's polygon), every pixel, on both device limits.
 //!
-//! The shader draws the disk as a polygon graded toward each surface point's nearest rim
-//! point (`disk_polygon`). Tolerances, as shares of the frame's largest value: the diffuse
-//! light 1e-3 (the polygon's bound is 5e-4 of the most the disk gives at the point,
-//! `reference::area_disk_tests`, plus `f32`'s rounding of corners a few millimetres away),
-//! the Phong highlight of shininess 50 2e-3 (its bound 1e-3 of the whole lobe, at most the
-//! frame's largest value over its share of it). The regular 16-gon the disk was drawn as
-//! before fails each frame near the rim.
+//! The shader draws the disk as polygons graded toward each surface point's nearest rim
+//! point (the diffuse light) and toward its highlight's lobe (`disk_polygon.wesl`).
+//! Tolerances, as shares of the frame's largest value: the diffuse light 1e-3 (the polygon's
+//! bound is 5e-4 of the most the disk gives at the point, `reference::area_disk_tests`, plus
+//! `f32`'s rounding of corners a few millimetres away), the Phong highlight of shininess 50
+//! 3e-3 (its bound, of the whole lobe, which the frame's largest highlight nearly is here).
+//! Measured on both limits: 2.0e-5 and 3.7e-5 of the frame's largest value at most. The
+//! regular 16-gon the disk was drawn as before fails each frame near the rim (5.4e-2 to
+//! 6.7e-2 in the diffuse light).
 
 use crate::area_lights::largest_channel;
 use bevy::prelude::*;
@@ -62,7 +64,7 @@ fn rim_scene(lowest: f32) -> (Harness, Handle<PhongMaterial>) {
 fn check_rim(lowest: f32, case: &str) {
     let (mut harness, material) = rim_scene(lowest);
     let inputs = harness.capture_inputs();
-    for (part, share) in [("diffuse", 1e-3), ("highlight", 2e-3)] {
+    for (part, share) in [("diffuse", 1e-3), ("highlight", 3e-3)] {
         if part == "highlight" {
             {
                 let mut assets = harness.world_mut().resource_mut::<Assets<PhongMaterial>>();

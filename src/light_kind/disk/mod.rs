@@ -31,12 +31,12 @@ use serde::{Deserialize, Serialize};
 /// times the cosine between the disk's facing and the ray and the inverse square of its
 /// distance, so that seen face on from far away the disk is a point light of `color`.
 /// `decay` and `range` multiply that, taken at the distance to the disk's nearest point.
-/// The shader draws the disk, for each surface point, as a polygon of 32 corners on its rim
-/// crowded toward the rim point nearest the surface point, and integrates over that polygon
-/// as over a rectangle: at every distance from the rim (a disk touching or crossing a surface
-/// included), the diffuse light within 5e-4 of the most the disk gives at the point, the
-/// highlight within 1e-3 of the whole lobe up to shininess 50 (3e-3 at 200); docs/lights.md
-/// has the measurements. SPEC.md ("Area lights") has the equation. Scale is ignored; a hidden entity
+/// The shader draws the disk, for each surface point, as polygons whose corners sit on its
+/// rim crowded toward one rim point (32 toward the nearest for the diffuse light, 16 toward
+/// the highlight's lobe for the highlight), and integrates over them as over a rectangle: at
+/// every distance from the rim (a disk touching or crossing a surface included), the diffuse
+/// light within 5e-4 of the most the disk gives at the point, the highlight within 3e-3 of
+/// the whole lobe at shininess 50 (1e-2 at 200); docs/lights.md has the measurements. SPEC.md ("Area lights") has the equation. Scale is ignored; a hidden entity
 /// gives no light.
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[cfg_attr(feature = "scene", derive(Serialize, Deserialize))]
