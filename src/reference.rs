@@ -28,8 +28,8 @@
 //! `environment`, `environment_light`, `cookies`, `normals`, `texture_maps`,
 //! `surface_inputs`, `per_vertex` and `camera_effects` (the sections of the same names). `area` integrates an area light
 //! (docs/design/area-lights.md) over its area by adaptive quadrature (`quadrature`); the
-//! closed forms the shader uses (`area_closed_forms`, test-only, and
-//! `shaders/area_integrals.wesl`) are measured against it.
+//! closed forms the shader uses (`area_closed_forms` and `area_disk_polygon`, test-only, and
+//! `shaders/area_integrals.wesl`, `shaders/disk_polygon.wesl`) are measured against it.
 
 mod ambient_specular;
 mod area;

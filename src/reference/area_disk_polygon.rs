@@ -1,6 +1,6 @@
-//! The polygon the shader draws a disk light as, seen from a surface point
-//! (`area_integrals.wesl`'s `disk_polygon`), in `f64`: test-only, measured against the
-//! quadrature over the disk itself in `area_tests`.
+//! The polygons the shader draws a disk light as, seen from a surface point
+//! (`shaders/disk_polygon.wesl`), in `f64`: test-only, measured against the quadrature over
+//! the disk itself in `area_disk_tests` and `area_tests`.
 //!
 //! A regular polygon errs where the surface point is close to the disk's rim: its edges cut
 //! inside the circle by the sagitta `r (1 − cos(π/n))` and its corners stand outside it,
@@ -8,12 +8,12 @@
 //! 0.78 for the disk's 1.25 five millimetres from a half-metre disk's rim). The polygon is
 //! drawn per surface point instead, its corners on the rim graded by their distance from
 //! the rim point nearest the surface point: at the angle `t* + s(u)` around the disk, for
-//! `u = (2j + 1)/n − 1`, with `s(u) = π · sinh(βu) / sinh β` and `β = asinh(g / δ)`
-//! (`δ` the distance to the rim in radii, `g` the grading, [`DISK_GRADING`]). The step
-//! `ds/du = β √(s² + s₀²)` (`s₀ = π / sinh β ≈ π δ / g`) grows in proportion to the angle
+//! `u = (2j + 1)/n − 1`, with `s(u) = π · sinh(βu) / sinh β` and `β = asinh(k / δ)`
+//! (`δ` the distance to the rim in radii, `k` the grading, [`DISK_GRADING`]). The step
+//! `ds/du = β √(s² + s₀²)` (`s₀ = π / sinh β ≈ π δ / k`) grows in proportion to the angle
 //! from the nearest rim point, and near it is proportional to `δ`: each edge subtends about
 //! the same angle seen from the point, however near the rim it is. Far from the disk
-//! (`δ ≫ g`) `β → 0` and the polygon is regular. The diffuse light is integrated over a
+//! (`δ ≫ k`) `β → 0` and the polygon is regular. The diffuse light is integrated over a
 //! polygon of [`DISK_SIDES`] corners crowded toward the rim point nearest the surface point;
 //! the highlight over one of [`DISK_HIGHLIGHT_SIDES`] crowded toward where its lobe meets
 //! the rim, where that is nearer ([`Grading::lobe`]). Each corner stands at `r √(g(θ₋) g(θ₊))`,
@@ -29,7 +29,7 @@ pub const DISK_SIDES: usize = 32;
 /// The corners of the polygon the highlight is integrated over (`DISK_HIGHLIGHT_SIDES`).
 pub const DISK_HIGHLIGHT_SIDES: usize = 16;
 
-/// The grading `g` of the disk's polygons (`DISK_GRADING`): how many radii from the rim
+/// The grading `k` of the disk's polygons (`DISK_GRADING`): how many radii from the rim
 /// they start to crowd their corners.
 pub const DISK_GRADING: f64 = 1.0;
 
@@ -41,7 +41,9 @@ pub const DISK_NEAREST_RIM: f64 = 1e-6;
 /// from the disk's X toward its Y), `to_rim` radii from it.
 #[derive(Clone, Copy, Debug)]
 pub struct Grading {
+    /// Radians around the disk from its X toward its Y.
     pub toward: f64,
+    /// Radii; `β = asinh(k / to_rim)`.
     pub to_rim: f64,
 }
 
